@@ -1,0 +1,24 @@
+// Subcommands of the `pushpull` executable. Each add_*_command registers one subcommand (options,
+// --help text, callback) on the root CLI11 app. A callback reports failure by throwing
+// pushpull::app::CommandError (or any std::exception) whose message names the file and the problem;
+// main() prints it and exits with status 1.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace CLI {
+class App;
+}
+
+namespace pushpull::app {
+
+struct CommandError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+void add_deform_command(CLI::App& root);  // pushpull deform: one push/pull on a model
+void add_info_command(CLI::App& root);    // pushpull info: what is in a model
+void add_render_command(CLI::App& root);  // pushpull render: a PNG of a model or result
+
+}  // namespace pushpull::app

@@ -1,0 +1,28 @@
+// pushpull: immersive design reviews of man-made shapes with As-Stiff-As-Needed deformation.
+#include "commands.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <exception>
+
+int main(int argc, char** argv) {
+  CLI::App root{
+      "pushpull: push and pull a tessellated design model with As-Stiff-As-Needed deformation\n"
+      "(Le Vaou et al., Computer-Aided Design 121, 2020) and the ARAP family it is compared with."};
+  root.set_version_flag("--version", PUSHPULL_VERSION);
+  root.require_subcommand(1);
+  pushpull::app::add_deform_command(root);
+  pushpull::app::add_info_command(root);
+  pushpull::app::add_render_command(root);
+
+  try {
+    root.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return root.exit(e);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "pushpull: error: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,45 @@
+#!/usr/bin/env python3
+"""Writes examples/hood.off: a car bonnet as a convex, doubly curved open patch (metres).
+
+1.5 m wide (x), 1.2 m long (y), crown at (0, 0.6, 0.95) falling 6 cm to the sides and 5 cm to the
+front and back edges; 81 x 61 vertices, triangulated with alternating diagonals so the mesh has no
+preferred direction. It is the bundled default of `scripts/demo`: pulling the crown up must keep the
+bonnet convex (the ASAN paper's Fig. 4 claim on a dome).
+"""
+import pathlib
+
+NX, NY = 81, 61
+W, L = 1.5, 1.2
+
+
+def height(x, y):
+    return 0.95 - 0.06 * (x / (W / 2)) ** 2 - 0.05 * ((y - L / 2) / (L / 2)) ** 2
+
+
+def main():
+    verts, faces = [], []
+    for j in range(NY):
+        for i in range(NX):
+            x = -W / 2 + W * i / (NX - 1)
+            y = L * j / (NY - 1)
+            verts.append((x, y, height(x, y)))
+    for j in range(NY - 1):
+        for i in range(NX - 1):
+            a, b = j * NX + i, j * NX + i + 1
+            c, d = a + NX, b + NX
+            if (i + j) % 2 == 0:
+                faces += [(a, b, d), (a, d, c)]
+            else:
+                faces += [(a, b, c), (b, d, c)]
+    out = pathlib.Path(__file__).resolve().parent.parent / "examples" / "hood.off"
+    with open(out, "w") as f:
+        f.write("OFF\n# pushpull example: convex car bonnet, metres (scripts/make-example-hood.py)\n")
+        f.write(f"{len(verts)} {len(faces)} 0\n")
+        for v in verts:
+            f.write(f"{v[0]:.6f} {v[1]:.6f} {v[2]:.6f}\n")
+        for t in faces:
+            f.write(f"3 {t[0]} {t[1]} {t[2]}\n")
+
+
+if __name__ == "__main__":
+    main()
