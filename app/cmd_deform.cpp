@@ -1,8 +1,302 @@
+// `pushpull deform`: one push/pull on a model in batch, writing the deformed model and METRICS.json.
 #include "commands.hpp"
+#include "metrics_json.hpp"
+#include "vertex_selection.hpp"
+
+#include "pushpull/deform/deformer.hpp"
+#include "pushpull/deform/mesh_io.hpp"
+#include "pushpull/deform/metrics.hpp"
+#include "pushpull/deform/roi.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
 
 namespace pushpull::app {
 
-// Not registered yet: `pushpull deform` arrives with its issue.
-void add_deform_command(CLI::App& /*root*/) {}
+namespace {
+
+namespace fs = std::filesystem;
+
+struct DeformCommandOptions {
+  std::string mesh;
+  std::string handle_file;
+  std::string fixed_file;
+  std::vector<double> handle_at;
+  double handle_radius = 0.0;
+  std::vector<double> displacement;
+  std::string method = "asan";
+  double mu = 100.0;
+  int iterations = 50;
+  double tolerance = 1e-3;
+  std::optional<double> energy_tolerance;
+  std::optional<int> anderson;  // unset: the solver's default window
+  std::optional<double> roi_radius;
+  std::vector<double> stretch_direction;
+  std::string asan_base = "arap-sr";
+  double alpha = 0.02;
+  double lambda = 1.0;
+  int rings = 2;
+  int sections = 5;
+  double dead_band = 1e-3;
+  std::string out;
+  std::string metrics;
+};
+
+// --- model loading and saving: the two places that know file formats ---------------------------------
+// (pushpull::assets will take these over for glTF/GLB/Draco; OFF/OBJ/PLY go through deform's reader.)
+
+deform::Mesh load_model(const fs::path& path) {
+  if (!fs::exists(path)) throw CommandError(path.string() + ": model file does not exist");
+  if (!deform::mesh_format_from_path(path)) {
+    throw CommandError(path.string() + ": unsupported model format (expected .off, .obj or .ply)");
+  }
+  try {
+    return deform::read_mesh(path);
+  } catch (const deform::MeshIoError& error) {
+    throw CommandError(error.what());
+  }
+}
+
+void check_output_model_path(const fs::path& path) {
+  if (!deform::mesh_format_from_path(path)) {
+    throw CommandError(path.string() + ": unsupported output format (expected .off, .obj or .ply)");
+  }
+}
+
+void save_model(const fs::path& path, const deform::Mesh& mesh) {
+  try {
+    deform::write_mesh(path, mesh);
+  } catch (const deform::MeshIoError& error) {
+    throw CommandError(error.what());
+  }
+}
+
+// ------------------------------------------------------------------------------------------------------
+
+Eigen::Vector3d vector3(const std::vector<double>& values, const char* option) {
+  const Eigen::Vector3d v(values.at(0), values.at(1), values.at(2));
+  if (!v.allFinite()) throw CommandError(std::string(option) + ": values must be finite numbers");
+  return v;
+}
+
+deform::Method parse_method_or_throw(const std::string& name, const char* option) {
+  try {
+    return deform::parse_method(name);
+  } catch (const std::invalid_argument& error) {
+    throw CommandError(std::string(option) + ": " + error.what());
+  }
+}
+
+std::vector<int> pick_handle(const DeformCommandOptions& o, const deform::Mesh& mesh) {
+  if (!o.handle_file.empty()) return read_index_file(o.handle_file, mesh.vertex_count());
+  const Eigen::Vector3d point = vector3(o.handle_at, "--handle-at");
+  std::vector<int> handle = vertices_within(mesh.V, point, o.handle_radius);
+  if (handle.empty()) {
+    throw CommandError(o.mesh + ": no vertex within --handle-radius " + std::to_string(o.handle_radius) +
+                       " of --handle-at (" + std::to_string(point.x()) + ", " + std::to_string(point.y()) +
+                       ", " + std::to_string(point.z()) + ")");
+  }
+  return handle;
+}
+
+deform::DeformOptions solver_options(const DeformCommandOptions& o) {
+  deform::DeformOptions options;
+  options.method = parse_method_or_throw(o.method, "--method");
+  options.asan_base = parse_method_or_throw(o.asan_base, "--asan-base");
+  options.mu = o.mu;
+  if (!o.stretch_direction.empty()) {
+    options.stretch_direction = vector3(o.stretch_direction, "--stretch-direction");
+    if (options.stretch_direction->norm() == 0.0) throw CommandError("--stretch-direction: must not be zero");
+  }
+  options.max_iterations = o.iterations;
+  options.tolerance = o.tolerance;
+  // --tolerance 0 means "run exactly --iterations iterations" unless an energy tolerance is asked for.
+  options.energy_tolerance = o.energy_tolerance.value_or(o.tolerance == 0.0 ? 0.0 : options.energy_tolerance);
+  if (o.anderson) options.anderson_window = *o.anderson;
+  options.sr_arap_alpha = o.alpha;
+  options.arap_h_lambda = o.lambda;
+  options.arap_n_rings = o.rings;
+  return options;
+}
+
+// Section planes spread evenly across the ROI's extent along d.
+std::vector<double> section_offsets(const deform::Mesh& mesh, const std::vector<int>& roi,
+                                    const Eigen::Vector3d& d, int count) {
+  if (count <= 0 || roi.empty()) return {};
+  const Eigen::Vector3d unit = d.normalized();
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (const int i : roi) {
+    const double s = mesh.V.row(i).dot(unit);
+    lo = std::min(lo, s);
+    hi = std::max(hi, s);
+  }
+  std::vector<double> offsets;
+  for (int k = 1; k <= count; ++k) offsets.push_back(lo + (hi - lo) * k / (count + 1));
+  return offsets;
+}
+
+void run_deform(const DeformCommandOptions& o) {
+  const auto start = std::chrono::steady_clock::now();
+  if (o.handle_file.empty() == o.handle_at.empty()) {
+    throw CommandError("give exactly one of --handle FILE or --handle-at X Y Z (with --handle-radius)");
+  }
+  if (!o.handle_at.empty() && !(o.handle_radius > 0.0))
+    throw CommandError("--handle-at needs a positive --handle-radius");
+  if (o.fixed_file.empty() && !o.roi_radius) {
+    throw CommandError("give --fixed FILE, --roi-radius R, or both (the region needs a boundary)");
+  }
+  const Eigen::Vector3d d = vector3(o.displacement, "--displacement");
+  if (d.norm() == 0.0) throw CommandError("--displacement: zero displacement (nothing to push or pull)");
+  deform::DeformOptions options = solver_options(o);
+  check_output_model_path(o.out);
+  for (const std::string& output : {o.out, o.metrics}) {
+    const fs::path folder = fs::path(output).parent_path();
+    if (!folder.empty() && !fs::is_directory(folder)) {
+      throw CommandError(output + ": the folder " + folder.string() + " does not exist");
+    }
+  }
+
+  auto mesh = std::make_shared<const deform::Mesh>(load_model(o.mesh));
+  const std::vector<int> handle = pick_handle(o, *mesh);
+  const std::vector<int> fixed =
+      o.fixed_file.empty() ? std::vector<int>{} : read_index_file(o.fixed_file, mesh->vertex_count());
+
+  deform::RegionOfInterest roi;
+  try {
+    roi = deform::build_roi(*mesh, handle, fixed,
+                            o.roi_radius.value_or(std::numeric_limits<double>::infinity()));
+  } catch (const std::invalid_argument& error) {
+    throw CommandError(std::string("region of interest: ") + error.what());
+  }
+  if (roi.fixed.empty()) {
+    throw CommandError(o.mesh +
+                       ": the region of interest has no fixed vertex (it covers the whole connected part); "
+                       "give --fixed or a smaller --roi-radius");
+  }
+
+  DeformRunRecord record;
+  try {
+    deform::Deformer deformer(mesh, roi, options);
+    record.result = deformer.solve(d);
+  } catch (const std::invalid_argument& error) {
+    throw CommandError(o.mesh + ": " + error.what());
+  }
+  std::vector<int> omega;
+  omega.reserve(roi.size());
+  omega.insert(omega.end(), roi.handle.begin(), roi.handle.end());
+  omega.insert(omega.end(), roi.fixed.begin(), roi.fixed.end());
+  omega.insert(omega.end(), roi.free.begin(), roi.free.end());
+  std::sort(omega.begin(), omega.end());
+
+  deform::MetricsOptions metrics_options;
+  metrics_options.dead_band_fraction = o.dead_band;
+  metrics_options.section_offsets = section_offsets(*mesh, omega, d, o.sections);
+  record.metrics = deform::evaluate_deformation(*mesh, record.result.V, d, omega, metrics_options);
+
+  deform::Mesh deformed{record.result.V, mesh->F};
+  save_model(o.out, deformed);
+
+  record.input = o.mesh;
+  record.output = o.out;
+  record.options = options;
+  record.d = d;
+  record.vertices = static_cast<long>(mesh->vertex_count());
+  record.handle_count = static_cast<long>(roi.handle.size());
+  record.fixed_count = static_cast<long>(roi.fixed.size());
+  record.free_count = static_cast<long>(roi.free.size());
+  record.dead_band_fraction = o.dead_band;
+  record.result.warnings.insert(record.result.warnings.end(), roi.warnings.begin(), roi.warnings.end());
+  record.total_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  try {
+    deform::write_file_atomically(o.metrics, metrics_json(record));
+  } catch (const std::runtime_error& error) {
+    throw CommandError(error.what());
+  }
+
+  const deform::DeformResult& r = record.result;
+  const deform::DeformationMetrics& m = record.metrics;
+  std::printf("pushpull deform: %s, %s, |d| = %g, ROI %zu of %ld vertices (%zu handle, %zu fixed)\n",
+              o.mesh.c_str(), o.method.c_str(), d.norm(), omega.size(), record.vertices, roi.handle.size(),
+              roi.fixed.size());
+  std::printf("  %d iterations, %s (%s); %.1f ms per iteration, %.1f ms factorize, %.1f ms total\n",
+              r.iterations, r.converged ? "converged" : "not converged",
+              std::string(deform::stop_reason_name(r.stop_reason)).c_str(), r.timing.per_iteration,
+              r.timing.factorize, record.total_ms);
+  std::printf(
+      "  max displacement %g; RMS along d %g, orthogonal to d %g; Gaussian-curvature sign flips %.2f%%\n",
+      m.displacement.max, m.along_d.rms, m.orthogonal.rms, 100.0 * m.sign_flip_fraction);
+  for (const std::string& warning : r.warnings) std::printf("  warning: %s\n", warning.c_str());
+  std::printf("  wrote %s and %s\n", o.out.c_str(), o.metrics.c_str());
+}
+
+}  // namespace
+
+void add_deform_command(CLI::App& root) {
+  auto o = std::make_shared<DeformCommandOptions>();
+  CLI::App* cmd = root.add_subcommand(
+      "deform",
+      "One push/pull on a model: move the handle by --displacement, deform the region with --method,\n"
+      "write the deformed model (--out) and the evaluation numbers (--metrics).");
+  cmd->add_option("MESH", o->mesh, "Model to deform (.off, .obj, .ply)")->required();
+  cmd->add_option("--handle", o->handle_file,
+                  "File of 0-based handle vertex indices (white-space separated)");
+  cmd->add_option("--handle-at", o->handle_at, "Handle = vertices within --handle-radius of this point")
+      ->expected(3);
+  cmd->add_option("--handle-radius", o->handle_radius, "Radius for --handle-at (model units)");
+  cmd->add_option("--fixed", o->fixed_file, "File of 0-based fixed vertex indices (the region stops there)");
+  cmd->add_option(
+      "--roi-radius", o->roi_radius,
+      "Region = vertices within this geodesic (edge-path) distance of the handle; its border is fixed");
+  cmd->add_option("--displacement", o->displacement, "Push/pull displacement d of the handle (model units)")
+      ->expected(3)
+      ->required();
+  cmd->add_option("--method", o->method, "arap-s, arap-sr, arap-m, arap-n, sr-arap, arap-h or asan")
+      ->capture_default_str();
+  cmd->add_option("--mu", o->mu, "asan: stretch factor of the region along d_o (> 1)")->capture_default_str();
+  cmd->add_option("--stretch-direction", o->stretch_direction, "asan: direction d_o (default: d)")
+      ->expected(3);
+  cmd->add_option("--asan-base", o->asan_base, "asan: membrane energy, arap-sr or arap-m")
+      ->capture_default_str();
+  cmd->add_option("--alpha", o->alpha, "sr-arap: rotation smoothness weight")->capture_default_str();
+  cmd->add_option("--lambda", o->lambda, "arap-h: bending weight (relative to the mean vertex area)")
+      ->capture_default_str();
+  cmd->add_option("--rings", o->rings, "arap-n: neighbourhood size n")->capture_default_str();
+  cmd->add_option("--iterations", o->iterations, "Maximum local-global iterations")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option(
+         "--tolerance", o->tolerance,
+         "Stop when the largest vertex move in an iteration is below T |d|; 0 = run exactly --iterations")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--energy-tolerance", o->energy_tolerance,
+                  "Stop when the relative energy change is below this")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--anderson", o->anderson,
+                  "Anderson acceleration window, 0 = plain local-global iterations (default: " +
+                      std::to_string(deform::DeformOptions{}.anderson_window) + ")")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--sections", o->sections, "Number of section planes (perpendicular to d) in the metrics")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--dead-band", o->dead_band,
+                  "Curvature below this fraction of the largest |K| counts as zero (flat) in sign statistics")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--out", o->out, "Deformed model to write (.off, .obj, .ply)")->required();
+  cmd->add_option("--metrics", o->metrics, "METRICS.json to write")->required();
+  cmd->callback([o] { run_deform(*o); });
+}
 
 }  // namespace pushpull::app

@@ -1,0 +1,92 @@
+// Serialises a `pushpull deform` run to the METRICS.json document described in metrics_json.hpp.
+#include "metrics_json.hpp"
+
+#include <nlohmann/json.hpp>
+
+namespace pushpull::app {
+
+namespace {
+
+using json = nlohmann::ordered_json;  // keys in the order written: what was run, then results
+
+json vec3(const Eigen::Vector3d& v) {
+  return json::array({v.x(), v.y(), v.z()});
+}
+
+json norms(const deform::NormSummary& n) {
+  return json{{"rms", n.rms}, {"max", n.max}, {"l2", n.l2}};
+}
+
+json curves(const std::vector<deform::SectionCurve>& list) {
+  json out = json::array();
+  for (const deform::SectionCurve& curve : list) {
+    json points = json::array();
+    for (const Eigen::Vector3d& p : curve.points) points.push_back(vec3(p));
+    out.push_back(json{{"closed", curve.closed}, {"points", std::move(points)}});
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string metrics_json(const DeformRunRecord& record) {
+  const deform::DeformResult& result = record.result;
+  const deform::DeformationMetrics& metrics = record.metrics;
+  const deform::DeformOptions& options = record.options;
+  json doc;
+  doc["input"] = record.input;
+  doc["output"] = record.output;
+  doc["method"] = std::string(deform::method_name(options.method));
+  doc["asan_base"] = std::string(deform::method_name(options.asan_base));
+  doc["mu"] = options.mu;
+  doc["d"] = vec3(record.d);
+  doc["stretch_direction"] = options.stretch_direction ? vec3(*options.stretch_direction) : json(nullptr);
+  doc["sr_arap_alpha"] = options.sr_arap_alpha;
+  doc["arap_h_lambda"] = options.arap_h_lambda;
+  doc["arap_n_rings"] = options.arap_n_rings;
+  doc["vertices"] = record.vertices;
+  doc["roi_vertices"] = record.handle_count + record.fixed_count + record.free_count;
+  doc["handle_count"] = record.handle_count;
+  doc["fixed_count"] = record.fixed_count;
+  doc["free_count"] = record.free_count;
+  doc["iterations"] = result.iterations;
+  doc["max_iterations"] = options.max_iterations;
+  doc["tolerance"] = options.tolerance;
+  doc["energy_tolerance"] = options.energy_tolerance;
+  doc["anderson"] = options.anderson_window;
+  doc["converged"] = result.converged;
+  doc["stop_reason"] = std::string(deform::stop_reason_name(result.stop_reason));
+  doc["initial_energy"] = result.initial_energy;
+  doc["energy_trace"] = result.energy_trace;
+  doc["timing_ms"] = json{{"precompute", result.timing.precompute},
+                          {"factorize", result.timing.factorize},
+                          {"solve", result.timing.solve},
+                          {"per_iteration", result.timing.per_iteration},
+                          {"total", record.total_ms}};
+  doc["max_displacement"] = metrics.displacement.max;
+  doc["gaussian_sign_flip_fraction"] = metrics.sign_flip_fraction;
+  doc["along_d_norm"] = metrics.along_d.rms;
+  doc["orthogonal_norm"] = metrics.orthogonal.rms;
+  doc["norm"] = "rms over the ROI vertices (see norms for max and l2)";
+  doc["norms"] = json{{"displacement", norms(metrics.displacement)},
+                      {"along_d", norms(metrics.along_d)},
+                      {"orthogonal", norms(metrics.orthogonal)}};
+  doc["mean_along_d"] = metrics.mean_along_d;
+  doc["curvature"] =
+      json{{"evaluated_vertices", metrics.curvature_vertices}, {"threshold", metrics.curvature_threshold},
+           {"dead_band_fraction", record.dead_band_fraction},  {"sign_flips", metrics.sign_flips},
+           {"sign_reversals", metrics.sign_reversals},         {"positive_before", metrics.positive_before},
+           {"negative_before", metrics.negative_before},       {"positive_after", metrics.positive_after},
+           {"negative_after", metrics.negative_after},         {"area", "mixed Voronoi (Meyer et al. 2003)"},
+           {"boundary", "mesh-boundary vertices excluded"}};
+  json sections = json::array();
+  for (const deform::Section& section : metrics.sections) {
+    sections.push_back(json{
+        {"offset", section.offset}, {"before", curves(section.before)}, {"after", curves(section.after)}});
+  }
+  doc["sections"] = std::move(sections);
+  doc["warnings"] = result.warnings;
+  return doc.dump(2) + "\n";
+}
+
+}  // namespace pushpull::app

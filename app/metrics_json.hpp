@@ -1,0 +1,44 @@
+// The METRICS.json document written by `pushpull deform`: what was run, how the solver behaved, and the
+// paper's evaluation numbers (pushpull::deform::DeformationMetrics).
+//
+// Keys (lengths in model units, times in milliseconds):
+//   input, output, method, asan_base, mu, d [3], stretch_direction [3] | null, vertices, roi_vertices,
+//   handle_count, fixed_count, free_count, iterations, max_iterations, tolerance, energy_tolerance,
+//   anderson, converged, stop_reason, energy_trace [..], initial_energy,
+//   timing_ms {precompute, factorize, solve, per_iteration, total},
+//   max_displacement, gaussian_sign_flip_fraction, along_d_norm (RMS over the ROI), orthogonal_norm (RMS),
+//   norms {displacement, along_d, orthogonal: {rms, max, l2}}, mean_along_d,
+//   curvature {evaluated_vertices, threshold, dead_band_fraction, sign_flips, sign_reversals,
+//              positive_before, negative_before, positive_after, negative_after, area: "mixed Voronoi",
+//              boundary: "excluded"},
+//   sections [{offset, before: [{closed, points [[x,y,z]..]}], after: [...]}], warnings [..].
+// Thread-safety: free functions without state.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <optional>
+#include <string>
+
+#include "pushpull/deform/deformer.hpp"
+#include "pushpull/deform/metrics.hpp"
+
+namespace pushpull::app {
+
+struct DeformRunRecord {
+  std::string input;                            // model file read
+  std::string output;                           // deformed model written
+  deform::DeformOptions options;                // as passed to the solver (progress callback unused)
+  Eigen::Vector3d d = Eigen::Vector3d::Zero();  // push/pull displacement, model units
+  long vertices = 0;                            // #V of the model
+  long handle_count = 0, fixed_count = 0, free_count = 0;
+  double total_ms = 0.0;  // wall time of the command: load to write
+  deform::DeformResult result;
+  deform::DeformationMetrics metrics;
+  double dead_band_fraction = 0.0;
+};
+
+// The JSON text (pretty-printed, trailing newline).
+[[nodiscard]] std::string metrics_json(const DeformRunRecord& record);
+
+}  // namespace pushpull::app

@@ -1,0 +1,43 @@
+// Converting a loaded model (pushpull::assets::Model) into renderer input, and deform-side per-vertex
+// data (deformed positions, displacement, curvature sign, overlays) onto the render vertices.
+//
+// Frames: the RenderMesh is in the model frame (every node transform applied), file units.
+// Shapes: deform-side arrays have #Vd rows (Model::deform_mesh.V); render-side arrays #Vr entries.
+// Thread-safety: pure functions on values.
+#pragma once
+
+#include "pushpull/assets/model.hpp"
+#include "pushpull/renderer/types.hpp"
+
+#include <Eigen/Core>
+
+#include <string>
+#include <vector>
+
+namespace pushpull::app {
+
+struct RenderModel {
+  renderer::RenderMesh mesh;                  // one mesh, one submesh per primitive
+  std::vector<renderer::Material> materials;  // submesh material indices refer here; textures below
+  std::vector<renderer::TextureRGBA8> textures;
+  std::vector<int> deform_vertex;   // #Vr: row of deform_mesh.V, -1 when none
+  std::vector<float> file_normals;  // #Vr*3: the normals drawn for the undeformed model
+  std::vector<std::string> warnings;
+};
+
+// Flattens every primitive into the model frame. Primitives without normals are split at creases
+// sharper than crease_deg (flat CAD faces stay flat, smooth surfaces stay smooth).
+RenderModel build_render_model(const assets::Model& model, double crease_deg = 35.0);
+
+// Render positions from deform-side positions V (#Vd by 3); vertices without a deform vertex keep
+// their undeformed position.
+std::vector<float> render_positions(const RenderModel& render, const Eigen::MatrixXd& V);
+
+// Normals for deformed render positions: the file normals rotated by how the surface turned
+// (recomputed deformed minus recomputed undeformed), so undeformed regions keep their file normals.
+std::vector<float> deformed_normals(const RenderModel& render, const std::vector<float>& deformed_positions);
+
+// A deform-side per-vertex value (#Vd) on the render vertices (#Vr); 0 where unmapped.
+std::vector<float> to_render_vertices(const RenderModel& render, const Eigen::VectorXd& per_deform_vertex);
+
+}  // namespace pushpull::app

@@ -1,0 +1,230 @@
+#include "render_session.hpp"
+
+#include "commands.hpp"
+
+#include "pushpull/renderer/camera.hpp"
+#include "pushpull/renderer/colormap.hpp"
+#include "pushpull/renderer/context.hpp"
+#include "pushpull/renderer/geometry.hpp"
+#include "pushpull/renderer/image_io.hpp"
+#include "pushpull/renderer/offscreen_target.hpp"
+#include "pushpull/renderer/renderer.hpp"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+
+namespace pushpull::app {
+namespace {
+
+using namespace pushpull::renderer;
+using Clock = std::chrono::steady_clock;
+
+glm::vec3 to_glm(const std::vector<double>& v) {
+  return {float(v[0]), float(v[1]), float(v[2])};
+}
+glm::vec3 to_glm(const Eigen::Vector3d& v) {
+  return {float(v.x()), float(v.y()), float(v.z())};
+}
+
+View make_view(const RenderCommandOptions& o, const Bounds& bounds, float aspect) {
+  OrbitCamera orbit;
+  orbit.up = to_glm(o.up);
+  orbit.fov_y_deg = float(o.fov_deg);
+  if (o.camera.size() >= 2) {
+    orbit.azimuth_deg = float(o.camera[0]);
+    orbit.elevation_deg = float(o.camera[1]);
+  }
+  if (o.camera.size() == 3) {
+    if (o.camera[2] <= 0.0) throw CommandError("--camera: ZOOM must be > 0");
+    orbit.distance_scale = float(1.0 / o.camera[2]);
+  }
+  View view = frame_bounds(bounds, orbit, aspect);
+  if (!o.eye.empty() || !o.target.empty()) {
+    const glm::vec3 target = o.target.empty() ? bounds.centre() : to_glm(o.target);
+    const glm::vec3 eye = o.eye.empty() ? glm::vec3(glm::inverse(view.view)[3]) : to_glm(o.eye);
+    if (glm::length(eye - target) <= 0.0f) throw CommandError("--eye and --target coincide");
+    view.view = glm::lookAt(eye, target, glm::normalize(orbit.up));
+    const float distance = glm::length(eye - bounds.centre());
+    const float radius = std::max(bounds.radius(), 1e-6f);
+    view.projection =
+        perspective(glm::radians(orbit.fov_y_deg), aspect,
+                    std::max(distance - 2.0f * radius, distance * 1e-3f), distance + 2.0f * radius);
+  }
+  return view;
+}
+
+// Side by side: left | right.
+TextureRGBA8 side_by_side(const TextureRGBA8& l, const TextureRGBA8& r) {
+  TextureRGBA8 out;
+  out.width = l.width + r.width;
+  out.height = l.height;
+  out.pixels.resize(size_t(out.width) * out.height * 4);
+  for (uint32_t y = 0; y < out.height; ++y) {
+    std::memcpy(&out.pixels[size_t(y) * out.width * 4], &l.pixels[size_t(y) * l.width * 4],
+                size_t(l.width) * 4);
+    std::memcpy(&out.pixels[(size_t(y) * out.width + l.width) * 4], &r.pixels[size_t(y) * r.width * 4],
+                size_t(r.width) * 4);
+  }
+  return out;
+}
+
+void benchmark(Renderer& renderer, MeshId mesh, std::span<const View> views, std::span<const Draw> draws,
+               const FrameSettings& settings, const RenderTargets& targets, const RenderInputs& inputs,
+               int frames) {
+  std::printf("benchmark: %zu triangles, %u vertices, %zu view(s) of %ux%u, %d frames per measurement\n",
+              inputs.render.mesh.indices.size() / 3, inputs.render.mesh.vertex_count(), views.size(),
+              targets.extent.width, targets.extent.height, frames);
+  std::vector<float> positions = inputs.positions;
+  std::vector<float> normals(positions.size());
+  double normals_ms = 0.0;
+  // Mean wall time per frame (CPU recording + lavapipe execution), GPU idle before and after.
+  auto run = [&](bool upload, std::span<const Draw> frame_draws) {
+    renderer.render(views, frame_draws, settings, targets);  // warm-up
+    renderer.wait_idle();
+    normals_ms = 0.0;
+    const auto start = Clock::now();
+    for (int f = 0; f < frames; ++f) {
+      if (upload) {
+        // A new deformation every frame: positions change, normals are recomputed on the CPU.
+        const float wobble = 1.0f + 1e-4f * float(f % 2);
+        for (float& x : positions) x *= wobble;
+        const auto t0 = Clock::now();
+        compute_vertex_normals(positions, inputs.render.mesh.indices, normals);
+        normals_ms += std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+        renderer.update_vertices(mesh, positions, normals);
+      }
+      renderer.render(views, frame_draws, settings, targets);
+    }
+    renderer.wait_idle();
+    normals_ms /= frames;
+    return std::chrono::duration<double, std::milli>(Clock::now() - start).count() / frames;
+  };
+  const double plain = run(false, draws);
+  const double streamed = run(true, draws);
+  const double streamed_normals = normals_ms;
+  // The upload alone: frames that clear both views but draw nothing, with and without the upload.
+  const double empty = run(false, {});
+  const double empty_upload = run(true, {});
+  const uint64_t bytes = renderer.last_upload_bytes();
+  std::printf("frame time, stereo, no upload:             %9.2f ms\n", plain);
+  std::printf("frame time, stereo, full upload each frame: %9.2f ms (includes CPU normals %.2f ms)\n",
+              streamed, streamed_normals);
+  std::printf(
+      "upload cost isolated (empty frames):        %9.2f ms per frame (%.2f -> %.2f ms; %.2f MB of "
+      "positions + normals via the staging ring)\n",
+      empty_upload - empty, empty, empty_upload, double(bytes) / 1e6);
+  std::printf("  of which CPU normal recomputation:        %9.2f ms\n", normals_ms);
+}
+
+}  // namespace
+
+void render_to_png(const RenderInputs& inputs, const RenderCommandOptions& o) {
+  const auto width = uint32_t(o.size[0]), height = uint32_t(o.size[1]);
+  ContextOptions context_options;
+  context_options.validation = o.validation;
+  Context context = Context::create(context_options);
+  TextureRGBA8 image;
+  {
+    RendererOptions renderer_options;
+    renderer_options.samples = VkSampleCountFlagBits(o.samples);
+    Renderer renderer(context, renderer_options);
+
+    std::vector<TextureId> texture_ids;
+    for (const auto& t : inputs.render.textures) texture_ids.push_back(renderer.add_texture(t));
+    auto tex = [&](int i) { return i >= 0 ? int(texture_ids[size_t(i)]) : -1; };
+    std::vector<int> material_ids;
+    for (Material m : inputs.render.materials) {
+      m.base_colour_texture = tex(m.base_colour_texture);
+      m.metallic_roughness_texture = tex(m.metallic_roughness_texture);
+      m.normal_texture = tex(m.normal_texture);
+      m.occlusion_texture = tex(m.occlusion_texture);
+      m.emissive_texture = tex(m.emissive_texture);
+      material_ids.push_back(int(renderer.add_material(m)));
+    }
+    RenderMesh mesh = inputs.render.mesh;
+    mesh.positions = inputs.positions;
+    mesh.normals = inputs.normals;
+    mesh.scalars = inputs.scalars;
+    mesh.overlays = inputs.overlays;
+    for (auto& sub : mesh.submeshes)
+      sub.material = sub.material >= 0 ? material_ids[size_t(sub.material)] : -1;
+    const MeshId model_mesh = renderer.add_mesh(mesh, o.benchmark_frames > 0);
+
+    const Bounds bounds = compute_bounds(inputs.positions);
+    const float size = std::max(bounds.radius(), 1e-6f);
+    std::vector<Draw> draws{Draw{model_mesh, glm::mat4(1.0f)}};
+    if (inputs.arrow) {
+      Material arrow;
+      arrow.base_colour = glm::vec4(kArrowColour, 1.0f);
+      arrow.roughness = 0.4f;
+      const int id = int(renderer.add_material(arrow));
+      const RenderMesh arrow_mesh =
+          make_arrow(to_glm(inputs.arrow->first), to_glm(inputs.arrow->second), 0.012f * size, id);
+      if (!arrow_mesh.indices.empty())
+        draws.push_back({renderer.add_mesh(arrow_mesh), glm::mat4(1.0f), false, true});
+    }
+    if (!inputs.sections.empty()) {
+      Material section;
+      section.base_colour = glm::vec4(kSectionColour, 1.0f);
+      section.unlit = true;
+      const int id = int(renderer.add_material(section));
+      draws.push_back(
+          {renderer.add_mesh(make_tubes(inputs.sections, 0.0015f * size, id)), glm::mat4(1.0f), false});
+    }
+
+    FrameSettings settings;
+    settings.up = to_glm(o.up);
+    settings.lighting = !o.flat;
+    const double unit_scale = inputs.is_gltf ? 1000.0 : 1.0;  // glTF metres -> mm in the legend
+    const std::string unit = inputs.is_gltf ? "mm" : "model units";
+    const float legend_h = 0.32f, legend_w = legend_h * float(height) / float(width) * 0.55f;
+    const glm::vec4 rect{0.015f, 1.0f - legend_h - 0.015f, 0.015f + legend_w, 0.985f};
+    const uint32_t legend_px_h = std::max(110u, uint32_t(float(height) * legend_h));
+    const uint32_t legend_px_w = std::max(60u, uint32_t(float(legend_px_h) * 0.55f));
+    if (o.color == "displacement") {
+      settings.color_mode = ColorMode::displacement;
+      double max = o.scalar_max.value_or(inputs.scalar_max);
+      if (max <= 0.0) max = 1e-9;  // nothing moved: everything at the bottom of the map
+      settings.scalar_max = float(max);
+      if (!o.no_legend)
+        renderer.set_legend(
+            make_displacement_legend(float(max * unit_scale), "|d| " + unit, legend_px_w, legend_px_h), rect);
+    } else if (o.color == "curvature-sign") {
+      settings.color_mode = ColorMode::curvature_sign;
+      settings.curvature_epsilon = 0.5f;  // scalars are the signs -1 / 0 / +1
+      if (!o.no_legend) {
+        const float h = legend_h * 0.5f;
+        renderer.set_legend(make_curvature_legend(legend_px_w, legend_px_h / 2),
+                            {rect.x, 0.985f - h, rect.z, 0.985f});
+      }
+    }
+
+    const float aspect = float(width) / float(height);
+    const View mono = make_view(o, bounds, aspect);
+    std::vector<View> views{mono};
+    if (o.ipd) {
+      const auto eyes = stereo_pair(mono, float(*o.ipd));
+      views.assign(eyes.begin(), eyes.end());
+    }
+    OffscreenTarget target(context, width, height, uint32_t(views.size()));
+    renderer.render(views, draws, settings, target.targets());
+    image = target.read_back(0);
+    if (views.size() == 2) image = side_by_side(image, target.read_back(1));
+
+    if (o.benchmark_frames > 0)
+      benchmark(renderer, model_mesh, views, draws, settings, target.targets(), inputs, o.benchmark_frames);
+  }
+  if (o.validation && context.validation_message_count() > 0)
+    throw CommandError("Vulkan validation reported " + std::to_string(context.validation_message_count()) +
+                       " message(s) (printed above)");
+  try {
+    write_png(o.out, image);
+  } catch (const std::exception& e) {
+    throw CommandError(e.what());
+  }
+}
+
+}  // namespace pushpull::app

@@ -1,0 +1,50 @@
+// Welding: merges coincident render vertices of all primitives (across patches, primitives and
+// instances) into one deformable surface, and describes that surface's topology.
+//
+// Units: model (world) frame, file units. Thread-safety: pure functions, reentrant.
+#pragma once
+
+#include "pushpull/assets/scene.hpp"
+
+#include <pushpull/deform/mesh.hpp>
+
+#include <cstddef>
+#include <vector>
+
+namespace pushpull::assets {
+
+struct WeldOptions {
+  // Vertices closer than relative_tolerance * (bounding-box diagonal) are merged, so the same model
+  // welds the same way at any scale (ToyCar is 7 cm, the Cesium truck hundreds of units).
+  double relative_tolerance = 1e-5;
+  // When >= 0, an absolute tolerance in model units that replaces the relative one.
+  double absolute_tolerance = -1.0;
+};
+
+// Topology of a triangle mesh (computed on deform::Mesh::F).
+struct Topology {
+  std::size_t components = 0;          // connected components of faces (isolated vertices ignored)
+  std::size_t boundary_edges = 0;      // edges with exactly one incident face
+  std::size_t boundary_loops = 0;      // connected chains of boundary edges
+  std::size_t non_manifold_edges = 0;  // edges with three or more incident faces
+};
+
+struct WeldStats {
+  double tolerance = 0.0;           // absolute, model units
+  std::size_t render_vertices = 0;  // vertices used by triangles, summed over primitives
+  std::size_t deform_vertices = 0;  // after merging
+  std::size_t render_triangles = 0;
+  std::size_t deform_triangles = 0;
+  std::size_t degenerate_triangles = 0;  // collapsed by the weld (or zero-area index triples), dropped
+  std::size_t pieces_before = 0;         // connected pieces before welding (CAD patches)
+  Topology topology;                     // of the welded surface
+};
+
+// Welds all triangles of `primitives` (placed by their T_model_node) into `out` (V in the model
+// frame) and fills each primitive's deform_vertex map. Deterministic: same input, same output.
+WeldStats weld_primitives(std::vector<Primitive>& primitives, const WeldOptions& options, deform::Mesh& out);
+
+// Components, boundary loops and non-manifold edges of a triangle mesh. F is #F by 3.
+Topology analyze_topology(const deform::Mesh& mesh);
+
+}  // namespace pushpull::assets

@@ -1,0 +1,185 @@
+// load_model: reads the file under the size limit, dispatches on the extension, welds, sizes.
+#include "pushpull/assets/model.hpp"
+
+#include "draco_decode.hpp"
+#include "gltf_loader.hpp"
+#include "primitive_build.hpp"
+
+#include <pushpull/deform/mesh_io.hpp>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <fstream>
+
+namespace pushpull::assets {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string lower_extension(const fs::path& path) {
+  std::string extension = path.extension().string();
+  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return extension;
+}
+
+std::vector<std::uint8_t> read_file(const fs::path& path, const Limits& limits) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw AssetError(path.string() + ": no such file");
+  if (!fs::is_regular_file(path, ec)) throw AssetError(path.string() + ": not a regular file");
+  const auto size = fs::file_size(path, ec);
+  if (ec) throw AssetError(path.string() + ": cannot read: " + ec.message());
+  if (size > limits.max_file_bytes)
+    throw AssetError(path.string() + ": " + std::to_string(size) + " bytes exceed the limit of " +
+                     std::to_string(limits.max_file_bytes));
+  std::vector<std::uint8_t> bytes(size);
+  std::ifstream in(path, std::ios::binary);
+  if (!in ||
+      (size > 0 && !in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(size))))
+    throw AssetError(path.string() + ": cannot read");
+  return bytes;
+}
+
+void load_draco_file(std::span<const std::uint8_t> bytes, const std::string& name, const Limits& limits,
+                     Model& model) {
+  model.report.format = "Draco";
+  detail::DecodedDraco decoded =
+      detail::decode_draco(bytes, {}, name, limits.max_vertices, limits.max_triangles);
+  Primitive primitive;
+  primitive.name = fs::path(name).stem().string();
+  for (auto& [semantic, values] : decoded.attributes)
+    detail::assign_attribute(primitive, semantic, std::move(values), name);
+  detail::assign_triangles(primitive, 4, std::move(decoded.indices), true, name);
+  detail::check_primitive(primitive, name);
+  model.primitives.push_back(std::move(primitive));
+}
+
+// OFF/OBJ/PLY through deform's reader: one primitive, and the deform mesh keeps double precision.
+void load_plain_mesh(std::span<const std::uint8_t> bytes, const std::string& name,
+                     const std::string& extension, Model& model, deform::Mesh& exact) {
+  const std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+  try {
+    if (extension == ".off")
+      exact = deform::parse_off(text, name);
+    else if (extension == ".obj")
+      exact = deform::parse_obj(text, name);
+    else
+      exact = deform::parse_ply(text, name);
+  } catch (const deform::MeshIoError& e) {
+    throw AssetError(e.what());
+  }
+  model.report.format = extension == ".off" ? "OFF" : extension == ".obj" ? "OBJ" : "PLY";
+  Primitive primitive;
+  primitive.name = fs::path(name).stem().string();
+  primitive.positions = exact.V.cast<float>();
+  std::vector<std::uint32_t> indices;
+  indices.reserve(static_cast<std::size_t>(exact.F.size()));
+  for (Eigen::Index f = 0; f < exact.F.rows(); ++f)
+    for (int c = 0; c < 3; ++c) indices.push_back(static_cast<std::uint32_t>(exact.F(f, c)));
+  detail::assign_triangles(primitive, 4, std::move(indices), true, name);
+  detail::check_primitive(primitive, name);
+  model.primitives.push_back(std::move(primitive));
+}
+
+}  // namespace
+
+bool is_supported_model_path(const fs::path& path) {
+  const std::string e = lower_extension(path);
+  return e == ".gltf" || e == ".glb" || e == ".drc" || e == ".off" || e == ".obj" || e == ".ply";
+}
+
+Model load_model_from_memory(const std::vector<std::uint8_t>& bytes, const std::string& name,
+                             const fs::path& base_dir, const LoadOptions& options) {
+  const std::string extension = lower_extension(name);
+  if (!is_supported_model_path(name))
+    throw AssetError(name + ": unsupported model format '" + extension +
+                     "' (expected .gltf, .glb, .drc, .off, .obj or .ply)");
+  if (bytes.size() > options.limits.max_file_bytes) throw AssetError(name + ": file exceeds the size limit");
+  if (!(options.scale > 0.0) || !std::isfinite(options.scale))
+    throw AssetError("scale must be a positive number");
+  if (options.target_length_m &&
+      (!(*options.target_length_m > 0.0) || !std::isfinite(*options.target_length_m)))
+    throw AssetError("target length must be a positive number of metres");
+
+  Model model;
+  model.source_path = name;
+  deform::Mesh exact;
+  const std::span<const std::uint8_t> data(bytes);
+  if (extension == ".gltf" || extension == ".glb")
+    detail::load_gltf(data, name, base_dir, options.limits, model);
+  else if (extension == ".drc")
+    load_draco_file(data, name, options.limits, model);
+  else
+    load_plain_mesh(data, name, extension, model, exact);
+
+  model.report.weld = weld_primitives(model.primitives, options.weld, model.deform_mesh);
+  if (exact.V.rows() > 0 && model.primitives.size() == 1) {  // keep the reader's doubles
+    const auto& map = model.primitives.front().deform_vertex;
+    std::vector<bool> set(static_cast<std::size_t>(model.deform_mesh.V.rows()), false);
+    for (std::size_t v = 0; v < map.size(); ++v)
+      if (map[v] >= 0 && !set[static_cast<std::size_t>(map[v])]) {
+        model.deform_mesh.V.row(map[v]) = exact.V.row(static_cast<Eigen::Index>(v));
+        set[static_cast<std::size_t>(map[v])] = true;
+      }
+  }
+  if (model.deform_mesh.F.rows() == 0) throw AssetError(name + ": the model has no triangles");
+  for (Eigen::Index v = 0; v < model.deform_mesh.V.rows(); ++v)
+    model.bounds.extend(model.deform_mesh.V.row(v).transpose());
+
+  model.scale = options.scale;
+  if (options.target_length_m) {
+    const double longest = model.bounds.sizes().maxCoeff();
+    if (!(longest > 0.0))
+      throw AssetError(name + ": the model has zero size; cannot scale it to a target length");
+    model.scale = *options.target_length_m / longest;
+  }
+  return model;
+}
+
+Model model_from_mesh(const deform::Mesh& mesh, const std::string& name) {
+  if (mesh.V.cols() != 3 || mesh.F.cols() != 3) throw AssetError(name + ": mesh must be #V by 3 and #F by 3");
+  Model model;
+  model.source_path = name;
+  model.report.format = "mesh";
+  Primitive primitive;
+  primitive.name = name;
+  primitive.positions = mesh.V.cast<float>();
+  std::vector<std::uint32_t> indices;
+  indices.reserve(static_cast<std::size_t>(mesh.F.size()));
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
+    for (int c = 0; c < 3; ++c) {
+      if (mesh.F(f, c) < 0 || mesh.F(f, c) >= mesh.V.rows())
+        throw AssetError(name + ": face index out of range");
+      indices.push_back(static_cast<std::uint32_t>(mesh.F(f, c)));
+    }
+  detail::assign_triangles(primitive, 4, std::move(indices), true, name);
+  detail::check_primitive(primitive, name);
+  primitive.deform_vertex.resize(static_cast<std::size_t>(mesh.V.rows()));
+  for (std::size_t v = 0; v < primitive.deform_vertex.size(); ++v)
+    primitive.deform_vertex[v] = static_cast<int>(v);
+  model.primitives.push_back(std::move(primitive));
+  model.deform_mesh = mesh;
+  for (Eigen::Index v = 0; v < mesh.V.rows(); ++v) model.bounds.extend(mesh.V.row(v).transpose());
+  model.report.weld.render_vertices = model.report.weld.deform_vertices =
+      static_cast<std::size_t>(mesh.V.rows());
+  model.report.weld.render_triangles = model.report.weld.deform_triangles =
+      static_cast<std::size_t>(mesh.F.rows());
+  model.report.weld.topology = analyze_topology(mesh);
+  return model;
+}
+
+Model load_model(const fs::path& path, const LoadOptions& options) {
+  const std::string extension = lower_extension(path);
+  if (!is_supported_model_path(path))
+    throw AssetError(path.string() + ": unsupported model format '" + extension +
+                     "' (expected .gltf, .glb, .drc, .off, .obj or .ply)");
+  const std::vector<std::uint8_t> bytes = read_file(path, options.limits);
+  fs::path base = path.parent_path();
+  if (base.empty()) base = ".";
+  Model model = load_model_from_memory(bytes, path.string(), base, options);
+  model.source_path = path;
+  return model;
+}
+
+}  // namespace pushpull::assets

@@ -1,0 +1,258 @@
+// Untrusted input (issue 4, item 5): every kind of bad file gets a clear error or warning.
+#include "test_support.hpp"
+
+#include "../src/uri_policy.hpp"
+
+#include <pushpull/assets/model.hpp>
+
+#include <nlohmann/json.hpp>
+
+#include <cstring>
+
+namespace pushpull::assets {
+namespace {
+
+using nlohmann::json;
+using testing::ScratchDir;
+
+// A one-triangle glTF whose buffer is tri.bin beside it.
+std::vector<std::uint8_t> triangle_bin() {
+  const float positions[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  const std::uint16_t indices[4] = {0, 1, 2, 0};
+  std::vector<std::uint8_t> bytes(44);
+  std::memcpy(bytes.data(), positions, 36);
+  std::memcpy(bytes.data() + 36, indices, 8);
+  return bytes;
+}
+
+json triangle_gltf(const std::string& buffer_uri = "tri.bin") {
+  return json::parse(R"({
+    "asset": {"version": "2.0"},
+    "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+    "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
+    "accessors": [
+      {"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0,0,0], "max": [1,1,0]},
+      {"bufferView": 1, "componentType": 5123, "count": 3, "type": "SCALAR"}],
+    "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 6}],
+    "buffers": [{"byteLength": 44, "uri": ")" +
+                     buffer_uri + R"("}]
+  })");
+}
+
+// Writes `document` as model.gltf (+ tri.bin) in `dir` and loads it.
+Model load_document(const ScratchDir& dir, const json& document) {
+  testing::write_bytes(dir / "tri.bin", triangle_bin());
+  testing::write_text(dir / "model.gltf", document.dump());
+  return load_model(dir / "model.gltf");
+}
+
+// Expects load to throw AssetError whose message contains `needle` (and names the file).
+void expect_refused(const ScratchDir& dir, const json& document, const std::string& needle) {
+  try {
+    (void)load_document(dir, document);
+    ADD_FAILURE() << "loaded without error, expected: " << needle;
+  } catch (const AssetError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find(needle), std::string::npos) << message;
+    EXPECT_NE(message.find("model.gltf"), std::string::npos) << message;
+  }
+}
+
+TEST(AssetsBadInput, ValidTriangleLoads) {
+  ScratchDir dir;
+  const Model model = load_document(dir, triangle_gltf());
+  EXPECT_EQ(model.deform_mesh.F.rows(), 1);
+  EXPECT_EQ(model.report.weld.topology.boundary_loops, 1u);
+}
+
+TEST(AssetsBadInput, UriPolicy) {
+  using detail::uri_problem;
+  EXPECT_EQ(uri_problem("tri.bin"), "");
+  EXPECT_EQ(uri_problem("sub/dir/tri.bin"), "");
+  EXPECT_EQ(uri_problem("sub/../tri.bin"), "");
+  EXPECT_EQ(uri_problem("data:application/octet-stream;base64,AAAA"), "");
+  EXPECT_NE(uri_problem("../tri.bin"), "");
+  EXPECT_NE(uri_problem("sub/../../tri.bin"), "");
+  EXPECT_NE(uri_problem("%2e%2e/tri.bin"), "");
+  EXPECT_NE(uri_problem("/etc/passwd"), "");
+  EXPECT_NE(uri_problem("\\\\server\\share\\x.bin"), "");
+  EXPECT_NE(uri_problem("C:/x.bin"), "");
+  EXPECT_NE(uri_problem("file:///etc/passwd"), "");
+  EXPECT_NE(uri_problem("http://example.com/x.bin"), "");
+  EXPECT_NE(uri_problem("tri%00.bin"), "");
+  EXPECT_NE(uri_problem("tri%zz.bin"), "");
+}
+
+TEST(AssetsBadInput, BufferUriOutsideTheFolderIsRefused) {
+  ScratchDir dir;
+  expect_refused(dir, triangle_gltf("../tri.bin"), "outside the model's folder");
+  expect_refused(dir, triangle_gltf("/etc/passwd"), "absolute paths are not allowed");
+  expect_refused(dir, triangle_gltf("https://example.com/tri.bin"), "scheme");
+  expect_refused(dir, triangle_gltf("file:///tmp/tri.bin"), "scheme");
+}
+
+TEST(AssetsBadInput, SymlinkEscapingTheFolderIsRefused) {
+  ScratchDir outside;
+  ScratchDir dir;
+  testing::write_bytes(outside / "secret.bin", triangle_bin());
+  std::filesystem::create_symlink(outside / "secret.bin", dir / "link.bin");
+  testing::write_text(dir / "model.gltf", triangle_gltf("link.bin").dump());
+  try {
+    (void)load_model(dir / "model.gltf");
+    ADD_FAILURE() << "symlink escape loaded";
+  } catch (const AssetError& e) {
+    EXPECT_NE(std::string(e.what()).find("outside"), std::string::npos) << e.what();
+  }
+}
+
+TEST(AssetsBadInput, ImageUriOutsideTheFolderIsRefused) {
+  ScratchDir dir;
+  json document = triangle_gltf();
+  document["images"] = json::array({{{"uri", "../../texture.png"}}});
+  expect_refused(dir, document, "image 0");
+}
+
+TEST(AssetsBadInput, MissingImageIsAWarning) {
+  ScratchDir dir;
+  json document = triangle_gltf();
+  document["images"] = json::array({{{"uri", "missing.png"}}});
+  document["textures"] = json::array({{{"source", 0}}});
+  document["materials"] = json::array({{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}});
+  document["meshes"][0]["primitives"][0]["material"] = 0;
+  const Model model = load_document(dir, document);
+  ASSERT_EQ(model.images.size(), 1u);
+  EXPECT_TRUE(model.images[0].missing);
+  EXPECT_TRUE(std::any_of(model.report.warnings.begin(), model.report.warnings.end(),
+                          [](const std::string& w) { return w.find("missing") != std::string::npos; }));
+}
+
+TEST(AssetsBadInput, MalformedJsonIsRefused) {
+  ScratchDir dir;
+  testing::write_text(dir / "model.gltf", R"({"asset": {"version": "2.0"}, "meshes": [)");
+  EXPECT_THROW((void)load_model(dir / "model.gltf"), AssetError);
+  testing::write_text(dir / "model.gltf", std::string(10000, '[') + std::string(10000, ']'));
+  try {
+    (void)load_model(dir / "model.gltf");
+    ADD_FAILURE();
+  } catch (const AssetError& e) {
+    EXPECT_NE(std::string(e.what()).find("nested"), std::string::npos) << e.what();
+  }
+  testing::write_text(dir / "model.gltf", R"({"asset": {"version": "2.0"}, "meshes": 7})");
+  EXPECT_THROW((void)load_model(dir / "model.gltf"), AssetError);
+  testing::write_text(dir / "model.gltf", "");
+  EXPECT_THROW((void)load_model(dir / "model.gltf"), AssetError);
+}
+
+TEST(AssetsBadInput, TruncatedBufferIsRefused) {
+  ScratchDir dir;
+  json document = triangle_gltf();
+  document["buffers"][0]["byteLength"] = 4000;  // the file has 44 bytes
+  expect_refused(dir, document, "model.gltf");
+}
+
+TEST(AssetsBadInput, OversizedExternalFileIsRefused) {
+  ScratchDir dir;
+  testing::write_bytes(dir / "tri.bin", triangle_bin());
+  testing::write_text(dir / "model.gltf", triangle_gltf().dump());
+  LoadOptions options;
+  options.limits.max_file_bytes = 40;  // the .gltf is larger than this
+  EXPECT_THROW((void)load_model(dir / "model.gltf", options), AssetError);
+}
+
+TEST(AssetsBadInput, AccessorOutOfRangeIsRefused) {
+  ScratchDir dir;
+  json document = triangle_gltf();
+  document["accessors"][0]["count"] = 300;
+  expect_refused(dir, document, "accessor 0");
+  document = triangle_gltf();
+  document["accessors"][0]["byteOffset"] = 32;
+  expect_refused(dir, document, "accessor 0");
+  document = triangle_gltf();
+  document["bufferViews"][1]["byteLength"] = 400;
+  expect_refused(dir, document, "model.gltf");
+  document = triangle_gltf();
+  document["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = 9;
+  expect_refused(dir, document, "model.gltf");
+}
+
+TEST(AssetsBadInput, IndexOutOfRangeIsRefused) {
+  ScratchDir dir;
+  std::vector<std::uint8_t> bin = triangle_bin();
+  bin[36 + 4] = 77;  // third index = 77 with 3 vertices
+  testing::write_bytes(dir / "tri.bin", bin);
+  testing::write_text(dir / "model.gltf", triangle_gltf().dump());
+  try {
+    (void)load_model(dir / "model.gltf");
+    ADD_FAILURE();
+  } catch (const AssetError& e) {
+    EXPECT_NE(std::string(e.what()).find("out of range"), std::string::npos) << e.what();
+  }
+}
+
+TEST(AssetsBadInput, AbsurdCountsAreRefusedWithoutAllocating) {
+  ScratchDir dir;
+  json document = triangle_gltf();
+  document["accessors"][0]["count"] = 4000000000000ull;
+  expect_refused(dir, document, "accessor 0");
+  document = triangle_gltf();
+  document["accessors"][1]["count"] = 4000000000ull;
+  expect_refused(dir, document, "accessor 1");
+}
+
+TEST(AssetsBadInput, NodeCycleIsRefused) {
+  ScratchDir dir;
+  json document = triangle_gltf();
+  document["nodes"] = json::array({{{"mesh", 0}, {"children", {1}}}, {{"children", {0}}}});
+  expect_refused(dir, document, "model.gltf");
+}
+
+TEST(AssetsBadInput, TruncatedGlbIsRefused) {
+  ScratchDir dir;
+  std::vector<std::uint8_t> glb = testing::read_bytes(testing::gltf_data() / "Box_Draco/Box_Draco.glb");
+  for (std::size_t keep :
+       {std::size_t{0}, std::size_t{11}, std::size_t{19}, glb.size() / 2, glb.size() - 1}) {
+    testing::write_bytes(dir / "cut.glb",
+                         std::vector<std::uint8_t>(glb.begin(), glb.begin() + static_cast<long>(keep)));
+    EXPECT_THROW((void)load_model(dir / "cut.glb"), AssetError) << keep;
+  }
+}
+
+TEST(AssetsBadInput, CorruptedDracoIsRefused) {
+  ScratchDir dir;
+  std::vector<std::uint8_t> drc = testing::read_bytes(testing::gltf_data() / "car_drc/car.drc");
+  testing::write_bytes(dir / "cut.drc", std::vector<std::uint8_t>(
+                                            drc.begin(), drc.begin() + static_cast<long>(drc.size() / 3)));
+  EXPECT_THROW((void)load_model(dir / "cut.drc"), AssetError);
+  std::vector<std::uint8_t> garbage = drc;
+  for (std::size_t i = 0; i < 64 && i < garbage.size(); ++i) garbage[i] ^= 0x5A;
+  testing::write_bytes(dir / "garbage.drc", garbage);
+  EXPECT_THROW((void)load_model(dir / "garbage.drc"), AssetError);
+  // A Draco payload inside a GLB: flip bytes in the middle of Box_Draco's BIN chunk.
+  std::vector<std::uint8_t> glb = testing::read_bytes(testing::gltf_data() / "Box_Draco/Box_Draco.glb");
+  const std::size_t from = glb.size() - 100;
+  for (std::size_t i = from; i < glb.size(); ++i) glb[i] = static_cast<std::uint8_t>(i * 37);
+  testing::write_bytes(dir / "box.glb", glb);
+  try {
+    const Model model = load_model(dir / "box.glb");
+    SUCCEED() << "decoded despite corruption (Draco has no checksum)";
+  } catch (const AssetError& e) {
+    EXPECT_NE(std::string(e.what()).find("box.glb"), std::string::npos) << e.what();
+  }
+}
+
+TEST(AssetsBadInput, RandomBytesNeverCrash) {
+  std::mt19937 random(4);
+  const std::vector<std::uint8_t> seed =
+      testing::read_bytes(testing::gltf_data() / "Box_Draco/Box_Draco.glb");
+  for (int trial = 0; trial < 200; ++trial) {
+    std::vector<std::uint8_t> bytes = seed;
+    for (int k = 0; k < 8; ++k) bytes[random() % bytes.size()] = static_cast<std::uint8_t>(random());
+    try {
+      (void)load_model_from_memory(bytes, "fuzz.glb", {});
+    } catch (const AssetError&) {
+    }
+  }
+}
+
+}  // namespace
+}  // namespace pushpull::assets

@@ -1,0 +1,140 @@
+// Writing GLB: round trips, deformation through the weld map, atomic replacement, validation.
+#include "test_support.hpp"
+
+#include <pushpull/assets/model.hpp>
+#include <pushpull/assets/write.hpp>
+
+#include <Eigen/Geometry>
+
+namespace pushpull::assets {
+namespace {
+
+using testing::gltf_data;
+using testing::ScratchDir;
+
+// A smooth bump: vertices near the top of the bounding box move up by 10% of the height.
+Eigen::MatrixXd bumped(const Model& model) {
+  Eigen::MatrixXd V = model.deform_mesh.V;
+  const Eigen::Vector3d centre = model.bounds.center();
+  const double radius = 0.3 * model.bounds.diagonal().norm();
+  const double height = 0.1 * model.bounds.sizes().y();
+  for (Eigen::Index v = 0; v < V.rows(); ++v) {
+    const double r = (V.row(v).transpose() - centre).norm() / radius;
+    V(v, 1) += height * std::exp(-r * r);
+  }
+  return V;
+}
+
+TEST(AssetsWrite, RoundTripKeepsShapeCountsAndMaterials) {
+  ScratchDir dir;
+  for (const char* name :
+       {"Box_Draco/Box_Draco.glb", "CesiumMilkTruck/glTF-Draco/CesiumMilkTruck.gltf", "car_drc/car.drc"}) {
+    SCOPED_TRACE(name);
+    const Model model = load_model(gltf_data() / name);
+    const auto out = dir / "out.glb";
+    write_glb(model, model.deform_mesh.V, out);
+    const Model again = load_model(out);
+    EXPECT_EQ(again.deform_mesh.V.rows(), model.deform_mesh.V.rows());
+    EXPECT_EQ(again.deform_mesh.F.rows(), model.deform_mesh.F.rows());
+    EXPECT_EQ(again.materials.size(), model.materials.size());
+    EXPECT_EQ(again.images.size(), model.images.size());
+    EXPECT_EQ(again.primitives.size(), model.primitives.size());
+    EXPECT_LT((again.bounds.min() - model.bounds.min()).norm(), 1e-5 * model.bounds.diagonal().norm());
+    EXPECT_TRUE(testing::validates_with_zero_errors(out));
+  }
+}
+
+TEST(AssetsWrite, DeformedPositionsGoThroughTheWeldMap) {
+  ScratchDir dir;
+  const Model model = load_model(gltf_data() / "CesiumMilkTruck/glTF-Binary/CesiumMilkTruck.glb");
+  const Eigen::MatrixXd V = bumped(model);
+  const auto out = dir / "bumped.glb";
+  write_glb(model, V, out);
+  const Model again = load_model(out);
+  ASSERT_EQ(again.deform_mesh.V.rows(), V.rows());
+  // Same welding order, so the rows correspond.
+  EXPECT_LT((again.deform_mesh.V - V).cwiseAbs().maxCoeff(), 1e-4 * model.bounds.diagonal().norm());
+  for (const Primitive& p : again.primitives)
+    for (Eigen::Index v = 0; v < p.normals.rows(); ++v) ASSERT_NEAR(p.normals.row(v).norm(), 1.0f, 1e-4f);
+  EXPECT_TRUE(testing::validates_with_zero_errors(out));
+}
+
+TEST(AssetsWrite, ToyCarLoadDeformWriteValidates) {
+  ScratchDir dir;
+  const Model model = load_model(gltf_data() / "ToyCar/glTF/ToyCar.gltf");
+  const auto out = dir / "toycar.glb";
+  const auto warnings = write_glb(model, bumped(model), out);
+  const Model again = load_model(out);
+  EXPECT_EQ(again.images.size(), model.images.size());
+  EXPECT_EQ(again.materials.size(), model.materials.size());
+  EXPECT_EQ(again.report.weld.topology.components, model.report.weld.topology.components);
+  // The material extensions are carried through.
+  EXPECT_EQ(again.report.extensions_used.size(), model.report.extensions_used.size());
+  EXPECT_TRUE(testing::validates_with_zero_errors(out));
+}
+
+TEST(AssetsWrite, DracoRecompressionRoundTripsAndValidates) {
+  ScratchDir dir;
+  const Model model = load_model(gltf_data() / "CesiumMilkTruck/glTF-Binary/CesiumMilkTruck.glb");
+  const auto out = dir / "truck-draco.glb";
+  WriteOptions options;
+  options.draco = true;
+  write_glb(model, model.deform_mesh.V, out, options);
+  EXPECT_LT(std::filesystem::file_size(out),
+            std::filesystem::file_size(gltf_data() / "CesiumMilkTruck/glTF-Binary/CesiumMilkTruck.glb"));
+  const Model again = load_model(out);
+  EXPECT_LT((again.bounds.max() - model.bounds.max()).norm(), 1e-3 * model.bounds.diagonal().norm());
+  EXPECT_EQ(again.report.weld.render_triangles, model.report.weld.render_triangles);
+  EXPECT_TRUE(testing::validates_with_zero_errors(out));
+}
+
+TEST(AssetsWrite, FailedWriteLeavesThePreviousFileIntact) {
+  ScratchDir dir;
+  const Model model = load_model(gltf_data() / "Box_Draco/Box_Draco.glb");
+  const auto out = dir / "box.glb";
+  write_glb(model, model.deform_mesh.V, out);
+  const auto good = testing::read_bytes(out);
+  // Wrong shape and non-finite positions are refused before anything is written.
+  EXPECT_THROW(write_glb(model, Eigen::MatrixXd::Zero(3, 3), out), AssetError);
+  Eigen::MatrixXd nan = model.deform_mesh.V;
+  nan(0, 0) = std::nan("");
+  EXPECT_THROW(write_glb(model, nan, out), AssetError);
+  EXPECT_EQ(testing::read_bytes(out), good);
+  // A folder that cannot be written: error, no temporary file left behind.
+  EXPECT_THROW(write_glb(model, model.deform_mesh.V, dir / "no-such-folder" / "x.glb"), AssetError);
+  int files = 0;
+  for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator(dir.path())) ++files;
+  EXPECT_EQ(files, 1);
+}
+
+TEST(AssetsWrite, ValidatorIsInstalledAndRejectsBrokenFiles) {
+  ScratchDir dir;
+  testing::write_text(dir / "broken.glb", "glTF not really");
+  EXPECT_FALSE(testing::validates_with_zero_errors(dir / "broken.glb"));
+}
+
+}  // namespace
+}  // namespace pushpull::assets
+
+namespace pushpull::assets {
+namespace {
+
+TEST(AssetsWrite, PlainMeshBecomesAValidGlb) {
+  testing::ScratchDir dir;
+  deform::Mesh mesh;
+  mesh.V.resize(4, 3);
+  mesh.V << 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0;
+  mesh.F.resize(2, 3);
+  mesh.F << 0, 1, 2, 0, 2, 3;
+  const Model model = model_from_mesh(mesh, "quad");
+  EXPECT_EQ(model.report.weld.topology.boundary_loops, 1u);
+  Eigen::MatrixXd V = mesh.V;
+  V(2, 2) = 0.5;
+  write_glb(model, V, dir / "quad.glb");
+  const Model again = load_model(dir / "quad.glb");
+  EXPECT_NEAR(again.bounds.max().z(), 0.5, 1e-6);
+  EXPECT_TRUE(testing::validates_with_zero_errors(dir / "quad.glb"));
+}
+
+}  // namespace
+}  // namespace pushpull::assets

@@ -1,0 +1,40 @@
+#include "anderson.hpp"
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+
+namespace pushpull::deform::detail {
+
+Anderson::Anderson(int window, Eigen::Index dimension)
+    : window_(window), dF_(dimension, window), dG_(dimension, window), gram_(window, window) {}
+
+Eigen::VectorXd Anderson::step(const Eigen::VectorXd& x, const Eigen::VectorXd& g) {
+  const Eigen::VectorXd f = g - x;
+  if (count_ == 0) {
+    prev_f_ = f;
+    prev_g_ = g;
+    ++count_;
+    return g;
+  }
+  const int column = (count_ - 1) % window_;
+  dF_.col(column) = f - prev_f_;
+  dG_.col(column) = g - prev_g_;
+  prev_f_ = f;
+  prev_g_ = g;
+  const int m = std::min(count_, window_);
+  ++count_;
+  for (int k = 0; k < m; ++k) gram_(column, k) = gram_(k, column) = dF_.col(column).dot(dF_.col(k));
+  // gamma = argmin |f - dF gamma|^2 through the (regularised) normal equations, m <= window is tiny.
+  const auto dF = dF_.leftCols(m);
+  Eigen::MatrixXd normal = gram_.topLeftCorner(m, m);
+  const double reg = 1e-10 * std::max(normal.diagonal().maxCoeff(), 1e-300);
+  normal.diagonal().array() += reg;
+  const Eigen::VectorXd gamma = normal.ldlt().solve(dF.transpose() * f);
+  if (!gamma.allFinite()) {
+    reset();
+    return g;
+  }
+  return g - dG_.leftCols(m) * gamma;
+}
+
+}  // namespace pushpull::deform::detail

@@ -1,0 +1,28 @@
+// Private: Anderson acceleration of a fixed-point iteration x <- G(x) (type II, window m), as used for
+// local-global solvers by Peng, Deng, Zhang, Liu, "Anderson acceleration for geometry optimization and
+// physics simulation", ACM TOG 37(4), 2018. The caller keeps the energy safeguard: when the accelerated
+// iterate raises the energy it falls back to G(x) and calls reset().
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+namespace pushpull::deform::detail {
+
+class Anderson {
+ public:
+  Anderson(int window, Eigen::Index dimension);
+  // x: current iterate, g = G(x). Returns the accelerated next iterate (g itself for the first call after
+  // construction or reset).
+  [[nodiscard]] Eigen::VectorXd step(const Eigen::VectorXd& x, const Eigen::VectorXd& g);
+  void reset() { count_ = 0; }
+
+ private:
+  int window_;
+  int count_ = 0;  // iterations since reset
+  Eigen::VectorXd prev_f_, prev_g_;
+  Eigen::MatrixXd dF_, dG_;  // dimension by window, circular
+  Eigen::MatrixXd gram_;     // window by window, dF^T dF, updated one column per step
+};
+
+}  // namespace pushpull::deform::detail

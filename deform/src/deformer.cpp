@@ -1,0 +1,353 @@
+// Deformer: construction (validation, local numbering, clusters, symbolic analysis) and the public API.
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+#include <tuple>
+
+#include "cotangent.hpp"
+#include "deformer_impl.hpp"
+#include "mesh_graph.hpp"
+
+namespace pushpull::deform {
+namespace {
+
+void check_options(const DeformOptions& o) {
+  auto fail = [](const std::string& what) { throw std::invalid_argument("deform options: " + what); };
+  if (!(o.mu > 1.0) || !std::isfinite(o.mu))
+    fail("mu must be a finite value > 1, got " + std::to_string(o.mu));
+  if (o.asan_base != Method::ArapSR && o.asan_base != Method::ArapM) {
+    fail("asan_base must be arap-sr or arap-m, got " + std::string(method_name(o.asan_base)));
+  }
+  if (o.max_iterations < 0) fail("max_iterations must be >= 0");
+  if (!(o.tolerance >= 0.0)) fail("tolerance must be >= 0");
+  if (!(o.energy_tolerance >= 0.0)) fail("energy_tolerance must be >= 0");
+  if (o.anderson_window < 0) fail("anderson_window must be >= 0");
+  if (o.arap_n_rings < 1) fail("arap_n_rings must be >= 1, got " + std::to_string(o.arap_n_rings));
+  if (!(o.sr_arap_alpha >= 0.0) || !std::isfinite(o.sr_arap_alpha))
+    fail("sr_arap_alpha must be finite and >= 0");
+  if (!(o.arap_h_lambda >= 0.0) || !std::isfinite(o.arap_h_lambda))
+    fail("arap_h_lambda must be finite and >= 0");
+  if (o.stretch_direction && (!o.stretch_direction->allFinite() || o.stretch_direction->norm() == 0.0)) {
+    fail("stretch_direction must be finite and non-zero");
+  }
+}
+
+detail::ModelSpec model_spec(const DeformOptions& o) {
+  detail::ModelSpec spec;
+  switch (o.method) {
+    case Method::ArapS:
+      spec.structure = Method::ArapS;
+      break;
+    case Method::ArapSR:
+      spec.structure = Method::ArapSR;
+      break;
+    case Method::ArapM:
+      spec.structure = Method::ArapM;
+      break;
+    case Method::ArapN:
+      spec.structure = Method::ArapN;
+      spec.n_rings = o.arap_n_rings;
+      break;
+    case Method::SrArap:
+      spec.structure = Method::ArapSR;
+      spec.smooth_alpha = o.sr_arap_alpha;
+      break;
+    case Method::ArapH:
+      spec.structure = Method::ArapSR;
+      spec.bending_lambda = o.arap_h_lambda;
+      break;
+    case Method::Asan:
+      spec.structure = o.asan_base;
+      break;
+  }
+  return spec;
+}
+
+}  // namespace
+
+void Deformer::Impl::setup() {
+  const Mesh& m = *mesh;
+  const int nv = static_cast<int>(m.V.rows());
+  if (static_cast<int>(roi.role.size()) != nv) {
+    throw std::invalid_argument("deformer: region of interest has " + std::to_string(roi.role.size()) +
+                                " roles for a mesh of " + std::to_string(nv) + " vertices");
+  }
+  if (roi.handle.empty())
+    throw std::invalid_argument("deformer: the region of interest has no handle vertex");
+  // The lists must agree with the roles (a hand-made RegionOfInterest may not).
+  for (const auto& [list, role, name] : {std::tuple{&roi.handle, VertexRole::Handle, "handle"},
+                                         std::tuple{&roi.fixed, VertexRole::Fixed, "fixed"},
+                                         std::tuple{&roi.free, VertexRole::Free, "free"}}) {
+    for (int v : *list) {
+      if (v < 0 || v >= nv || roi.role[static_cast<std::size_t>(v)] != role) {
+        throw std::invalid_argument(std::string("deformer: region of interest lists vertex ") +
+                                    std::to_string(v) + " as " + name +
+                                    " but its role disagrees (or it is out of range)");
+      }
+    }
+  }
+  if (roi.size() !=
+      static_cast<std::size_t>(std::count_if(roi.role.begin(), roi.role.end(),
+                                             [](VertexRole r) { return r != VertexRole::Outside; }))) {
+    throw std::invalid_argument("deformer: region of interest role counts disagree with its vertex lists");
+  }
+  check_options(options);
+  if (options.validate) {
+    validation = validate_mesh(m);
+    setup_warnings = validation.warnings;
+  }
+  setup_warnings.insert(setup_warnings.end(), roi.warnings.begin(), roi.warnings.end());
+
+  // Omega's faces: all three vertices in Omega, no repeated index, non-zero area (degenerate faces carry no
+  // stiffness; leaving them out lets a vertex held only by them be pinned instead of making Q singular).
+  auto in_omega = [&](int v) { return roi.role[static_cast<std::size_t>(v)] != VertexRole::Outside; };
+  std::vector<int> omega_faces;
+  for (int f = 0; f < m.F.rows(); ++f) {
+    const int a = m.F(f, 0), b = m.F(f, 1), c = m.F(f, 2);
+    if (a == b || b == c || c == a) continue;
+    const Eigen::Vector3d pa = m.V.row(a), pb = m.V.row(b), pc = m.V.row(c);
+    const double longest2 = std::max({(pb - pa).squaredNorm(), (pc - pb).squaredNorm(), (pa - pc).squaredNorm()});
+    if (!((pb - pa).cross(pc - pa).norm() > 1e-14 * longest2)) continue;
+    if (in_omega(a) && in_omega(b) && in_omega(c)) omega_faces.push_back(f);
+  }
+  // Free vertices not connected to any constrained vertex through Omega's faces are pinned at rest.
+  const detail::VertexGraph graph = detail::build_vertex_graph(nv, m.F, omega_faces);
+  std::vector<char> reached(static_cast<std::size_t>(nv), 0);
+  std::vector<int> stack;
+  for (const auto* list : {&roi.handle, &roi.fixed}) {
+    for (int v : *list) reached[static_cast<std::size_t>(v)] = 1, stack.push_back(v);
+  }
+  while (!stack.empty()) {
+    const int v = stack.back();
+    stack.pop_back();
+    for (const int* n = graph.begin(v); n != graph.end(v); ++n) {
+      if (!reached[static_cast<std::size_t>(*n)] &&
+          roi.role[static_cast<std::size_t>(*n)] == VertexRole::Free) {
+        reached[static_cast<std::size_t>(*n)] = 1;
+        stack.push_back(*n);
+      }
+    }
+  }
+  std::vector<int> pinned;
+  for (int v : roi.free) {
+    if (reached[static_cast<std::size_t>(v)])
+      local_to_global.push_back(v);
+    else
+      pinned.push_back(v);
+  }
+  n_free = static_cast<int>(local_to_global.size());
+  n_handle = static_cast<int>(roi.handle.size());
+  n_fixed = static_cast<int>(roi.fixed.size());
+  n_pinned = static_cast<int>(pinned.size());
+  local_to_global.insert(local_to_global.end(), roi.handle.begin(), roi.handle.end());
+  local_to_global.insert(local_to_global.end(), roi.fixed.begin(), roi.fixed.end());
+  local_to_global.insert(local_to_global.end(), pinned.begin(), pinned.end());
+  if (!pinned.empty()) {
+    setup_warnings.push_back(
+        "deformer: " + std::to_string(pinned.size()) + " free vertices (e.g. vertex " +
+        std::to_string(pinned.front()) +
+        ") belong to a part of the region with no handle or fixed vertex; they stay at rest");
+  }
+
+  const int n = static_cast<int>(local_to_global.size());
+  std::vector<int> global_to_local(static_cast<std::size_t>(nv), -1);
+  P.resize(3, n);
+  for (int i = 0; i < n; ++i) {
+    global_to_local[static_cast<std::size_t>(local_to_global[static_cast<std::size_t>(i)])] = i;
+    P.col(i) = m.V.row(local_to_global[static_cast<std::size_t>(i)]).transpose();
+  }
+  faces.resize(static_cast<Eigen::Index>(omega_faces.size()), 3);
+  for (std::size_t k = 0; k < omega_faces.size(); ++k) {
+    for (int c = 0; c < 3; ++c) {
+      faces(static_cast<Eigen::Index>(k), c) =
+          global_to_local[static_cast<std::size_t>(m.F(omega_faces[k], c))];
+    }
+  }
+  rest_half_cot = detail::half_cotangents(P, faces);
+
+  // arap-h: vertices whose every mesh face is in Omega and whose every edge has two faces (mean curvature
+  // is defined there).
+  std::vector<char> bending_vertex(static_cast<std::size_t>(n), 0);
+  if (options.method == Method::ArapH) {
+    std::vector<int> mesh_faces(static_cast<std::size_t>(nv), 0), omega_count(static_cast<std::size_t>(n), 0);
+    for (int f = 0; f < m.F.rows(); ++f) {
+      for (int c = 0; c < 3; ++c) ++mesh_faces[static_cast<std::size_t>(m.F(f, c))];
+    }
+    std::vector<std::tuple<int, int>> edges;
+    for (Eigen::Index f = 0; f < faces.rows(); ++f) {
+      for (int c = 0; c < 3; ++c) {
+        ++omega_count[static_cast<std::size_t>(faces(f, c))];
+        const int i = faces(f, c), j = faces(f, (c + 1) % 3);
+        edges.emplace_back(std::min(i, j), std::max(i, j));
+      }
+    }
+    for (int i = 0; i < n; ++i) {
+      bending_vertex[static_cast<std::size_t>(i)] =
+          omega_count[static_cast<std::size_t>(i)] > 0 &&
+          omega_count[static_cast<std::size_t>(i)] ==
+              mesh_faces[static_cast<std::size_t>(local_to_global[static_cast<std::size_t>(i)])];
+    }
+    std::sort(edges.begin(), edges.end());
+    for (std::size_t s = 0; s < edges.size();) {
+      std::size_t e = s;
+      while (e < edges.size() && edges[e] == edges[s]) ++e;
+      if (e - s != 2) {
+        bending_vertex[static_cast<std::size_t>(std::get<0>(edges[s]))] = 0;
+        bending_vertex[static_cast<std::size_t>(std::get<1>(edges[s]))] = 0;
+      }
+      s = e;
+    }
+  }
+
+  model =
+      detail::build_energy_model(P, faces, model_spec(options), rest_half_cot, rest_half_cot, bending_vertex);
+  system.analyze(model.Q, n_free);
+}
+
+double Deformer::Impl::prepare_weights(const Eigen::Vector3d& push_direction,
+                                       std::vector<std::string>& warnings) {
+  const auto start = std::chrono::steady_clock::now();
+  if (options.method == Method::Asan) {
+    const Eigen::Vector3d d_o = options.stretch_direction.value_or(push_direction);
+    std::optional<Eigen::Vector3d> unit;
+    if (d_o.norm() > 0.0)
+      unit = d_o.normalized();
+    else
+      warnings.push_back("asan: zero push/pull direction, the unstretched (arap) weights are used");
+    // tau depends on d_o d_o^T only: opposite directions share weights.
+    const bool same = unit.has_value() == weight_direction.has_value() &&
+                      (!unit || std::abs(unit->dot(*weight_direction)) >= 1.0 - 1e-14);
+    if (!same || !factored) {
+      model.set_weights(unit ? detail::half_cotangents(detail::stretch_along(P, *unit, options.mu), faces)
+                             : rest_half_cot);
+      weight_direction = unit;
+      factored = false;
+    }
+  }
+  if (!factored) {
+    system.factorize(model.Q);
+    factored = true;
+  }
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+Eigen::MatrixXd Deformer::Impl::to_full(const Eigen::Matrix3Xd& X) const {
+  Eigen::MatrixXd V = mesh->V;
+  for (Eigen::Index i = 0; i < X.cols(); ++i)
+    V.row(local_to_global[static_cast<std::size_t>(i)]) = X.col(i).transpose();
+  return V;
+}
+
+Deformer::Deformer(std::shared_ptr<const Mesh> rest, RegionOfInterest roi, const DeformOptions& options)
+    : impl_(std::make_unique<Impl>()) {
+  const auto start = std::chrono::steady_clock::now();
+  if (!rest) throw std::invalid_argument("deformer: the rest mesh is null");
+  impl_->mesh = std::move(rest);
+  impl_->roi = std::move(roi);
+  impl_->options = options;
+  impl_->setup();
+  impl_->precompute_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+Deformer::~Deformer() = default;
+Deformer::Deformer(Deformer&&) noexcept = default;
+Deformer& Deformer::operator=(Deformer&&) noexcept = default;
+
+DeformResult Deformer::solve(const Eigen::Vector3d& d) {
+  if (!d.allFinite()) throw std::invalid_argument("deformer: the displacement d is not finite");
+  ConstraintTargets targets;
+  targets.handle_positions.resize(impl_->n_handle, 3);
+  for (int k = 0; k < impl_->n_handle; ++k) {
+    targets.handle_positions.row(k) =
+        impl_->mesh->V.row(impl_->roi.handle[static_cast<std::size_t>(k)]) + d.transpose();
+  }
+  targets.push_direction = d;
+  return solve(targets);
+}
+
+DeformResult Deformer::solve(const ConstraintTargets& targets) {
+  Impl& s = *impl_;
+  auto shape = [](const Eigen::MatrixXd& M) {
+    return std::to_string(M.rows()) + " by " + std::to_string(M.cols());
+  };
+  if (targets.handle_positions.rows() != s.n_handle || targets.handle_positions.cols() != 3) {
+    throw std::invalid_argument("deformer: handle_positions must be " + std::to_string(s.n_handle) +
+                                " by 3 (one row per handle vertex), got " + shape(targets.handle_positions));
+  }
+  if (targets.fixed_positions.size() != 0 &&
+      (targets.fixed_positions.rows() != s.n_fixed || targets.fixed_positions.cols() != 3)) {
+    throw std::invalid_argument("deformer: fixed_positions must be empty or " + std::to_string(s.n_fixed) +
+                                " by 3, got " + shape(targets.fixed_positions));
+  }
+  if (targets.initial_guess.size() != 0 &&
+      (targets.initial_guess.rows() != s.mesh->V.rows() || targets.initial_guess.cols() != 3)) {
+    throw std::invalid_argument("deformer: initial_guess must be empty or #V by 3, got " +
+                                shape(targets.initial_guess));
+  }
+  if (!targets.handle_positions.allFinite() || !targets.fixed_positions.allFinite() ||
+      !targets.initial_guess.allFinite() ||
+      (targets.push_direction && !targets.push_direction->allFinite())) {
+    throw std::invalid_argument("deformer: a target position or direction is not finite");
+  }
+  const int nc = s.n_handle + s.n_fixed + s.n_pinned;
+  Eigen::Matrix3Xd X_c = s.P.rightCols(nc);
+  X_c.leftCols(s.n_handle) = targets.handle_positions.transpose();
+  if (targets.fixed_positions.size() != 0)
+    X_c.middleCols(s.n_handle, s.n_fixed) = targets.fixed_positions.transpose();
+  Eigen::Vector3d push = Eigen::Vector3d::Zero();
+  if (targets.push_direction) {
+    push = *targets.push_direction;
+  } else {
+    push = (X_c.leftCols(s.n_handle) - s.P.middleCols(s.n_free, s.n_handle)).rowwise().mean();
+  }
+  return s.run(X_c, push, targets.initial_guess);
+}
+
+const RegionOfInterest& Deformer::roi() const {
+  return impl_->roi;
+}
+const DeformOptions& Deformer::options() const {
+  return impl_->options;
+}
+const ValidationReport& Deformer::validation() const {
+  return impl_->validation;
+}
+
+double Deformer::energy(const Eigen::MatrixXd& V) const {
+  const Impl& s = *impl_;
+  if (V.rows() != s.mesh->V.rows() || V.cols() != 3)
+    throw std::invalid_argument("deformer: energy needs #V by 3 positions");
+  Eigen::Matrix3Xd X(3, s.P.cols());
+  for (Eigen::Index i = 0; i < X.cols(); ++i)
+    X.col(i) = V.row(s.local_to_global[static_cast<std::size_t>(i)]).transpose();
+  std::vector<Eigen::Matrix3d> R(static_cast<std::size_t>(s.model.cluster_count),
+                                 Eigen::Matrix3d::Identity());
+  std::vector<Eigen::Quaterniond> q(R.size(), Eigen::Quaterniond::Identity());
+  return s.local_step(X, R, q, /*R_valid=*/false, /*sweeps=*/20);
+}
+
+std::string_view stop_reason_name(StopReason reason) {
+  switch (reason) {
+    case StopReason::MoveTolerance:
+      return "move-tolerance";
+    case StopReason::EnergyTolerance:
+      return "energy-tolerance";
+    case StopReason::MaxIterations:
+      return "max-iterations";
+    case StopReason::Cancelled:
+      return "cancelled";
+  }
+  return "unknown";
+}
+
+DeformResult deform(const Mesh& mesh, const RegionOfInterest& roi, const Eigen::Vector3d& d,
+                    const DeformOptions& options) {
+  Deformer deformer(std::make_shared<const Mesh>(mesh), roi, options);
+  return deformer.solve(d);
+}
+
+}  // namespace pushpull::deform

@@ -1,0 +1,60 @@
+// Private: the state behind Deformer (see deformer.hpp): local numbering, energy model, factorization.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "anderson.hpp"
+#include "energy_model.hpp"
+#include "global_system.hpp"
+#include "pushpull/deform/deformer.hpp"
+
+namespace pushpull::deform {
+
+struct Deformer::Impl {
+  std::shared_ptr<const Mesh> mesh;
+  RegionOfInterest roi;
+  DeformOptions options;
+  ValidationReport validation;
+  std::vector<std::string> setup_warnings;  // validation + region + pinned components
+  double precompute_ms = 0.0;
+
+  // Local numbering of Omega: [0, n_free) free, then handle, fixed, pinned (constrained, in that order).
+  std::vector<int> local_to_global;
+  int n_free = 0, n_handle = 0, n_fixed = 0, n_pinned = 0;
+  Eigen::Matrix3Xd P;      // 3 by n rest positions
+  Eigen::MatrixX3i faces;  // Omega's triangles in local indices
+  Eigen::VectorXd rest_half_cot;
+
+  detail::EnergyModel model;
+  detail::GlobalSystem system;
+  bool factored = false;
+  std::optional<Eigen::Vector3d> weight_direction;  // unit d_o of the current ASAN weights
+
+  void setup();
+  // Recomputes weights if d_o changed (ASAN) and refactors when needed; returns milliseconds spent.
+  double prepare_weights(const Eigen::Vector3d& push_direction, std::vector<std::string>& warnings);
+  // Optimal rotations for X (3 by n) into R, warm-started by q; returns the energy E(X, R). sr-arap couples
+  // neighbouring rotations: `sweeps` Gauss-Seidel sweeps starting from R, or from the uncoupled optimum
+  // when `R_valid` is false.
+  // `quadratic`, when given, is tr(X Q X^T) already known (after a plain global step), saving a pass over Q.
+  // `rhs`, when given, receives B_f(R) (3 by n_free, b_v = sum_t R_cluster(t) g_t over free v) for the
+  // returned R, accumulated while each cluster's terms are in cache (same order as a separate pass).
+  double local_step(const Eigen::Matrix3Xd& X, std::vector<Eigen::Matrix3d>& R,
+                    std::vector<Eigen::Quaterniond>& q, bool R_valid = true, int sweeps = 1,
+                    std::optional<double> quadratic = std::nullopt, Eigen::Matrix3Xd* rhs = nullptr) const;
+  // Free positions X_f minimising E(., R) given constrained positions (through rhs_c = -Q_fc X_c), with
+  // B_f = B_f(R) from local_step. Writes X_f into G (3 by n_free). Also returns tr(X Q X^T) of the result,
+  // = X_f : (B_f - rhs_c) + constrained_quadratic since Q_ff X_f = B_f + rhs_c.
+  void global_step(const Eigen::Matrix3Xd& B, const Eigen::Matrix3Xd& rhs_c, double constrained_quadratic,
+                   Eigen::Matrix3Xd& G, double& quadratic) const;
+  [[nodiscard]] Eigen::MatrixXd to_full(const Eigen::Matrix3Xd& X) const;
+  DeformResult run(const Eigen::Matrix3Xd& X_c, const Eigen::Vector3d& push_direction,
+                   const Eigen::MatrixXd& initial_guess);
+};
+
+}  // namespace pushpull::deform

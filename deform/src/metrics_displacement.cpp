@@ -1,0 +1,126 @@
+// Displacement decomposition along d, norms over a vertex set, and the combined evaluation.
+#include "pushpull/deform/metrics.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <stdexcept>
+#include <string>
+
+namespace pushpull::deform {
+
+namespace {
+
+Eigen::Vector3d unit_direction(const Eigen::Vector3d& d) {
+  const double length = d.norm();
+  if (!(length > 0.0) || !std::isfinite(length)) {
+    throw std::invalid_argument("displacement direction d must be non-zero and finite");
+  }
+  return d / length;
+}
+
+template <typename Magnitude>
+NormSummary summarize(Eigen::Index count, std::span<const int> vertices, Magnitude magnitude) {
+  NormSummary summary;
+  double sum_squares = 0.0;
+  std::size_t n = 0;
+  auto add = [&](Eigen::Index i) {
+    if (i < 0 || i >= count)
+      throw std::invalid_argument("vertex index " + std::to_string(i) + " out of range");
+    const double m = magnitude(i);
+    sum_squares += m * m;
+    summary.max = std::max(summary.max, m);
+    ++n;
+  };
+  if (vertices.empty()) {
+    for (Eigen::Index i = 0; i < count; ++i) add(i);
+  } else {
+    for (const int i : vertices) add(i);
+  }
+  summary.l2 = std::sqrt(sum_squares);
+  summary.rms = n > 0 ? std::sqrt(sum_squares / static_cast<double>(n)) : 0.0;
+  return summary;
+}
+
+}  // namespace
+
+DisplacementDecomposition decompose_displacement(const Eigen::MatrixXd& V_before,
+                                                 const Eigen::MatrixXd& V_after, const Eigen::Vector3d& d) {
+  if (V_before.rows() != V_after.rows() || V_before.cols() != 3 || V_after.cols() != 3) {
+    throw std::invalid_argument("decompose_displacement: V_before and V_after must both be #V by 3");
+  }
+  const Eigen::Vector3d unit = unit_direction(d);
+  const Eigen::MatrixXd u = V_after - V_before;
+  DisplacementDecomposition result;
+  result.magnitude = u.rowwise().norm();
+  result.along = u * unit;
+  result.orthogonal = u - result.along * unit.transpose();
+  return result;
+}
+
+NormSummary norms_over(const Eigen::VectorXd& values, std::span<const int> vertices) {
+  return summarize(values.size(), vertices, [&](Eigen::Index i) { return std::abs(values(i)); });
+}
+
+NormSummary row_norms_over(const Eigen::MatrixXd& rows, std::span<const int> vertices) {
+  return summarize(rows.rows(), vertices, [&](Eigen::Index i) { return rows.row(i).norm(); });
+}
+
+DeformationMetrics evaluate_deformation(const Mesh& before, const Eigen::MatrixXd& V_after,
+                                        const Eigen::Vector3d& d, std::span<const int> vertices,
+                                        const MetricsOptions& options) {
+  const DisplacementDecomposition parts = decompose_displacement(before.V, V_after, d);
+  std::vector<int> all;
+  if (vertices.empty()) {
+    all.resize(static_cast<std::size_t>(before.V.rows()));
+    std::iota(all.begin(), all.end(), 0);
+    vertices = all;
+  }
+  DeformationMetrics metrics;
+  metrics.evaluated_vertices = vertices.size();
+  metrics.displacement = norms_over(parts.magnitude, vertices);
+  metrics.along_d = norms_over(parts.along, vertices);
+  metrics.orthogonal = row_norms_over(parts.orthogonal, vertices);
+  double along_sum = 0.0;
+  for (const int i : vertices) along_sum += parts.along(i);
+  metrics.mean_along_d = vertices.empty() ? 0.0 : along_sum / static_cast<double>(vertices.size());
+
+  const GaussianCurvature k_before = gaussian_curvature(before.V, before.F);
+  const GaussianCurvature k_after = gaussian_curvature(V_after, before.F);
+  double max_abs_k = 0.0;
+  for (const int i : vertices) {
+    if (!k_before.boundary[static_cast<std::size_t>(i)])
+      max_abs_k = std::max(max_abs_k, std::abs(k_before.K(i)));
+  }
+  metrics.curvature_threshold = options.dead_band_fraction * max_abs_k;
+  const std::vector<std::int8_t> sign_before = curvature_signs(k_before, metrics.curvature_threshold);
+  const std::vector<std::int8_t> sign_after = curvature_signs(k_after, metrics.curvature_threshold);
+  for (const int i : vertices) {
+    const auto v = static_cast<std::size_t>(i);
+    if (k_before.boundary[v]) continue;
+    ++metrics.curvature_vertices;
+    metrics.positive_before += sign_before[v] > 0;
+    metrics.negative_before += sign_before[v] < 0;
+    metrics.positive_after += sign_after[v] > 0;
+    metrics.negative_after += sign_after[v] < 0;
+    metrics.sign_flips += sign_before[v] != sign_after[v];
+    metrics.sign_reversals += sign_before[v] * sign_after[v] < 0;
+  }
+  metrics.sign_flip_fraction =
+      metrics.curvature_vertices > 0
+          ? static_cast<double>(metrics.sign_flips) / static_cast<double>(metrics.curvature_vertices)
+          : 0.0;
+
+  const Eigen::Vector3d unit = d.normalized();
+  for (const double offset : options.section_offsets) {
+    Section section;
+    section.offset = offset;
+    const Eigen::Vector3d origin = options.section_origin + offset * unit;
+    section.before = plane_section(before.V, before.F, origin, unit);
+    section.after = plane_section(V_after, before.F, origin, unit);
+    metrics.sections.push_back(std::move(section));
+  }
+  return metrics;
+}
+
+}  // namespace pushpull::deform

@@ -1,0 +1,55 @@
+// pushpull::renderer::MirrorWindow: the supervisor's desktop mirror, a GLFW window with a Vulkan
+// swapchain that the Renderer draws into like any other target.
+//
+// Setup: the instance needs the surface extensions GLFW names and the device VK_KHR_swapchain:
+//   ContextOptions o; o.instance_extensions = MirrorWindow::required_instance_extensions(); o.swapchain =
+//   true;
+// Per frame:
+//   if (auto frame = window.acquire()) { renderer.render(views, draws, settings, frame->targets,
+//   frame->sync);
+//                                         window.present(*frame); }
+// acquire() returns nullopt while the window is minimised or the swapchain was just recreated.
+//
+// Ownership: owns the window, surface and swapchain; borrows the Context (must outlive it).
+// Thread-safety: GLFW requires the main thread; the renderer's thread rule applies too.
+// GLFW stays initialised for the life of the process (glfwTerminate is left to the application).
+#pragma once
+
+#include "pushpull/renderer/context.hpp"
+#include "pushpull/renderer/renderer.hpp"
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace pushpull::renderer {
+
+class MirrorWindow {
+ public:
+  // Initialises GLFW; throws VulkanError when there is no display or no Vulkan support in GLFW.
+  static std::vector<std::string> required_instance_extensions();
+
+  MirrorWindow(const Context& context, uint32_t width, uint32_t height, const std::string& title);
+  ~MirrorWindow();
+  MirrorWindow(const MirrorWindow&) = delete;
+  MirrorWindow& operator=(const MirrorWindow&) = delete;
+
+  struct Frame {
+    RenderTargets targets;  // one view, left in PRESENT_SRC_KHR
+    FrameSync sync;         // wait: image acquired; signal: rendering done (present waits on it)
+    uint32_t image_index = 0;
+  };
+  std::optional<Frame> acquire();
+  void present(const Frame& frame);
+
+  [[nodiscard]] bool should_close() const;
+  void poll_events();
+  [[nodiscard]] VkExtent2D extent() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace pushpull::renderer

@@ -1,0 +1,107 @@
+// Legends rasterised on the CPU (text from stb_easy_font's quads) and drawn by the renderer as a
+// screen-space overlay, so they appear in the XR eyes and the mirror as well as in PNGs.
+#include "pushpull/renderer/colormap.hpp"
+#include "pushpull/renderer/geometry.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wunused-function"
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
+#pragma GCC diagnostic ignored "-Wsign-compare"
+#include <stb/stb_easy_font.h>
+#pragma GCC diagnostic pop
+
+namespace pushpull::renderer {
+namespace {
+
+struct Canvas {
+  TextureRGBA8 image;
+  Canvas(uint32_t w, uint32_t h, glm::vec4 background) {
+    image.width = w;
+    image.height = h;
+    image.pixels.resize(size_t(w) * h * 4);
+    for (size_t i = 0; i < size_t(w) * h; ++i) set_index(i, background);
+  }
+  void set_index(size_t i, glm::vec4 c) {
+    // RGB are linear: encode to sRGB; alpha stays linear.
+    image.pixels[4 * i + 0] = static_cast<uint8_t>(std::lround(255.0f * linear_to_srgb(c.r)));
+    image.pixels[4 * i + 1] = static_cast<uint8_t>(std::lround(255.0f * linear_to_srgb(c.g)));
+    image.pixels[4 * i + 2] = static_cast<uint8_t>(std::lround(255.0f * linear_to_srgb(c.b)));
+    image.pixels[4 * i + 3] = static_cast<uint8_t>(std::lround(255.0f * std::clamp(c.a, 0.0f, 1.0f)));
+  }
+  void fill(int x0, int y0, int x1, int y1, glm::vec4 c) {
+    x0 = std::max(x0, 0);
+    y0 = std::max(y0, 0);
+    x1 = std::min(x1, int(image.width));
+    y1 = std::min(y1, int(image.height));
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x) set_index(size_t(y) * image.width + size_t(x), c);
+  }
+  // Text with its top-left corner at (x, y); `scale` pixels per font unit (the font is ~7 units high).
+  void text(float x, float y, const char* s, float scale, glm::vec4 c) {
+    std::vector<char> quads(16 * 4 * 256);
+    unsigned char colour[4] = {255, 255, 255, 255};
+    std::vector<char> copy(s, s + std::char_traits<char>::length(s) + 1);
+    const int n = stb_easy_font_print(0.0f, 0.0f, copy.data(), colour, quads.data(), int(quads.size()));
+    for (int q = 0; q < n; ++q) {
+      const float* v0 = reinterpret_cast<const float*>(quads.data() + (q * 4 + 0) * 16);
+      const float* v2 = reinterpret_cast<const float*>(quads.data() + (q * 4 + 2) * 16);
+      fill(int(std::lround(x + v0[0] * scale)), int(std::lround(y + v0[1] * scale)),
+           int(std::lround(x + v2[0] * scale)), int(std::lround(y + v2[1] * scale)), c);
+    }
+  }
+  static float text_width(const char* s, float scale) {
+    std::vector<char> copy(s, s + std::char_traits<char>::length(s) + 1);
+    return float(stb_easy_font_width(copy.data())) * scale;
+  }
+};
+
+const glm::vec4 kPanel{0.02f, 0.02f, 0.025f, 0.78f};
+const glm::vec4 kText{0.95f, 0.95f, 0.95f, 1.0f};
+
+}  // namespace
+
+TextureRGBA8 make_displacement_legend(float max_value, const std::string& title, uint32_t width,
+                                      uint32_t height) {
+  Canvas canvas(width, height, kPanel);
+  const float scale = std::max(1.0f, std::floor(float(height) / 110.0f));
+  const float line = 10.0f * scale;
+  canvas.text(line * 0.6f, line * 0.5f, title.c_str(), scale, kText);
+  const int bar_x0 = int(line * 0.8f), bar_x1 = bar_x0 + int(line * 1.6f);
+  const int bar_y0 = int(line * 2.2f), bar_y1 = int(height) - int(line * 1.0f);
+  for (int y = bar_y0; y < bar_y1; ++y) {
+    const float t = 1.0f - float(y - bar_y0) / float(std::max(1, bar_y1 - bar_y0 - 1));
+    canvas.fill(bar_x0, y, bar_x1, y + 1, glm::vec4(displacement_colour(t), 1.0f));
+  }
+  for (int k = 0; k <= 4; ++k) {
+    const float t = float(k) / 4.0f;
+    const int y = bar_y1 - 1 - int(std::lround(t * float(bar_y1 - bar_y0 - 1)));
+    canvas.fill(bar_x1, y - int(scale / 2), bar_x1 + int(line * 0.5f), y - int(scale / 2) + int(scale),
+                kText);
+    char label[32];
+    std::snprintf(label, sizeof(label), "%.3g", double(t * max_value));
+    canvas.text(float(bar_x1) + line * 0.8f, float(y) - 3.5f * scale, label, scale, kText);
+  }
+  return canvas.image;
+}
+
+TextureRGBA8 make_curvature_legend(uint32_t width, uint32_t height) {
+  Canvas canvas(width, height, kPanel);
+  const float scale = std::max(1.0f, std::floor(float(height) / 55.0f));
+  const float line = 10.0f * scale;
+  const char* labels[3] = {"K > 0", "K < 0", "K = 0"};
+  const glm::vec3 colours[3] = {curvature_sign_colour(1.0f, 0.0f), curvature_sign_colour(-1.0f, 0.0f),
+                                curvature_sign_colour(0.0f, 0.0f)};
+  for (int i = 0; i < 3; ++i) {
+    const float y = line * (0.6f + 1.5f * float(i));
+    canvas.fill(int(line * 0.6f), int(y), int(line * 1.8f), int(y + line), glm::vec4(colours[i], 1.0f));
+    canvas.text(line * 2.4f, y + 1.5f * scale, labels[i], scale, kText);
+  }
+  return canvas.image;
+}
+
+}  // namespace pushpull::renderer

@@ -1,0 +1,216 @@
+#include "pushpull/renderer/mirror_window.hpp"
+
+#include "pushpull/renderer/unique_handle.hpp"
+#include "pushpull/renderer/vk_check.hpp"
+
+#define GLFW_INCLUDE_VULKAN
+#include <GLFW/glfw3.h>
+
+#include <algorithm>
+
+namespace pushpull::renderer {
+
+namespace {
+
+void init_glfw() {
+  if (glfwInit() != GLFW_TRUE)
+    throw VulkanError(VK_ERROR_INITIALIZATION_FAILED,
+                      "glfwInit failed (no display? set DISPLAY or use xvfb-run)");
+  if (glfwVulkanSupported() != GLFW_TRUE)
+    throw VulkanError(VK_ERROR_INITIALIZATION_FAILED, "GLFW finds no Vulkan loader");
+}
+
+}  // namespace
+
+struct MirrorWindow::Impl {
+  const Context& context;
+  GLFWwindow* window = nullptr;
+  VkSurfaceKHR surface = VK_NULL_HANDLE;
+  VkSwapchainKHR swapchain = VK_NULL_HANDLE;
+  VkFormat format = VK_FORMAT_UNDEFINED;
+  VkExtent2D extent{};
+  std::vector<VkImage> images;
+  std::vector<UniqueImageView> views;
+  std::vector<UniqueSemaphore> acquired;  // rotating, images.size() + 1 of them
+  std::vector<UniqueSemaphore> rendered;  // one per swapchain image
+  uint32_t next_acquire = 0;
+  bool needs_recreate = false;
+
+  explicit Impl(const Context& c) : context(c) {}
+
+  UniqueSemaphore make_semaphore() {
+    VkSemaphoreCreateInfo info{};
+    info.sType = VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO;
+    VkSemaphore semaphore = VK_NULL_HANDLE;
+    PP_VK_CHECK(vkCreateSemaphore(context.device(), &info, nullptr, &semaphore));
+    return UniqueSemaphore(context.device(), semaphore);
+  }
+
+  void destroy_swapchain() {
+    views.clear();
+    acquired.clear();
+    rendered.clear();
+    images.clear();
+    if (swapchain != VK_NULL_HANDLE) vkDestroySwapchainKHR(context.device(), swapchain, nullptr);
+    swapchain = VK_NULL_HANDLE;
+  }
+
+  void create_swapchain() {
+    VkPhysicalDevice gpu = context.physical_device();
+    VkBool32 supported = VK_FALSE;
+    PP_VK_CHECK(vkGetPhysicalDeviceSurfaceSupportKHR(gpu, context.queue_family_index(), surface, &supported));
+    if (!supported)
+      throw VulkanError(VK_ERROR_INITIALIZATION_FAILED, "the graphics queue cannot present to the window");
+    VkSurfaceCapabilitiesKHR caps;
+    PP_VK_CHECK(vkGetPhysicalDeviceSurfaceCapabilitiesKHR(gpu, surface, &caps));
+    uint32_t count = 0;
+    PP_VK_CHECK(vkGetPhysicalDeviceSurfaceFormatsKHR(gpu, surface, &count, nullptr));
+    std::vector<VkSurfaceFormatKHR> formats(count);
+    PP_VK_CHECK(vkGetPhysicalDeviceSurfaceFormatsKHR(gpu, surface, &count, formats.data()));
+    VkSurfaceFormatKHR chosen = formats.at(0);
+    for (const auto& f : formats)
+      if ((f.format == VK_FORMAT_B8G8R8A8_SRGB || f.format == VK_FORMAT_R8G8B8A8_SRGB) &&
+          f.colorSpace == VK_COLOR_SPACE_SRGB_NONLINEAR_KHR)
+        chosen = f;
+    format = chosen.format;
+    if (caps.currentExtent.width != UINT32_MAX) {
+      extent = caps.currentExtent;
+    } else {
+      int w = 0, h = 0;
+      glfwGetFramebufferSize(window, &w, &h);
+      extent = {std::clamp(uint32_t(w), caps.minImageExtent.width, caps.maxImageExtent.width),
+                std::clamp(uint32_t(h), caps.minImageExtent.height, caps.maxImageExtent.height)};
+    }
+    if (extent.width == 0 || extent.height == 0) return;  // minimised
+    uint32_t image_count = caps.minImageCount + 1;
+    if (caps.maxImageCount > 0) image_count = std::min(image_count, caps.maxImageCount);
+
+    VkSwapchainCreateInfoKHR info{};
+    info.sType = VK_STRUCTURE_TYPE_SWAPCHAIN_CREATE_INFO_KHR;
+    info.surface = surface;
+    info.minImageCount = image_count;
+    info.imageFormat = chosen.format;
+    info.imageColorSpace = chosen.colorSpace;
+    info.imageExtent = extent;
+    info.imageArrayLayers = 1;
+    info.imageUsage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
+    info.imageSharingMode = VK_SHARING_MODE_EXCLUSIVE;
+    info.preTransform = caps.currentTransform;
+    info.compositeAlpha = VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR;
+    info.presentMode = VK_PRESENT_MODE_FIFO_KHR;  // always available; the mirror need not outrun the display
+    info.clipped = VK_TRUE;
+    PP_VK_CHECK(vkCreateSwapchainKHR(context.device(), &info, nullptr, &swapchain));
+    PP_VK_CHECK(vkGetSwapchainImagesKHR(context.device(), swapchain, &count, nullptr));
+    images.resize(count);
+    PP_VK_CHECK(vkGetSwapchainImagesKHR(context.device(), swapchain, &count, images.data()));
+    for (VkImage image : images) {
+      VkImageViewCreateInfo view_info{};
+      view_info.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO;
+      view_info.image = image;
+      view_info.viewType = VK_IMAGE_VIEW_TYPE_2D;
+      view_info.format = format;
+      view_info.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+      VkImageView view = VK_NULL_HANDLE;
+      PP_VK_CHECK(vkCreateImageView(context.device(), &view_info, nullptr, &view));
+      views.emplace_back(context.device(), view);
+      rendered.push_back(make_semaphore());
+    }
+    for (size_t i = 0; i <= images.size(); ++i) acquired.push_back(make_semaphore());
+    next_acquire = 0;
+  }
+
+  void recreate() {
+    PP_VK_CHECK(vkDeviceWaitIdle(context.device()));
+    destroy_swapchain();
+    create_swapchain();
+    needs_recreate = false;
+  }
+};
+
+std::vector<std::string> MirrorWindow::required_instance_extensions() {
+  init_glfw();
+  uint32_t count = 0;
+  const char** names = glfwGetRequiredInstanceExtensions(&count);
+  if (names == nullptr)
+    throw VulkanError(VK_ERROR_EXTENSION_NOT_PRESENT, "GLFW cannot create Vulkan surfaces here");
+  return std::vector<std::string>(names, names + count);
+}
+
+MirrorWindow::MirrorWindow(const Context& context, uint32_t width, uint32_t height, const std::string& title)
+    : impl_(std::make_unique<Impl>(context)) {
+  init_glfw();
+  glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
+  impl_->window = glfwCreateWindow(int(width), int(height), title.c_str(), nullptr, nullptr);
+  if (impl_->window == nullptr) throw VulkanError(VK_ERROR_INITIALIZATION_FAILED, "glfwCreateWindow failed");
+  PP_VK_CHECK(glfwCreateWindowSurface(context.instance(), impl_->window, nullptr, &impl_->surface));
+  impl_->create_swapchain();
+}
+
+MirrorWindow::~MirrorWindow() {
+  vkDeviceWaitIdle(impl_->context.device());
+  impl_->destroy_swapchain();
+  if (impl_->surface != VK_NULL_HANDLE)
+    vkDestroySurfaceKHR(impl_->context.instance(), impl_->surface, nullptr);
+  if (impl_->window != nullptr) glfwDestroyWindow(impl_->window);
+}
+
+std::optional<MirrorWindow::Frame> MirrorWindow::acquire() {
+  Impl& w = *impl_;
+  if (w.needs_recreate || w.swapchain == VK_NULL_HANDLE) {
+    w.recreate();
+    if (w.swapchain == VK_NULL_HANDLE) return std::nullopt;
+  }
+  VkSemaphore acquired = w.acquired[w.next_acquire].get();
+  uint32_t index = 0;
+  const VkResult result =
+      vkAcquireNextImageKHR(w.context.device(), w.swapchain, UINT64_MAX, acquired, VK_NULL_HANDLE, &index);
+  if (result == VK_ERROR_OUT_OF_DATE_KHR) {
+    w.needs_recreate = true;
+    return std::nullopt;
+  }
+  if (result != VK_SUCCESS && result != VK_SUBOPTIMAL_KHR) PP_VK_CHECK(result);
+  if (result == VK_SUBOPTIMAL_KHR) w.needs_recreate = true;
+  w.next_acquire = uint32_t((w.next_acquire + 1) % w.acquired.size());
+  Frame frame;
+  frame.image_index = index;
+  frame.targets.extent = w.extent;
+  frame.targets.format = w.format;
+  ColorTarget target;
+  target.image = w.images[index];
+  target.view = w.views[index].get();
+  target.initial_layout = VK_IMAGE_LAYOUT_UNDEFINED;
+  target.final_layout = VK_IMAGE_LAYOUT_PRESENT_SRC_KHR;
+  frame.targets.views.push_back(target);
+  frame.sync.wait = acquired;
+  frame.sync.signal = w.rendered[index].get();
+  return frame;
+}
+
+void MirrorWindow::present(const Frame& frame) {
+  Impl& w = *impl_;
+  VkPresentInfoKHR info{};
+  info.sType = VK_STRUCTURE_TYPE_PRESENT_INFO_KHR;
+  info.waitSemaphoreCount = 1;
+  info.pWaitSemaphores = &frame.sync.signal;
+  info.swapchainCount = 1;
+  info.pSwapchains = &w.swapchain;
+  info.pImageIndices = &frame.image_index;
+  const VkResult result = vkQueuePresentKHR(w.context.queue(), &info);
+  if (result == VK_ERROR_OUT_OF_DATE_KHR || result == VK_SUBOPTIMAL_KHR) {
+    w.needs_recreate = true;
+    return;
+  }
+  PP_VK_CHECK(result);
+}
+
+bool MirrorWindow::should_close() const {
+  return glfwWindowShouldClose(impl_->window) == GLFW_TRUE;
+}
+void MirrorWindow::poll_events() {
+  glfwPollEvents();
+}
+VkExtent2D MirrorWindow::extent() const {
+  return impl_->extent;
+}
+
+}  // namespace pushpull::renderer

@@ -1,0 +1,548 @@
+// Renderer: resources (textures, materials, meshes), per-frame slots and the frame recording.
+#include "pushpull/renderer/renderer.hpp"
+
+#include "gpu_mesh.hpp"
+#include "gpu_resources.hpp"
+#include "pipelines.hpp"
+#include "pushpull/renderer/geometry.hpp"
+#include "pushpull/renderer/vk_check.hpp"
+#include "textures.hpp"
+
+#include <glm/gtc/matrix_inverse.hpp>
+
+#include <array>
+#include <cassert>
+#include <cstring>
+#include <map>
+#include <stdexcept>
+#include <thread>
+
+namespace pushpull::renderer {
+
+using namespace detail;
+
+namespace {
+
+constexpr uint32_t kMaxMaterials = 4096;
+
+struct FrameSlot {
+  UniqueCommandPool pool;
+  VkCommandBuffer cmd = VK_NULL_HANDLE;
+  UniqueFence fence;  // signalled when the GPU finished the frame that last used this slot
+  Buffer frame_data;  // FrameDataGpu, host visible
+  VkDescriptorSet frame_set = VK_NULL_HANDLE;
+};
+
+struct GpuMaterial {
+  Buffer params;  // MaterialGpu
+  VkDescriptorSet set = VK_NULL_HANDLE;
+};
+
+struct Attachments {
+  VkExtent2D extent{};
+  Image depth;
+  Image msaa_colour;  // when samples > 1
+  VkFormat colour_format = VK_FORMAT_UNDEFINED;
+};
+
+struct PipelinePair {
+  UniquePipeline mesh;
+  UniquePipeline mesh_on_top;
+  UniquePipeline overlay;
+};
+
+}  // namespace
+
+struct Renderer::Impl {
+  const Context& context;
+  RendererOptions options;
+  std::thread::id owner = std::this_thread::get_id();
+
+  PipelineLayouts layouts;
+  std::map<VkFormat, PipelinePair> pipelines;
+  UniqueDescriptorPool descriptor_pool;
+  UniqueSampler sampler;
+  UniqueSampler clamp_sampler;
+
+  std::vector<FrameSlot> slots;
+  uint64_t frame_index = 0;  // frames submitted so far; the frame being built uses slot frame_index % N
+
+  std::vector<Image> textures;
+  TextureId white_texture = 0;
+  TextureId flat_normal_texture = 0;
+  std::vector<GpuMaterial> materials;
+  MaterialId default_material = 0;
+  std::vector<GpuMesh> meshes;
+  Attachments attachments;
+
+  std::optional<Image> legend;
+  VkDescriptorSet legend_set = VK_NULL_HANDLE;
+  glm::vec4 legend_rect{0.0f};
+  uint64_t last_upload_bytes = 0;
+
+  explicit Impl(const Context& c, const RendererOptions& o) : context(c), options(o) {}
+
+  void assert_owner() const {
+    assert(std::this_thread::get_id() == owner && "pushpull::renderer::Renderer used from a second thread");
+    if (std::this_thread::get_id() != owner)
+      throw std::logic_error("pushpull::renderer::Renderer used from a thread other than its creator");
+  }
+
+  [[nodiscard]] uint32_t slot_index() const { return static_cast<uint32_t>(frame_index % slots.size()); }
+
+  VkDescriptorSet allocate_set(VkDescriptorSetLayout layout) {
+    VkDescriptorSetAllocateInfo info{};
+    info.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO;
+    info.descriptorPool = descriptor_pool.get();
+    info.descriptorSetCount = 1;
+    info.pSetLayouts = &layout;
+    VkDescriptorSet set = VK_NULL_HANDLE;
+    PP_VK_CHECK(vkAllocateDescriptorSets(context.device(), &info, &set));
+    return set;
+  }
+
+  void wait_slot(uint32_t slot) {
+    VkFence fence = slots[slot].fence.get();
+    PP_VK_CHECK(vkWaitForFences(context.device(), 1, &fence, VK_TRUE, UINT64_MAX));
+  }
+
+  PipelinePair& pipelines_for(VkFormat format) {
+    auto it = pipelines.find(format);
+    if (it != pipelines.end()) return it->second;
+    PipelinePair pair;
+    pair.mesh = create_mesh_pipeline(context, layouts.mesh.get(), format, options.samples);
+    pair.mesh_on_top = create_mesh_pipeline(context, layouts.mesh.get(), format, options.samples, false);
+    pair.overlay = create_overlay_pipeline(context, layouts.overlay2d.get(), format, options.samples);
+    return pipelines.emplace(format, std::move(pair)).first->second;
+  }
+
+  void ensure_attachments(VkExtent2D extent, VkFormat colour_format) {
+    if (attachments.extent.width == extent.width && attachments.extent.height == extent.height &&
+        attachments.colour_format == colour_format && attachments.depth.image)
+      return;
+    PP_VK_CHECK(vkDeviceWaitIdle(context.device()));  // the old ones may still be in use
+    attachments = {};
+    attachments.extent = extent;
+    attachments.colour_format = colour_format;
+    ImageDesc depth;
+    depth.extent = extent;
+    depth.format = kDepthFormat;
+    depth.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
+    depth.samples = options.samples;
+    depth.aspect = VK_IMAGE_ASPECT_DEPTH_BIT;
+    attachments.depth = create_image(context, depth);
+    if (options.samples != VK_SAMPLE_COUNT_1_BIT) {
+      ImageDesc colour;
+      colour.extent = extent;
+      colour.format = colour_format;
+      colour.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+      colour.samples = options.samples;
+      attachments.msaa_colour = create_image(context, colour);
+    }
+  }
+
+  void write_material_set(GpuMaterial& gpu, const Material& material) {
+    auto texture_view = [&](int id, TextureId fallback) {
+      if (id < 0) return textures[fallback].view.get();
+      if (static_cast<size_t>(id) >= textures.size())
+        throw std::invalid_argument("material refers to texture " + std::to_string(id) +
+                                    " that was never added");
+      return textures[static_cast<size_t>(id)].view.get();
+    };
+    VkDescriptorBufferInfo buffer_info{gpu.params.buffer.get(), 0, sizeof(MaterialGpu)};
+    std::array<VkDescriptorImageInfo, 5> images{
+        VkDescriptorImageInfo{sampler.get(), texture_view(material.base_colour_texture, white_texture),
+                              VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
+        VkDescriptorImageInfo{sampler.get(), texture_view(material.metallic_roughness_texture, white_texture),
+                              VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
+        VkDescriptorImageInfo{sampler.get(), texture_view(material.normal_texture, flat_normal_texture),
+                              VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
+        VkDescriptorImageInfo{sampler.get(), texture_view(material.occlusion_texture, white_texture),
+                              VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
+        VkDescriptorImageInfo{sampler.get(), texture_view(material.emissive_texture, white_texture),
+                              VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}};
+    std::array<VkWriteDescriptorSet, 6> writes{};
+    for (uint32_t i = 0; i < writes.size(); ++i) {
+      writes[i] = {};
+      writes[i].sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
+      writes[i].dstSet = gpu.set;
+      writes[i].dstBinding = i;
+      writes[i].descriptorCount = 1;
+      if (i == 0) {
+        writes[i].descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+        writes[i].pBufferInfo = &buffer_info;
+      } else {
+        writes[i].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+        writes[i].pImageInfo = &images[i - 1];
+      }
+    }
+    vkUpdateDescriptorSets(context.device(), static_cast<uint32_t>(writes.size()), writes.data(), 0, nullptr);
+  }
+
+  void record_view(VkCommandBuffer cmd, const PipelinePair& pipes, const ColorTarget& target,
+                   VkExtent2D extent, uint32_t view_index, std::span<const Draw> draws,
+                   const FrameSettings& settings, VkDescriptorSet frame_set);
+};
+
+Renderer::Renderer(const Context& context, const RendererOptions& options)
+    : impl_(std::make_unique<Impl>(context, options)) {
+  Impl& r = *impl_;
+  if (options.frames_in_flight == 0)
+    throw std::invalid_argument("RendererOptions::frames_in_flight must be >= 1");
+  VkDevice device = context.device();
+  r.layouts = create_pipeline_layouts(context);
+  r.sampler = create_sampler(context, VK_SAMPLER_ADDRESS_MODE_REPEAT);
+  r.clamp_sampler = create_sampler(context, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
+
+  const std::array<VkDescriptorPoolSize, 2> sizes{
+      VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kMaxMaterials + 16},
+      VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 5 * kMaxMaterials + 16}};
+  VkDescriptorPoolCreateInfo pool_info{};
+  pool_info.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
+  pool_info.flags = VK_DESCRIPTOR_POOL_CREATE_FREE_DESCRIPTOR_SET_BIT;
+  pool_info.maxSets = kMaxMaterials + 32;
+  pool_info.poolSizeCount = static_cast<uint32_t>(sizes.size());
+  pool_info.pPoolSizes = sizes.data();
+  VkDescriptorPool pool = VK_NULL_HANDLE;
+  PP_VK_CHECK(vkCreateDescriptorPool(device, &pool_info, nullptr, &pool));
+  r.descriptor_pool = UniqueDescriptorPool(device, pool);
+
+  r.slots.resize(options.frames_in_flight);
+  for (FrameSlot& slot : r.slots) {
+    VkCommandPoolCreateInfo cp{};
+    cp.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO;
+    cp.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+    cp.queueFamilyIndex = context.queue_family_index();
+    VkCommandPool command_pool = VK_NULL_HANDLE;
+    PP_VK_CHECK(vkCreateCommandPool(device, &cp, nullptr, &command_pool));
+    slot.pool = UniqueCommandPool(device, command_pool);
+    VkCommandBufferAllocateInfo alloc{};
+    alloc.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO;
+    alloc.commandPool = command_pool;
+    alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    alloc.commandBufferCount = 1;
+    PP_VK_CHECK(vkAllocateCommandBuffers(device, &alloc, &slot.cmd));
+    VkFenceCreateInfo fi{};
+    fi.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO;
+    fi.flags = VK_FENCE_CREATE_SIGNALED_BIT;
+    VkFence fence = VK_NULL_HANDLE;
+    PP_VK_CHECK(vkCreateFence(device, &fi, nullptr, &fence));
+    slot.fence = UniqueFence(device, fence);
+    slot.frame_data = create_buffer(context, sizeof(FrameDataGpu), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
+    slot.frame_set = r.allocate_set(r.layouts.frame.get());
+    VkDescriptorBufferInfo buffer_info{slot.frame_data.buffer.get(), 0, sizeof(FrameDataGpu)};
+    VkWriteDescriptorSet write{};
+    write.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
+    write.dstSet = slot.frame_set;
+    write.dstBinding = 0;
+    write.descriptorCount = 1;
+    write.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+    write.pBufferInfo = &buffer_info;
+    vkUpdateDescriptorSets(device, 1, &write, 0, nullptr);
+  }
+
+  TextureRGBA8 white{1, 1, {255, 255, 255, 255}, false};
+  r.white_texture = add_texture(white);
+  TextureRGBA8 flat{1, 1, {128, 128, 255, 255}, false};
+  r.flat_normal_texture = add_texture(flat);
+  r.default_material = add_material(Material{});
+}
+
+Renderer::~Renderer() {
+  if (impl_) vkDeviceWaitIdle(impl_->context.device());  // no throw from a destructor
+}
+
+TextureId Renderer::add_texture(const TextureRGBA8& texture) {
+  impl_->assert_owner();
+  impl_->textures.push_back(upload_texture(impl_->context, texture));
+  return static_cast<TextureId>(impl_->textures.size() - 1);
+}
+
+MaterialId Renderer::add_material(const Material& material) {
+  Impl& r = *impl_;
+  r.assert_owner();
+  if (r.materials.size() >= kMaxMaterials) throw std::length_error("Renderer: more than 4096 materials");
+  GpuMaterial gpu;
+  gpu.params = create_buffer(r.context, sizeof(MaterialGpu), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
+  MaterialGpu params{};
+  params.base_colour = material.base_colour;
+  params.emissive = glm::vec4(material.emissive, 0.0f);
+  params.factors = {material.metallic, material.roughness, material.normal_scale, material.clearcoat};
+  params.factors2 = {material.clearcoat_roughness, material.unlit ? 1.0f : 0.0f,
+                     material.normal_texture >= 0 ? 1.0f : 0.0f, material.occlusion_strength};
+  std::memcpy(gpu.params.mapped, &params, sizeof(params));
+  gpu.set = r.allocate_set(r.layouts.material.get());
+  r.write_material_set(gpu, material);
+  r.materials.push_back(std::move(gpu));
+  return static_cast<MaterialId>(r.materials.size() - 1);
+}
+
+MeshId Renderer::add_mesh(const RenderMesh& mesh, bool streamed) {
+  Impl& r = *impl_;
+  r.assert_owner();
+  for (const auto& sub : mesh.submeshes)
+    if (sub.material >= static_cast<int>(r.materials.size()))
+      throw std::invalid_argument("RenderMesh submesh refers to material " + std::to_string(sub.material) +
+                                  " that was never added");
+  r.meshes.push_back(GpuMesh::create(r.context, mesh, streamed, static_cast<uint32_t>(r.slots.size())));
+  return static_cast<MeshId>(r.meshes.size() - 1);
+}
+
+void Renderer::update_vertices(MeshId mesh, std::span<const float> positions, std::span<const float> normals,
+                               std::span<const float> scalars) {
+  Impl& r = *impl_;
+  r.assert_owner();
+  if (mesh >= r.meshes.size()) throw std::invalid_argument("update_vertices: unknown mesh id");
+  const uint32_t slot = r.slot_index();
+  r.wait_slot(slot);  // the frame that used this staging slot N frames ago, not the one in flight
+  r.meshes[mesh].stage(slot, positions, normals, scalars);
+}
+
+void Renderer::set_legend(std::optional<TextureRGBA8> legend, glm::vec4 rect) {
+  Impl& r = *impl_;
+  r.assert_owner();
+  PP_VK_CHECK(vkDeviceWaitIdle(r.context.device()));
+  if (r.legend_set != VK_NULL_HANDLE) {
+    PP_VK_CHECK(vkFreeDescriptorSets(r.context.device(), r.descriptor_pool.get(), 1, &r.legend_set));
+    r.legend_set = VK_NULL_HANDLE;
+  }
+  r.legend.reset();
+  if (!legend) return;
+  r.legend = upload_texture(r.context, *legend);
+  r.legend_rect = rect;
+  r.legend_set = r.allocate_set(r.layouts.overlay.get());
+  VkDescriptorImageInfo image{r.clamp_sampler.get(), r.legend->view.get(),
+                              VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+  VkWriteDescriptorSet write{};
+  write.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
+  write.dstSet = r.legend_set;
+  write.dstBinding = 0;
+  write.descriptorCount = 1;
+  write.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+  write.pImageInfo = &image;
+  vkUpdateDescriptorSets(r.context.device(), 1, &write, 0, nullptr);
+}
+
+void Renderer::Impl::record_view(VkCommandBuffer cmd, const PipelinePair& pipes, const ColorTarget& target,
+                                 VkExtent2D extent, uint32_t view_index, std::span<const Draw> draws,
+                                 const FrameSettings& settings, VkDescriptorSet frame_set) {
+  const bool msaa = options.samples != VK_SAMPLE_COUNT_1_BIT;
+  // Mesa 22.3 lavapipe resolves into layer 0 whatever the resolve view's base layer: resolve into
+  // layers > 0 with vkCmdResolveImage after the pass (such targets need TRANSFER_DST usage).
+  const bool explicit_resolve = msaa && target.layer != 0;
+  // Our attachments: previous contents discarded; wait for earlier passes that used them.
+  image_barrier(
+      cmd, attachments.depth.image.get(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+      VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+      VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+      VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
+      VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+      VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT);
+  if (msaa)
+    image_barrier(cmd, attachments.msaa_colour.image.get(), VK_IMAGE_ASPECT_COLOR_BIT,
+                  VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                  VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
+                  VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                  VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT);
+  image_barrier(cmd, target.image, VK_IMAGE_ASPECT_COLOR_BIT, target.initial_layout,
+                VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT, target.layer,
+                1);
+
+  VkRenderingAttachmentInfo colour{};
+
+  colour.sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO;
+  colour.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+  colour.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+  colour.clearValue.color = {
+      {settings.clear_colour.r, settings.clear_colour.g, settings.clear_colour.b, settings.clear_colour.a}};
+  if (explicit_resolve) {
+    colour.imageView = attachments.msaa_colour.view.get();
+    colour.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  } else if (msaa) {
+    colour.imageView = attachments.msaa_colour.view.get();
+    colour.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    colour.resolveMode = VK_RESOLVE_MODE_AVERAGE_BIT;
+    colour.resolveImageView = target.view;
+    colour.resolveImageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+  } else {
+    colour.imageView = target.view;
+    colour.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  }
+  VkRenderingAttachmentInfo depth{};
+  depth.sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO;
+  depth.imageView = attachments.depth.view.get();
+  depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+  depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+  depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+  depth.clearValue.depthStencil = {1.0f, 0};
+
+  VkRenderingInfo rendering{};
+
+  rendering.sType = VK_STRUCTURE_TYPE_RENDERING_INFO;
+  rendering.renderArea = {{0, 0}, extent};
+  rendering.layerCount = 1;
+  rendering.colorAttachmentCount = 1;
+  rendering.pColorAttachments = &colour;
+  rendering.pDepthAttachment = &depth;
+  vkCmdBeginRendering(cmd, &rendering);
+
+  VkViewport viewport{0.0f, 0.0f, static_cast<float>(extent.width), static_cast<float>(extent.height),
+                      0.0f, 1.0f};
+  VkRect2D scissor{{0, 0}, extent};
+  vkCmdSetViewport(cmd, 0, 1, &viewport);
+  vkCmdSetScissor(cmd, 0, 1, &scissor);
+
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layouts.mesh.get(), 0, 1, &frame_set, 0,
+                          nullptr);
+  VkDescriptorSet bound_material = VK_NULL_HANDLE;
+  VkPipeline bound_pipeline = VK_NULL_HANDLE;
+  // Depth-tested draws first, then the on-top ones.
+  std::vector<const Draw*> ordered;
+  for (const Draw& draw : draws)
+    if (!draw.on_top) ordered.push_back(&draw);
+  for (const Draw& draw : draws)
+    if (draw.on_top) ordered.push_back(&draw);
+  for (const Draw* draw_ptr : ordered) {
+    const Draw& draw = *draw_ptr;
+    if (draw.mesh >= meshes.size()) throw std::invalid_argument("render: unknown mesh id in a Draw");
+    const VkPipeline pipeline = draw.on_top ? pipes.mesh_on_top.get() : pipes.mesh.get();
+    if (pipeline != bound_pipeline) {
+      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
+      bound_pipeline = pipeline;
+    }
+    const GpuMesh& mesh = meshes[draw.mesh];
+    DrawPushGpu push{draw.T_world_mesh, view_index, draw.colour_mapped ? 1u : 0u};
+    vkCmdPushConstants(cmd, layouts.mesh.get(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                       sizeof(push), &push);
+    mesh.bind(cmd);
+    for (const auto& sub : mesh.submeshes) {
+      const VkDescriptorSet set =
+          materials[sub.material < 0 ? default_material : static_cast<uint32_t>(sub.material)].set;
+      if (set != bound_material) {
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layouts.mesh.get(), 1, 1, &set, 0,
+                                nullptr);
+        bound_material = set;
+      }
+      vkCmdDrawIndexed(cmd, sub.index_count, 1, sub.first_index, 0, 0);
+    }
+  }
+  if (legend_set != VK_NULL_HANDLE) {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes.overlay.get());
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layouts.overlay2d.get(), 0, 1, &legend_set,
+                            0, nullptr);
+    vkCmdPushConstants(cmd, layouts.overlay2d.get(), VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(glm::vec4),
+                       &legend_rect);
+    vkCmdDraw(cmd, 4, 1, 0, 0);
+  }
+  vkCmdEndRendering(cmd);
+
+  VkImageLayout layout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+  VkPipelineStageFlags2 last_stage = VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT;
+  VkAccessFlags2 last_access = VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT;
+  if (explicit_resolve) {
+    image_barrier(cmd, attachments.msaa_colour.image.get(), VK_IMAGE_ASPECT_COLOR_BIT,
+                  VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                  VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
+                  VK_PIPELINE_STAGE_2_RESOLVE_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+    image_barrier(cmd, target.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                  VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                  VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_RESOLVE_BIT,
+                  VK_ACCESS_2_TRANSFER_WRITE_BIT, target.layer, 1);
+    VkImageResolve region{};
+    region.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    region.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, target.layer, 1};
+    region.extent = {extent.width, extent.height, 1};
+    vkCmdResolveImage(cmd, attachments.msaa_colour.image.get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                      target.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+    layout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+    last_stage = VK_PIPELINE_STAGE_2_RESOLVE_BIT;
+    last_access = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+  }
+  if (target.final_layout != layout) {
+    const bool to_transfer = target.final_layout == VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+    image_barrier(cmd, target.image, VK_IMAGE_ASPECT_COLOR_BIT, layout, target.final_layout, last_stage,
+                  last_access, to_transfer ? VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT : VK_PIPELINE_STAGE_2_NONE,
+                  to_transfer ? VK_ACCESS_2_TRANSFER_READ_BIT : VK_ACCESS_2_NONE, target.layer, 1);
+  }
+}
+
+void Renderer::render(std::span<const View> views, std::span<const Draw> draws, const FrameSettings& settings,
+                      const RenderTargets& targets, const FrameSync& sync) {
+  Impl& r = *impl_;
+  r.assert_owner();
+  if (views.empty() || views.size() > 2 || targets.views.size() != views.size())
+    throw std::invalid_argument("render: need 1 or 2 views and as many colour targets");
+  if (targets.extent.width == 0 || targets.extent.height == 0)
+    throw std::invalid_argument("render: zero-sized target");
+  const uint32_t slot_id = r.slot_index();
+  FrameSlot& slot = r.slots[slot_id];
+  r.wait_slot(slot_id);
+  r.ensure_attachments(targets.extent, targets.format);
+  PipelinePair& pipes = r.pipelines_for(targets.format);
+
+  FrameDataGpu data{};
+  for (size_t i = 0; i < views.size(); ++i) {
+    data.views[i].view_projection = views[i].projection * views[i].view;
+    data.views[i].eye_world = glm::vec4(glm::vec3(glm::inverse(views[i].view)[3]), 1.0f);
+  }
+  const glm::vec3 up = glm::normalize(settings.up);
+  // Key light from above, front-left of the first view.
+  const glm::mat3 R_world_eye = glm::transpose(glm::mat3(views[0].view));
+  const glm::vec3 key = glm::normalize(R_world_eye * glm::vec3(-0.4f, 0.0f, 0.6f) + up * 1.2f);
+  data.up_world = glm::vec4(up, 0.0f);
+  data.key_light_dir = glm::vec4(key, 0.0f);
+  data.colour_params = {settings.scalar_max, settings.curvature_epsilon, settings.exposure,
+                        settings.show_overlays ? 1.0f : 0.0f};
+  data.mode = {static_cast<uint32_t>(settings.color_mode), settings.lighting ? 1u : 0u, 0u, 0u};
+  std::memcpy(slot.frame_data.mapped, &data, sizeof(data));
+
+  VkCommandBuffer cmd = slot.cmd;
+  PP_VK_CHECK(vkResetCommandBuffer(cmd, 0));
+  VkCommandBufferBeginInfo begin{};
+  begin.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
+  begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  PP_VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
+  r.last_upload_bytes = 0;
+  for (GpuMesh& mesh : r.meshes) r.last_upload_bytes += mesh.record_pending_uploads(cmd, slot_id);
+  for (uint32_t v = 0; v < views.size(); ++v)
+    r.record_view(cmd, pipes, targets.views[v], targets.extent, v, draws, settings, slot.frame_set);
+  PP_VK_CHECK(vkEndCommandBuffer(cmd));
+
+  VkFence fence = slot.fence.get();
+  PP_VK_CHECK(vkResetFences(r.context.device(), 1, &fence));
+  VkCommandBufferSubmitInfo cmd_info{};
+  cmd_info.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO;
+  cmd_info.commandBuffer = cmd;
+  VkSemaphoreSubmitInfo wait_info{};
+  wait_info.sType = VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO;
+  wait_info.semaphore = sync.wait;
+  wait_info.stageMask = VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT;
+  VkSemaphoreSubmitInfo signal_info{};
+  signal_info.sType = VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO;
+  signal_info.semaphore = sync.signal;
+  signal_info.stageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+  VkSubmitInfo2 submit{};
+  submit.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2;
+  submit.waitSemaphoreInfoCount = sync.wait != VK_NULL_HANDLE ? 1 : 0;
+  submit.pWaitSemaphoreInfos = &wait_info;
+  submit.signalSemaphoreInfoCount = sync.signal != VK_NULL_HANDLE ? 1 : 0;
+  submit.pSignalSemaphoreInfos = &signal_info;
+  submit.commandBufferInfoCount = 1;
+  submit.pCommandBufferInfos = &cmd_info;
+  PP_VK_CHECK(vkQueueSubmit2(r.context.queue(), 1, &submit, fence));
+  ++r.frame_index;
+}
+
+void Renderer::wait_idle() {
+  impl_->assert_owner();
+  PP_VK_CHECK(vkDeviceWaitIdle(impl_->context.device()));
+}
+
+uint64_t Renderer::last_upload_bytes() const {
+  return impl_->last_upload_bytes;
+}
+
+}  // namespace pushpull::renderer

@@ -1,0 +1,309 @@
+// Offscreen rendering on lavapipe with validation: reference images, colour maps, overlays, stereo,
+// handed-in devices, streaming.
+#include "pushpull/renderer/colormap.hpp"
+#include "pushpull/renderer/geometry.hpp"
+#include "test_scenes.hpp"
+
+#include <array>
+
+namespace pushpull::renderer {
+namespace {
+
+using testing::make_sheet;
+using testing::make_sphere;
+using testing::pixel;
+
+constexpr uint32_t kSize = 256;
+
+Context make_context() {
+  ContextOptions options;
+  options.validation = true;
+  return Context::create(options);
+}
+
+// sRGB-encoded 8-bit value of a linear colour (what an SRGB target stores).
+glm::ivec3 encoded(const glm::vec3& linear) {
+  return {int(std::lround(255.0f * linear_to_srgb(linear.r))),
+          int(std::lround(255.0f * linear_to_srgb(linear.g))),
+          int(std::lround(255.0f * linear_to_srgb(linear.b)))};
+}
+
+void expect_colour_near(const glm::u8vec4& got, const glm::ivec3& want, int tolerance,
+                        const std::string& where) {
+  for (int c = 0; c < 3; ++c)
+    EXPECT_NEAR(int(got[c]), want[c], tolerance)
+        << where << " channel " << c << ": got (" << int(got.r) << "," << int(got.g) << "," << int(got.b)
+        << ") want (" << want.r << "," << want.g << "," << want.b << ")";
+}
+
+View sphere_view() {
+  Bounds b{glm::vec3(-1.0f), glm::vec3(1.0f)};
+  OrbitCamera camera;
+  return frame_bounds(b, camera, 1.0f);
+}
+
+Material red_paint() {
+  Material m;
+  m.base_colour = {0.5f, 0.02f, 0.02f, 1.0f};
+  m.metallic = 0.0f;
+  m.roughness = 0.25f;
+  m.clearcoat = 1.0f;
+  return m;
+}
+
+TEST(Renderer, MaterialSphereMatchesReferenceWithoutValidationMessages) {
+  Context context = make_context();
+  {
+    Renderer renderer(context);
+    RenderMesh sphere = make_sphere(1.0f, 48, 96);
+    sphere.submeshes.push_back({0, uint32_t(sphere.indices.size()), int(renderer.add_material(red_paint()))});
+    const MeshId mesh = renderer.add_mesh(sphere);
+    OffscreenTarget target(context, kSize, kSize);
+    const View view = sphere_view();
+    const Draw draw{mesh, glm::mat4(1.0f)};
+    renderer.render(std::span(&view, 1), std::span(&draw, 1), FrameSettings{}, target.targets());
+    const TextureRGBA8 image = target.read_back();
+    testing::expect_matches_reference(image, "sphere_material", 8, 64);
+    // Centre is the sphere, corners the background.
+    const auto centre = pixel(image, kSize / 2, kSize / 2);
+    EXPECT_GT(centre.r, centre.b + 20);
+    expect_colour_near(pixel(image, 2, 2), encoded(glm::vec3(FrameSettings{}.clear_colour)), 2, "corner");
+  }
+  EXPECT_EQ(context.validation_message_count(), 0u);
+}
+
+TEST(Renderer, DisplacementColourMapMatchesCpuMapOnSheet) {
+  Context context = make_context();
+  {
+    Renderer renderer(context);
+    const MeshId mesh = renderer.add_mesh(make_sheet(64));
+    OffscreenTarget target(context, kSize, kSize);
+    const View view = testing::sheet_camera();
+    const Draw draw{mesh, glm::mat4(1.0f)};
+    FrameSettings settings;
+    settings.color_mode = ColorMode::displacement;
+    settings.scalar_max = 1.0f;
+    settings.lighting = false;
+    renderer.render(std::span(&view, 1), std::span(&draw, 1), settings, target.targets());
+    const TextureRGBA8 image = target.read_back();
+    // scalar = (x + 1) / 2 across the sheet, which spans the image width.
+    for (float t : {0.05f, 0.2f, 0.4f, 0.5f, 0.6f, 0.8f, 0.95f}) {
+      const auto x = uint32_t(t * float(kSize));
+      const float at_pixel = (float(x) + 0.5f) / float(kSize);
+      expect_colour_near(pixel(image, x, kSize / 2), encoded(displacement_colour(at_pixel)), 6,
+                         "t=" + std::to_string(t));
+    }
+    settings.lighting = true;
+    renderer.render(std::span(&view, 1), std::span(&draw, 1), settings, target.targets());
+    testing::expect_matches_reference(target.read_back(), "sheet_displacement", 8, 64);
+  }
+  EXPECT_EQ(context.validation_message_count(), 0u);
+}
+
+TEST(Renderer, CurvatureSignIsYellowPositiveBlueNegativeGreyZero) {
+  Context context = make_context();
+  {
+    Renderer renderer(context);
+    RenderMesh sheet = make_sheet(64);
+    for (size_t v = 0; v < sheet.scalars.size(); ++v) {
+      const float x = sheet.positions[3 * v];
+      sheet.scalars[v] = x < -0.3f ? 2.5f : (x > 0.3f ? -2.5f : 0.0f);  // K > 0 | K = 0 | K < 0
+    }
+    const MeshId mesh = renderer.add_mesh(sheet);
+    OffscreenTarget target(context, kSize, kSize);
+    const View view = testing::sheet_camera();
+    const Draw draw{mesh, glm::mat4(1.0f)};
+    FrameSettings settings;
+    settings.color_mode = ColorMode::curvature_sign;
+    settings.curvature_epsilon = 1e-3f;
+    settings.lighting = false;
+    renderer.render(std::span(&view, 1), std::span(&draw, 1), settings, target.targets());
+    const TextureRGBA8 image = target.read_back();
+    expect_colour_near(pixel(image, kSize / 8, kSize / 2), encoded(curvature_sign_colour(1.0f, 0.0f)), 2,
+                       "K>0");
+    expect_colour_near(pixel(image, kSize / 2, kSize / 2), encoded(curvature_sign_colour(0.0f, 0.0f)), 2,
+                       "K=0");
+    expect_colour_near(pixel(image, 7 * kSize / 8, kSize / 2), encoded(curvature_sign_colour(-1.0f, 0.0f)), 2,
+                       "K<0");
+  }
+  EXPECT_EQ(context.validation_message_count(), 0u);
+}
+
+TEST(Renderer, OverlaysPaintHandleRedFixedBlueAndArrow) {
+  Context context = make_context();
+  {
+    Renderer renderer(context);
+    RenderMesh sheet = make_sheet(64);
+    sheet.overlays.resize(sheet.vertex_count());
+    for (size_t v = 0; v < sheet.overlays.size(); ++v) {
+      const float x = sheet.positions[3 * v], y = sheet.positions[3 * v + 1];
+      sheet.overlays[v].roi = std::abs(x) < 0.7f ? 1.0f : 0.0f;
+      sheet.overlays[v].fixed = x < -0.7f ? 1.0f : 0.0f;
+      sheet.overlays[v].handle = (std::abs(x) < 0.15f && std::abs(y) < 0.15f) ? 1.0f : 0.0f;
+    }
+    Material arrow_material;
+    arrow_material.base_colour = glm::vec4(kArrowColour, 1.0f);
+    arrow_material.unlit = true;
+    const int arrow_id = int(renderer.add_material(arrow_material));
+    const MeshId sheet_mesh = renderer.add_mesh(sheet);
+    const MeshId arrow = renderer.add_mesh(
+        make_arrow(glm::vec3(0.5f, -0.5f, 0.1f), glm::vec3(0.5f, 0.5f, 0.1f), 0.04f, arrow_id));
+    OffscreenTarget target(context, kSize, kSize);
+    const View view = testing::sheet_camera();
+    const std::array<Draw, 2> draws{Draw{sheet_mesh, glm::mat4(1.0f)}, Draw{arrow, glm::mat4(1.0f)}};
+    FrameSettings settings;
+    settings.lighting = true;
+    renderer.render(std::span(&view, 1), draws, settings, target.targets());
+    const TextureRGBA8 image = target.read_back();
+    testing::expect_matches_reference(image, "sheet_overlays", 8, 64);
+    const auto handle = pixel(image, kSize / 2, kSize / 2);
+    EXPECT_GT(handle.r, 2 * handle.g) << "handle should be red";
+    const auto fixed = pixel(image, kSize / 16, kSize / 2);
+    EXPECT_GT(fixed.b, 2 * fixed.r) << "fixed should be blue";
+    const auto arrow_pixel = pixel(image, 3 * kSize / 4 + 2, kSize / 2);
+    expect_colour_near(arrow_pixel, encoded(kArrowColour), 3, "arrow (unlit)");
+  }
+  EXPECT_EQ(context.validation_message_count(), 0u);
+}
+
+class StereoTest : public ::testing::TestWithParam<VkSampleCountFlagBits> {};
+
+TEST_P(StereoTest, TwoLayersAndTwoImagesAgree) {
+  Context context = make_context();
+  {
+    RendererOptions options;
+    options.samples = GetParam();
+    Renderer renderer(context, options);
+    RenderMesh sphere = make_sphere(1.0f, 32, 64);
+    sphere.submeshes.push_back({0, uint32_t(sphere.indices.size()), int(renderer.add_material(red_paint()))});
+    const MeshId mesh = renderer.add_mesh(sphere);
+    const auto eyes = stereo_pair(sphere_view(), 0.4f);
+    const Draw draw{mesh, glm::mat4(1.0f)};
+
+    OffscreenTarget layered(context, kSize, kSize, 2);
+    renderer.render(eyes, std::span(&draw, 1), FrameSettings{}, layered.targets());
+    const TextureRGBA8 left = layered.read_back(0), right = layered.read_back(1);
+
+    OffscreenTarget left_image(context, kSize, kSize), right_image(context, kSize, kSize);
+    RenderTargets pair = left_image.targets();
+    pair.views.push_back(right_image.layer_target(0));
+    renderer.render(eyes, std::span(&draw, 1), FrameSettings{}, pair);
+    const TextureRGBA8 left2 = left_image.read_back(), right2 = right_image.read_back();
+    if (compare_images(right, right2, 0).differing_pixels != 0) {
+      write_png(testing::output_dir() / "stereo_layer_left.png", left);
+      write_png(testing::output_dir() / "stereo_layer_right.png", right);
+      write_png(testing::output_dir() / "stereo_image_left.png", left2);
+      write_png(testing::output_dir() / "stereo_image_right.png", right2);
+    }
+    EXPECT_EQ(compare_images(left, left2, 0).differing_pixels, 0u);
+    EXPECT_EQ(compare_images(right, right2, 0).differing_pixels, 0u);
+    EXPECT_GT(compare_images(left, right, 8).differing_pixels, 100u)
+        << "the eyes should see different images";
+    if (GetParam() == VK_SAMPLE_COUNT_4_BIT)
+      testing::expect_matches_reference(left, "sphere_stereo_left", 8, 64);
+  }
+  EXPECT_EQ(context.validation_message_count(), 0u);
+}
+INSTANTIATE_TEST_SUITE_P(Samples, StereoTest,
+                         ::testing::Values(VK_SAMPLE_COUNT_1_BIT, VK_SAMPLE_COUNT_4_BIT));
+
+TEST(Renderer, RendersWithHandedInDevice) {
+  // Stands in for the XR runtime: someone else creates the instance and device, the renderer borrows.
+  Context owner = make_context();
+  {
+    ExternalVulkan external{owner.instance(), owner.physical_device(), owner.device(),
+                            owner.queue_family_index(), owner.queue()};
+    Context borrowed = Context::wrap(external);
+    EXPECT_FALSE(borrowed.owns_device());
+    Renderer renderer(borrowed);
+    RenderMesh sphere = make_sphere(1.0f, 48, 96);
+    sphere.submeshes.push_back({0, uint32_t(sphere.indices.size()), int(renderer.add_material(red_paint()))});
+    const MeshId mesh = renderer.add_mesh(sphere);
+    OffscreenTarget target(borrowed, kSize, kSize);
+    const View view = sphere_view();
+    const Draw draw{mesh, glm::mat4(1.0f)};
+    renderer.render(std::span(&view, 1), std::span(&draw, 1), FrameSettings{}, target.targets());
+    testing::expect_matches_reference(target.read_back(), "sphere_material", 8, 64);
+  }
+  EXPECT_EQ(owner.validation_message_count(), 0u);
+}
+
+TEST(Renderer, StreamedPositionsMatchAStaticUploadOfTheSameMesh) {
+  Context context = make_context();
+  {
+    Renderer renderer(context);
+    RenderMesh flat = make_sheet(64);
+    RenderMesh bent = flat;
+    for (size_t v = 0; v < bent.vertex_count(); ++v) {
+      const float x = bent.positions[3 * v], y = bent.positions[3 * v + 1];
+      bent.positions[3 * v + 2] = 0.4f * std::exp(-4.0f * (x * x + y * y));
+      bent.scalars[v] = bent.positions[3 * v + 2] / 0.4f;
+    }
+    bent.normals = compute_vertex_normals(bent.positions, bent.indices);
+    const MeshId streamed = renderer.add_mesh(flat, true);
+    const MeshId reference = renderer.add_mesh(bent, false);
+    OffscreenTarget target(context, kSize, kSize);
+    View view = testing::sheet_camera();
+    view.view = glm::lookAt(glm::vec3(0.0f, -2.5f, 2.0f), glm::vec3(0.0f), glm::vec3(0.0f, 0.0f, 1.0f));
+    FrameSettings settings;
+    settings.color_mode = ColorMode::displacement;
+    settings.up = {0.0f, 0.0f, 1.0f};
+
+    // Several frames in flight, each with new positions (the last ones are `bent`).
+    for (int frame = 0; frame < 5; ++frame) {
+      std::vector<float> positions = bent.positions;
+      const float s = float(frame + 1) / 5.0f;
+      for (size_t v = 0; v < bent.vertex_count(); ++v) positions[3 * v + 2] *= s;
+      std::vector<float> scalars(bent.scalars);
+      for (float& x : scalars) x *= s;
+      renderer.update_vertices(streamed, positions, compute_vertex_normals(positions, bent.indices), scalars);
+      const Draw draw{streamed, glm::mat4(1.0f)};
+      renderer.render(std::span(&view, 1), std::span(&draw, 1), settings, target.targets());
+      EXPECT_EQ(renderer.last_upload_bytes(), 7u * bent.vertex_count() * sizeof(float));
+    }
+    const TextureRGBA8 streamed_image = target.read_back();
+    const Draw draw{reference, glm::mat4(1.0f)};
+    renderer.render(std::span(&view, 1), std::span(&draw, 1), settings, target.targets());
+    const ImageComparison cmp = compare_images(streamed_image, target.read_back(), 1);
+    EXPECT_EQ(cmp.differing_pixels, 0u);
+    testing::expect_matches_reference(streamed_image, "sheet_bump_displacement", 8, 64);
+  }
+  EXPECT_EQ(context.validation_message_count(), 0u);
+}
+
+TEST(Renderer, LegendIsDrawnInTheCorner) {
+  Context context = make_context();
+  {
+    Renderer renderer(context);
+    const MeshId mesh = renderer.add_mesh(make_sheet(8));
+    renderer.set_legend(make_displacement_legend(25.0f, "|d| mm", 160, 320), {0.02f, 0.5f, 0.3f, 0.98f});
+    OffscreenTarget target(context, kSize, kSize);
+    const View view = testing::sheet_camera();
+    const Draw draw{mesh, glm::mat4(1.0f)};
+    FrameSettings settings;
+    settings.color_mode = ColorMode::displacement;
+    renderer.render(std::span(&view, 1), std::span(&draw, 1), settings, target.targets());
+    const TextureRGBA8 image = target.read_back();
+    testing::expect_matches_reference(image, "legend", 8, 64);
+  }
+  EXPECT_EQ(context.validation_message_count(), 0u);
+}
+
+TEST(Renderer, RejectsMalformedMeshes) {
+  Context context = make_context();
+  Renderer renderer(context);
+  RenderMesh bad = make_sheet(2);
+  bad.indices.push_back(999);
+  bad.indices.push_back(0);
+  bad.indices.push_back(1);
+  EXPECT_THROW(renderer.add_mesh(bad), std::invalid_argument);
+  RenderMesh short_normals = make_sheet(2);
+  short_normals.normals.pop_back();
+  EXPECT_THROW(renderer.add_mesh(short_normals), std::invalid_argument);
+  const MeshId fixed_mesh = renderer.add_mesh(make_sheet(2));
+  const std::vector<float> positions(27, 0.0f);
+  EXPECT_THROW(renderer.update_vertices(fixed_mesh, positions), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace pushpull::renderer

@@ -1,0 +1,104 @@
+// `pushpull info` and `pushpull deform` on glTF/GLB/Draco models, end to end (issue 4).
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <string>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CliRun {
+  int status = -1;
+  std::string output;
+};
+
+CliRun run(const std::string& arguments) {
+  CliRun result;
+  const std::string command = std::string(PUSHPULL_EXECUTABLE) + " " + arguments + " 2>&1";
+  FILE* pipe = ::popen(command.c_str(), "r");
+  if (!pipe) return result;
+  char buffer[4096];
+  while (std::fgets(buffer, sizeof buffer, pipe)) result.output += buffer;
+  const int status = ::pclose(pipe);
+  result.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return result;
+}
+
+fs::path data(const std::string& name) {
+  return fs::path(PUSHPULL_SHARED_DATA) / "gltf" / name;
+}
+
+class Scratch {
+ public:
+  Scratch()
+      : path_(fs::temp_directory_path() / ("pushpull-assets-cli-" + std::to_string(std::random_device{}()))) {
+    fs::create_directories(path_);
+  }
+  ~Scratch() {
+    std::error_code ec;
+    fs::remove_all(path_, ec);
+  }
+  [[nodiscard]] fs::path operator/(const std::string& name) const { return path_ / name; }
+
+ private:
+  fs::path path_;
+};
+
+TEST(AssetsCli, InfoToyCar) {
+  const CliRun r = run("info '" + data("ToyCar/glTF/ToyCar.gltf").string() + "' --length 4.2");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("2197 pieces -> 50 components"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("life size: longest side 4.2 m"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("KHR_materials_clearcoat"), std::string::npos) << r.output;
+}
+
+TEST(AssetsCli, InfoCarDrc) {
+  const CliRun r = run("info '" + data("car_drc/car.drc").string() + "'");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("118 pieces -> 9 components"), std::string::npos) << r.output;
+}
+
+TEST(AssetsCli, InfoRefusesBadFilesWithNonZeroExit) {
+  Scratch dir;
+  std::ofstream(dir / "escape.gltf")
+      << R"({"asset":{"version":"2.0"},"buffers":[{"byteLength":4,"uri":"../../etc/passwd"}]})";
+  CliRun r = run("info '" + (dir / "escape.gltf").string() + "'");
+  EXPECT_NE(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("outside the model's folder"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("escape.gltf"), std::string::npos) << r.output;
+  std::ofstream(dir / "broken.glb") << "glTF\x02";
+  r = run("info '" + (dir / "broken.glb").string() + "'");
+  EXPECT_NE(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("broken.glb"), std::string::npos) << r.output;
+}
+
+TEST(AssetsCli, DeformToyCarWritesAValidGlb) {
+  Scratch dir;
+  const fs::path out = dir / "toycar-deformed.glb";
+  // A point on the roof in model (world) coordinates, before any scale.
+  const CliRun r =
+      run("deform '" + data("ToyCar/glTF/ToyCar.gltf").string() +
+          "' --handle-at 0 0.0126 0 --handle-radius 0.004 --roi-radius 0.02 --displacement 0 0.003 0"
+          " --iterations 10 --out '" +
+          out.string() + "' --metrics '" + (dir / "metrics.json").string() + "'");
+  ASSERT_EQ(r.status, 0) << r.output;
+  ASSERT_TRUE(fs::exists(out));
+  const fs::path validator = fs::path(PUSHPULL_SOURCE_DIR) / "tools/gltf-validator/validate.js";
+  ASSERT_TRUE(fs::exists(fs::path(PUSHPULL_SOURCE_DIR) / "tools/gltf-validator/node_modules/gltf-validator"))
+      << "run npm ci in tools/gltf-validator (scripts/setup does)";
+  FILE* pipe = ::popen(("node '" + validator.string() + "' '" + out.string() + "' 2>&1").c_str(), "r");
+  ASSERT_NE(pipe, nullptr);
+  std::string report;
+  char buffer[4096];
+  while (std::fgets(buffer, sizeof buffer, pipe)) report += buffer;
+  const int status = ::pclose(pipe);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << report;
+  const CliRun info = run("info '" + out.string() + "'");
+  EXPECT_EQ(info.status, 0) << info.output;
+}
+
+}  // namespace

@@ -1,0 +1,183 @@
+// End-to-end runs of `pushpull deform`: a mesh and METRICS.json come out for good input; bad input exits
+// non-zero with a message naming the file and the problem.
+#include "pushpull/deform/mesh_io.hpp"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+namespace fs = std::filesystem;
+namespace pd = pushpull::deform;
+
+namespace {
+
+const fs::path kHemisphere = fs::path(PUSHPULL_SHARED_DATA) / "meshes" / "hemisphere.off";
+
+struct RunResult {
+  int status = -1;
+  std::string output;  // stdout and stderr together
+};
+
+RunResult run_pushpull(const std::string& arguments) {
+  const std::string command = std::string(PUSHPULL_EXECUTABLE) + " " + arguments + " 2>&1";
+  RunResult result;
+  FILE* pipe = ::popen(command.c_str(), "r");
+  if (pipe == nullptr) return result;
+  std::array<char, 4096> buffer{};
+  std::size_t n = 0;
+  while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0) result.output.append(buffer.data(), n);
+  const int raw = ::pclose(pipe);
+  result.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  return result;
+}
+
+class DeformCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("pushpull_deform_cli_" + std::to_string(::getpid()) + "_" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(dir_);
+    // Handle: the cap z > 0.9; fixed: the base ring (the mesh boundary, z < 0.1).
+    const pd::Mesh mesh = pd::read_mesh(kHemisphere);
+    std::ofstream handle(path("handle.txt")), fixed(path("fixed.txt"));
+    for (Eigen::Index i = 0; i < mesh.V.rows(); ++i) {
+      if (mesh.V(i, 2) > 0.9) handle << i << (i % 10 == 0 ? "\n" : " ");
+      if (mesh.V(i, 2) < 0.1) fixed << i << "\n";
+    }
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  [[nodiscard]] std::string path(const std::string& leaf) const { return (dir_ / leaf).string(); }
+  void write(const std::string& leaf, const std::string& text) const { std::ofstream(dir_ / leaf) << text; }
+
+  fs::path dir_;
+};
+
+nlohmann::json read_json(const std::string& path) {
+  std::ifstream in(path);
+  return nlohmann::json::parse(in);
+}
+
+}  // namespace
+
+TEST_F(DeformCli, HandleAndFixedFilesGiveAMeshAndCompleteMetrics) {
+  const RunResult run =
+      run_pushpull("deform " + kHemisphere.string() + " --handle " + path("handle.txt") + " --fixed " +
+                   path("fixed.txt") + " --displacement 0 0 0.3 --method asan --out " + path("out.off") +
+                   " --metrics " + path("metrics.json"));
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find(path("out.off")), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find(path("metrics.json")), std::string::npos) << run.output;
+
+  const pd::Mesh in = pd::read_mesh(kHemisphere);
+  const pd::Mesh out = pd::read_mesh(path("out.off"));
+  ASSERT_EQ(out.V.rows(), in.V.rows());
+  EXPECT_EQ(out.F, in.F);
+  EXPECT_NEAR((out.V - in.V).rowwise().norm().maxCoeff(), 0.3, 1e-9);  // the handle moved by |d|
+
+  const nlohmann::json m = read_json(path("metrics.json"));
+  for (const char* key :
+       {"method", "mu", "vertices", "roi_vertices", "iterations", "converged", "energy_trace", "timing_ms",
+        "max_displacement", "gaussian_sign_flip_fraction", "along_d_norm", "orthogonal_norm", "warnings",
+        "input", "d", "handle_count", "fixed_count", "sections"}) {
+    EXPECT_TRUE(m.contains(key)) << key;
+  }
+  for (const char* key : {"precompute", "factorize", "solve", "per_iteration"}) {
+    EXPECT_TRUE(m["timing_ms"].contains(key)) << key;
+  }
+  EXPECT_EQ(m["method"], "asan");
+  EXPECT_EQ(m["vertices"], in.V.rows());
+  EXPECT_EQ(m["energy_trace"].size(), m["iterations"].get<std::size_t>());
+  EXPECT_NEAR(m["max_displacement"].get<double>(), 0.3, 1e-9);
+  EXPECT_GT(m["along_d_norm"].get<double>(), 0.0);
+  // asan keeps the sphere elliptic at this pull.
+  EXPECT_EQ(m["gaussian_sign_flip_fraction"].get<double>(), 0.0);
+  // Planes perpendicular to d = +z cut the hemisphere in closed rings, before and after.
+  ASSERT_EQ(m["sections"].size(), 5u);
+  for (const auto& section : m["sections"]) {
+    ASSERT_EQ(section["before"].size(), 1u);
+    EXPECT_TRUE(section["before"][0]["closed"].get<bool>());
+    EXPECT_GT(section["before"][0]["points"].size(), 10u);
+    EXPECT_GE(section["after"].size(), 1u);
+  }
+}
+
+TEST_F(DeformCli, HandleAtAndRoiRadiusWithExactIterationCountWritesPly) {
+  const RunResult run =
+      run_pushpull("deform " + kHemisphere.string() +
+                   " --handle-at 0 0 1 --handle-radius 0.2 --roi-radius 0.8 --displacement 0 0 0.5"
+                   " --method arap-sr --tolerance 0 --iterations 7 --out " +
+                   path("out.ply") + " --metrics " + path("m.json"));
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_EQ(pd::read_mesh(path("out.ply")).V.rows(), 1861);
+  const nlohmann::json m = read_json(path("m.json"));
+  EXPECT_EQ(m["iterations"], 7);
+  EXPECT_EQ(m["method"], "arap-sr");
+  EXPECT_LT(m["roi_vertices"].get<int>(), 1861);
+  EXPECT_GT(m["fixed_count"].get<int>(), 0);
+}
+
+TEST_F(DeformCli, ObjOutputAndOtherMethodsRun) {
+  for (const char* method : {"arap-m", "sr-arap", "arap-n", "arap-h", "arap-s"}) {
+    const RunResult run =
+        run_pushpull("deform " + kHemisphere.string() + " --handle " + path("handle.txt") + " --fixed " +
+                     path("fixed.txt") + " --displacement 0.1 0 0.1 --iterations 5 --method " + method +
+                     " --out " + path("out.obj") + " --metrics " + path("m.json"));
+    ASSERT_EQ(run.status, 0) << method << "\n" << run.output;
+    EXPECT_EQ(read_json(path("m.json"))["method"], method);
+    EXPECT_EQ(pd::read_mesh(path("out.obj")).F.rows(), 3600);
+  }
+}
+
+TEST_F(DeformCli, BadInputsExitNonZeroNamingTheFileAndProblem) {
+  write("bad_token.txt", "1 2\n3 x7 4\n");
+  write("out_of_range.txt", "5\n99999\n");
+  write("empty.txt", "# nothing\n");
+  const std::string tail = " --out " + path("o.off") + " --metrics " + path("m.json");
+  const std::string files = " --handle " + path("handle.txt") + " --fixed " + path("fixed.txt");
+  struct Case {
+    std::string arguments;
+    std::string expected;  // must appear in the message
+  };
+  const Case cases[] = {
+      {"deform " + path("missing.off") + files + " --displacement 0 0 1" + tail, path("missing.off")},
+      {"deform " + kHemisphere.string() + " --handle " + path("bad_token.txt") + " --fixed " +
+           path("fixed.txt") + " --displacement 0 0 1" + tail,
+       path("bad_token.txt") + ":2: 'x7' is not a vertex index"},
+      {"deform " + kHemisphere.string() + " --handle " + path("out_of_range.txt") + " --fixed " +
+           path("fixed.txt") + " --displacement 0 0 1" + tail,
+       path("out_of_range.txt") + ":2: vertex index 99999 out of range"},
+      {"deform " + kHemisphere.string() + " --handle " + path("empty.txt") + " --fixed " + path("fixed.txt") +
+           " --displacement 0 0 1" + tail,
+       path("empty.txt") + ": no vertex indices"},
+      {"deform " + kHemisphere.string() + " --handle " + path("nope.txt") + " --fixed " + path("fixed.txt") +
+           " --displacement 0 0 1" + tail,
+       path("nope.txt") + ": cannot open"},
+      {"deform " + kHemisphere.string() + files + " --displacement 0 0 1 --method arap-x" + tail, "arap-x"},
+      {"deform " + kHemisphere.string() + files + " --displacement 0 0 0" + tail, "zero displacement"},
+      {"deform " + kHemisphere.string() + files + " --displacement 0 0 1 --out " + path("o.stl") +
+           " --metrics " + path("m.json"),
+       path("o.stl") + ": unsupported output format"},
+      {"deform " + kHemisphere.string() + " --handle " + path("handle.txt") + " --displacement 0 0 1" + tail,
+       "--roi-radius"},
+      {"deform " + kHemisphere.string() +
+           " --handle-at 5 5 5 --handle-radius 0.1 --roi-radius 1 --displacement 0 0 1" + tail,
+       "no vertex within --handle-radius"},
+  };
+  for (const Case& c : cases) {
+    const RunResult run = run_pushpull(c.arguments);
+    EXPECT_NE(run.status, 0) << c.arguments;
+    EXPECT_NE(run.output.find(c.expected), std::string::npos) << "expected '" << c.expected << "' in:\n"
+                                                              << run.output;
+  }
+  EXPECT_FALSE(fs::exists(path("o.off")));  // nothing half-done was written
+  EXPECT_FALSE(fs::exists(path("m.json")));
+}

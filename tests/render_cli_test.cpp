@@ -1,0 +1,156 @@
+// `pushpull render` end to end: PNGs from OFF and glTF models on lavapipe with validation, the
+// displacement colour map where the displacement is known, and readable errors.
+#include <gtest/gtest.h>
+
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
+#pragma GCC diagnostic ignored "-Wsign-compare"
+#pragma GCC diagnostic ignored "-Wunused-but-set-variable"
+#define STB_IMAGE_STATIC
+#define STB_IMAGE_IMPLEMENTATION
+#define STBI_ONLY_PNG
+#include <stb/stb_image.h>
+#pragma GCC diagnostic pop
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Result {
+  int status = -1;
+  std::string output;
+};
+
+Result run(const std::string& args) {
+  const std::string command = std::string(PUSHPULL_EXECUTABLE) + " " + args + " 2>&1";
+  Result result;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (pipe == nullptr) return result;
+  std::array<char, 4096> buffer{};
+  while (fgets(buffer.data(), int(buffer.size()), pipe) != nullptr) result.output += buffer.data();
+  const int status = pclose(pipe);
+  result.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return result;
+}
+
+fs::path temp_dir() {
+  const fs::path dir = fs::path(PUSHPULL_BINARY_DIR) / "render-cli-test";
+  fs::create_directories(dir);
+  return dir;
+}
+
+struct Png {
+  int width = 0, height = 0;
+  std::vector<unsigned char> rgba;
+  [[nodiscard]] std::array<int, 3> at(int x, int y) const {
+    const size_t i = (size_t(y) * size_t(width) + size_t(x)) * 4;
+    return {rgba[i], rgba[i + 1], rgba[i + 2]};
+  }
+};
+
+Png load_png(const fs::path& path) {
+  Png png;
+  int channels = 0;
+  unsigned char* data = stbi_load(path.c_str(), &png.width, &png.height, &channels, 4);
+  if (data != nullptr) {
+    png.rgba.assign(data, data + size_t(png.width) * size_t(png.height) * 4);
+    stbi_image_free(data);
+  }
+  return png;
+}
+
+// An n x n sheet over [-1, 1]^2 at z = 0, and the same sheet with z = 0.05 (x + 1): displacement
+// magnitude 0 at x = -1 growing linearly to 0.1 at x = 1.
+void write_sheets(const fs::path& flat, const fs::path& lifted, int n) {
+  std::ofstream a(flat), b(lifted);
+  const int vertices = (n + 1) * (n + 1), faces = 2 * n * n;
+  a << "OFF\n" << vertices << " " << faces << " 0\n";
+  b << "OFF\n" << vertices << " " << faces << " 0\n";
+  for (int i = 0; i <= n; ++i)
+    for (int j = 0; j <= n; ++j) {
+      const double x = -1.0 + 2.0 * j / n, y = -1.0 + 2.0 * i / n;
+      a << x << " " << y << " 0\n";
+      b << x << " " << y << " " << 0.05 * (x + 1.0) << "\n";
+    }
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const int v = i * (n + 1) + j, w = v + n + 1;
+      a << "3 " << v << " " << v + 1 << " " << w + 1 << "\n3 " << v << " " << w + 1 << " " << w << "\n";
+      b << "3 " << v << " " << v + 1 << " " << w + 1 << "\n3 " << v << " " << w + 1 << " " << w << "\n";
+    }
+}
+
+TEST(RenderCli, WritesAPngOfAnOffModelWithValidationClean) {
+  const fs::path out = temp_dir() / "hemisphere.png";
+  fs::remove(out);
+  const Result r = run("render " + std::string(PUSHPULL_SHARED_DATA) + "/meshes/hemisphere.off --out " +
+                       out.string() + " --size 160 120 --up 0 0 1 --validation");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const Png png = load_png(out);
+  EXPECT_EQ(png.width, 160);
+  EXPECT_EQ(png.height, 120);
+  // Default camera frames the model: the centre is the model, a corner the background.
+  EXPECT_NE(png.at(80, 60), png.at(1, 1));
+}
+
+TEST(RenderCli, DisplacementColourMapFollowsAKnownDisplacement) {
+  const fs::path flat = temp_dir() / "sheet.off", lifted = temp_dir() / "sheet_lifted.off";
+  write_sheets(flat, lifted, 32);
+  const fs::path out = temp_dir() / "sheet_displacement.png";
+  const Result r =
+      run("render " + flat.string() + " --deformed " + lifted.string() + " --out " + out.string() +
+          " --size 200 200 --color displacement --flat --no-legend --eye 0 0 4 --target 0 0 0"
+          " --validation");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const Png png = load_png(out);
+  ASSERT_EQ(png.width, 200);
+  // Left end (|d| ~ 0): dark blue; middle (|d| ~ max/2): cyan-green; right end (|d| ~ max): red.
+  const auto left = png.at(8, 100), middle = png.at(100, 100), right = png.at(192, 100);
+  EXPECT_GT(left[2], left[0] + 60) << "left should be blue";
+  EXPECT_LT(left[1], 120) << "left should be dark blue";
+  EXPECT_GT(middle[1], middle[0] + 60) << "middle should be green/cyan";
+  EXPECT_GT(right[0], right[1] + 40) << "right should be red/orange";
+  EXPECT_GT(right[0], right[2] + 100) << "right should be red/orange";
+}
+
+TEST(RenderCli, GltfWithMaterialsCurvatureAndStereo) {
+  const std::string car =
+      std::string(PUSHPULL_SHARED_DATA) + "/gltf/CesiumMilkTruck/glTF-Binary/CesiumMilkTruck.glb";
+  const fs::path out = temp_dir() / "truck.png";
+  Result r = run("render " + car + " --out " + out.string() + " --size 160 100 --validation");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(load_png(out).width, 160);
+  const fs::path curvature = temp_dir() / "truck_curvature.png";
+  r = run("render " + car + " --out " + curvature.string() +
+          " --size 160 100 --color curvature-sign --validation");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const fs::path stereo = temp_dir() / "truck_stereo.png";
+  r = run("render " + car + " --out " + stereo.string() + " --size 100 100 --stereo 0.06 --validation");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(load_png(stereo).width, 200);  // left | right
+}
+
+TEST(RenderCli, ErrorsNameTheFileAndTheProblem) {
+  Result r = run("render /nonexistent/model.off --out /tmp/x.png");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find("/nonexistent/model.off"), std::string::npos) << r.output;
+  const fs::path flat = temp_dir() / "sheet_a.off", lifted = temp_dir() / "sheet_b.off";
+  write_sheets(flat, lifted, 4);
+  r = run("render " + flat.string() + " --deformed " + std::string(PUSHPULL_SHARED_DATA) +
+          "/meshes/hemisphere.off --out /tmp/x.png");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find("hemisphere.off"), std::string::npos) << r.output;
+  r = run("render " + flat.string() + " --out /nonexistent-dir/x.png --size 16 16");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find("/nonexistent-dir/x.png"), std::string::npos) << r.output;
+}
+
+}  // namespace
