@@ -3,6 +3,8 @@
 #include "metrics_json.hpp"
 #include "vertex_selection.hpp"
 
+#include "pushpull/assets/model.hpp"
+#include "pushpull/assets/write.hpp"
 #include "pushpull/deform/deformer.hpp"
 #include "pushpull/deform/mesh_io.hpp"
 #include "pushpull/deform/metrics.hpp"
@@ -11,6 +13,7 @@
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -53,29 +56,65 @@ struct DeformCommandOptions {
 };
 
 // --- model loading and saving: the two places that know file formats ---------------------------------
-// (pushpull::assets will take these over for glTF/GLB/Draco; OFF/OBJ/PLY go through deform's reader.)
+// OFF/OBJ/PLY go through deform's reader (vertex indices stay as in the file, for --handle/--fixed
+// files); glTF/GLB/Draco through pushpull::assets, which welds the patches into one surface (the mesh
+// the solver sees, in model/world coordinates: --handle-at points are in that frame) and keeps the
+// scene so a .glb output carries nodes, materials and textures with the deformed positions.
 
-deform::Mesh load_model(const fs::path& path) {
+struct LoadedModel {
+  std::shared_ptr<const deform::Mesh> mesh;  // what the solver deforms
+  std::optional<assets::Model> scene;        // glTF/GLB/Draco input only
+};
+
+bool is_glb_path(const fs::path& path) {
+  std::string extension = path.extension().string();
+  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return extension == ".glb";
+}
+
+LoadedModel load_model(const fs::path& path) {
   if (!fs::exists(path)) throw CommandError(path.string() + ": model file does not exist");
-  if (!deform::mesh_format_from_path(path)) {
-    throw CommandError(path.string() + ": unsupported model format (expected .off, .obj or .ply)");
+  if (deform::mesh_format_from_path(path)) {
+    try {
+      return {std::make_shared<const deform::Mesh>(deform::read_mesh(path)), std::nullopt};
+    } catch (const deform::MeshIoError& error) {
+      throw CommandError(error.what());
+    }
+  }
+  if (!assets::is_supported_model_path(path)) {
+    throw CommandError(path.string() +
+                       ": unsupported model format (expected .gltf, .glb, .drc, .off, .obj or .ply)");
   }
   try {
-    return deform::read_mesh(path);
-  } catch (const deform::MeshIoError& error) {
+    assets::Model scene = assets::load_model(path);
+    auto mesh = std::make_shared<const deform::Mesh>(scene.deform_mesh);
+    return {std::move(mesh), std::move(scene)};
+  } catch (const assets::AssetError& error) {
     throw CommandError(error.what());
   }
 }
 
 void check_output_model_path(const fs::path& path) {
-  if (!deform::mesh_format_from_path(path)) {
-    throw CommandError(path.string() + ": unsupported output format (expected .off, .obj or .ply)");
+  if (!deform::mesh_format_from_path(path) && !is_glb_path(path)) {
+    throw CommandError(path.string() + ": unsupported output format (expected .glb, .off, .obj or .ply)");
   }
 }
 
-void save_model(const fs::path& path, const deform::Mesh& mesh) {
+// V: #V by 3 deformed positions of model.mesh.
+void save_model(const fs::path& path, const LoadedModel& model, const Eigen::MatrixXd& V) {
+  if (is_glb_path(path)) {
+    try {
+      const assets::Model plain =
+          model.scene ? assets::Model{} : assets::model_from_mesh(*model.mesh, path.stem().string());
+      for (const std::string& warning : assets::write_glb(model.scene ? *model.scene : plain, V, path))
+        std::printf("  warning: %s\n", warning.c_str());
+    } catch (const assets::AssetError& error) {
+      throw CommandError(error.what());
+    }
+    return;
+  }
   try {
-    deform::write_mesh(path, mesh);
+    deform::write_mesh(path, deform::Mesh{V, model.mesh->F});
   } catch (const deform::MeshIoError& error) {
     throw CommandError(error.what());
   }
@@ -166,7 +205,8 @@ void run_deform(const DeformCommandOptions& o) {
     }
   }
 
-  auto mesh = std::make_shared<const deform::Mesh>(load_model(o.mesh));
+  const LoadedModel model = load_model(o.mesh);
+  const std::shared_ptr<const deform::Mesh>& mesh = model.mesh;
   const std::vector<int> handle = pick_handle(o, *mesh);
   const std::vector<int> fixed =
       o.fixed_file.empty() ? std::vector<int>{} : read_index_file(o.fixed_file, mesh->vertex_count());
@@ -203,8 +243,7 @@ void run_deform(const DeformCommandOptions& o) {
   metrics_options.section_offsets = section_offsets(*mesh, omega, d, o.sections);
   record.metrics = deform::evaluate_deformation(*mesh, record.result.V, d, omega, metrics_options);
 
-  deform::Mesh deformed{record.result.V, mesh->F};
-  save_model(o.out, deformed);
+  save_model(o.out, model, record.result.V);
 
   record.input = o.mesh;
   record.output = o.out;
@@ -248,7 +287,7 @@ void add_deform_command(CLI::App& root) {
       "deform",
       "One push/pull on a model: move the handle by --displacement, deform the region with --method,\n"
       "write the deformed model (--out) and the evaluation numbers (--metrics).");
-  cmd->add_option("MESH", o->mesh, "Model to deform (.off, .obj, .ply)")->required();
+  cmd->add_option("MESH", o->mesh, "Model to deform (.gltf, .glb, .drc, .off, .obj, .ply)")->required();
   cmd->add_option("--handle", o->handle_file,
                   "File of 0-based handle vertex indices (white-space separated)");
   cmd->add_option("--handle-at", o->handle_at, "Handle = vertices within --handle-radius of this point")
@@ -294,7 +333,7 @@ void add_deform_command(CLI::App& root) {
                   "Curvature below this fraction of the largest |K| counts as zero (flat) in sign statistics")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--out", o->out, "Deformed model to write (.off, .obj, .ply)")->required();
+  cmd->add_option("--out", o->out, "Deformed model to write (.glb, .off, .obj, .ply)")->required();
   cmd->add_option("--metrics", o->metrics, "METRICS.json to write")->required();
   cmd->callback([o] { run_deform(*o); });
 }
