@@ -8,19 +8,29 @@ namespace pushpull::deform::detail {
 Anderson::Anderson(int window, Eigen::Index dimension)
     : window_(window), dF_(dimension, window), dG_(dimension, window), gram_(window, window) {}
 
-Eigen::VectorXd Anderson::step(const Eigen::VectorXd& x, const Eigen::VectorXd& g) {
-  const Eigen::VectorXd f = g - x;
+Eigen::VectorXd Anderson::step(const Eigen::Ref<const Eigen::VectorXd>& x,
+                               const Eigen::Ref<const Eigen::VectorXd>& g) {
   if (count_ == 0) {
-    prev_f_ = f;
+    prev_f_ = g - x;
     prev_g_ = g;
     ++count_;
     return g;
   }
   const int column = (count_ - 1) % window_;
-  dF_.col(column) = f - prev_f_;
-  dG_.col(column) = g - prev_g_;
-  prev_f_ = f;
-  prev_g_ = g;
+  // dF = f - f_prev with f = g - x; prev_f_ and prev_g_ then become f and g (one pass each).
+  const Eigen::Index size = x.size();
+  double* df = dF_.col(column).data();
+  double* dg = dG_.col(column).data();
+  double* pf = prev_f_.data();
+  double* pg = prev_g_.data();
+  for (Eigen::Index i = 0; i < size; ++i) {
+    const double fi = g(i) - x(i);
+    df[i] = fi - pf[i];
+    dg[i] = g(i) - pg[i];
+    pf[i] = fi;
+    pg[i] = g(i);
+  }
+  const Eigen::VectorXd& f = prev_f_;
   const int m = std::min(count_, window_);
   ++count_;
   for (int k = 0; k < m; ++k) gram_(column, k) = gram_(k, column) = dF_.col(column).dot(dF_.col(k));

@@ -14,7 +14,8 @@ class Anderson {
   Anderson(int window, Eigen::Index dimension);
   // x: current iterate, g = G(x). Returns the accelerated next iterate (g itself for the first call after
   // construction or reset).
-  [[nodiscard]] Eigen::VectorXd step(const Eigen::VectorXd& x, const Eigen::VectorXd& g);
+  [[nodiscard]] Eigen::VectorXd step(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                     const Eigen::Ref<const Eigen::VectorXd>& g);
   void reset() { count_ = 0; }
 
  private:

@@ -205,6 +205,7 @@ void Deformer::Impl::setup() {
   model =
       detail::build_energy_model(P, faces, model_spec(options), rest_half_cot, rest_half_cot, bending_vertex);
   system.analyze(model.Q, n_free);
+  plan_local_split();
 }
 
 double Deformer::Impl::prepare_weights(const Eigen::Vector3d& push_direction,

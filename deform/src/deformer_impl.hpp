@@ -11,6 +11,7 @@
 #include "anderson.hpp"
 #include "energy_model.hpp"
 #include "global_system.hpp"
+#include "helper_thread.hpp"
 #include "pushpull/deform/deformer.hpp"
 
 namespace pushpull::deform {
@@ -35,7 +36,16 @@ struct Deformer::Impl {
   bool factored = false;
   std::optional<Eigen::Vector3d> weight_direction;  // unit d_o of the current ASAN weights
 
+  // The local step runs in two fixed parts, clusters [0, split_cluster) and [split_cluster, #clusters),
+  // whatever the thread count, so results do not depend on it. Right-hand-side contributions of part 1
+  // to free vertices also reached by part 0 (shared_vertex; shared_slot[v] its index, else -1) are kept
+  // apart and added after both parts.
+  int split_cluster = 0;
+  std::vector<int> shared_slot, shared_vertex;
+  std::unique_ptr<detail::HelperThread> helper;  // runs part 1 during run() on large regions (else null)
+
   void setup();
+  void plan_local_split();  // split_cluster, shared_slot, shared_vertex from the model's clusters
   // Recomputes weights if d_o changed (ASAN) and refactors when needed; returns milliseconds spent.
   double prepare_weights(const Eigen::Vector3d& push_direction, std::vector<std::string>& warnings);
   // Optimal rotations for X (3 by n) into R, warm-started by q; returns the energy E(X, R). sr-arap couples
@@ -43,15 +53,18 @@ struct Deformer::Impl {
   // when `R_valid` is false.
   // `quadratic`, when given, is tr(X Q X^T) already known (after a plain global step), saving a pass over Q.
   // `rhs`, when given, receives B_f(R) (3 by n_free, b_v = sum_t R_cluster(t) g_t over free v) for the
-  // returned R, accumulated while each cluster's terms are in cache (same order as a separate pass).
+  // returned R, accumulated while each cluster's terms are in cache. `threads`, when given, runs the two
+  // parts of the step concurrently (same results as without).
   double local_step(const Eigen::Matrix3Xd& X, std::vector<Eigen::Matrix3d>& R,
                     std::vector<Eigen::Quaterniond>& q, bool R_valid = true, int sweeps = 1,
-                    std::optional<double> quadratic = std::nullopt, Eigen::Matrix3Xd* rhs = nullptr) const;
+                    std::optional<double> quadratic = std::nullopt, Eigen::Matrix3Xd* rhs = nullptr,
+                    detail::HelperThread* threads = nullptr) const;
   // Free positions X_f minimising E(., R) given constrained positions (through rhs_c = -Q_fc X_c), with
   // B_f = B_f(R) from local_step. Writes X_f into G (3 by n_free). Also returns tr(X Q X^T) of the result,
   // = X_f : (B_f - rhs_c) + constrained_quadratic since Q_ff X_f = B_f + rhs_c.
+  // `threads`, when given, splits the triangular solves over two threads (same results as without).
   void global_step(const Eigen::Matrix3Xd& B, const Eigen::Matrix3Xd& rhs_c, double constrained_quadratic,
-                   Eigen::Matrix3Xd& G, double& quadratic) const;
+                   Eigen::Matrix3Xd& G, double& quadratic, detail::HelperThread* threads = nullptr) const;
   [[nodiscard]] Eigen::MatrixXd to_full(const Eigen::Matrix3Xd& X) const;
   DeformResult run(const Eigen::Matrix3Xd& X_c, const Eigen::Vector3d& push_direction,
                    const Eigen::MatrixXd& initial_guess);

@@ -65,6 +65,7 @@ void GlobalSystem::factorize(const Eigen::SparseMatrix<double>& Q) {
   }
   inv_d_ = d.cwiseInverse();
   perm_ = ldlt_.permutationP().indices();
+  plan_split();
 }
 
 Eigen::Matrix3Xd GlobalSystem::constrained_rhs(const Eigen::Matrix3Xd& X_c) const {
@@ -75,32 +76,6 @@ Eigen::Matrix3Xd GlobalSystem::constrained_rhs(const Eigen::Matrix3Xd& X_c) cons
       out.col(it.row()) -= it.value() * x;
   }
   return out;
-}
-
-void GlobalSystem::solve_in_place(Eigen::Matrix3Xd& B) const {
-  const int n = n_free_;
-  if (n == 0) return;
-  Eigen::Matrix3Xd Y(3, n);
-  for (int i = 0; i < n; ++i) Y.col(perm_(i)) = B.col(i);
-  const Eigen::SparseMatrix<double>& L = ldlt_.matrixL().nestedExpression();  // strictly lower, unit diagonal
-  const int* outer = L.outerIndexPtr();
-  const int* inner = L.innerIndexPtr();
-  const double* value = L.valuePtr();
-  for (int j = 0; j < n; ++j) {  // L y = b, L unit lower
-    const Eigen::Vector3d yj = Y.col(j);
-    for (int p = outer[j]; p < outer[j + 1]; ++p) {
-      if (inner[p] > j) Y.col(inner[p]) -= value[p] * yj;
-    }
-  }
-  for (int j = 0; j < n; ++j) Y.col(j) *= inv_d_(j);
-  for (int j = n - 1; j >= 0; --j) {  // L^T x = y
-    Eigen::Vector3d acc = Y.col(j);
-    for (int p = outer[j]; p < outer[j + 1]; ++p) {
-      if (inner[p] > j) acc -= value[p] * Y.col(inner[p]);
-    }
-    Y.col(j) = acc;
-  }
-  for (int i = 0; i < n; ++i) B.col(i) = Y.col(perm_(i));
 }
 
 }  // namespace pushpull::deform::detail

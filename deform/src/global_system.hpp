@@ -7,6 +7,8 @@
 #include <Eigen/SparseCore>
 #include <vector>
 
+#include "helper_thread.hpp"
+
 namespace pushpull::deform::detail {
 
 class GlobalSystem {
@@ -19,7 +21,10 @@ class GlobalSystem {
   // -Q_fc X_c for the constrained columns X_c (3 by n - n_free): 3 by n_free.
   [[nodiscard]] Eigen::Matrix3Xd constrained_rhs(const Eigen::Matrix3Xd& X_c) const;
   // Solves Q_ff Y^T = B^T in place (B: 3 by n_free), the three coordinates in one pass over the factor.
-  void solve_in_place(Eigen::Matrix3Xd& B) const;
+  // The triangular solves run in two elimination subtrees plus their common ancestors ("top"), a fixed split
+  // made at factorization; `threads`, when given, runs the two subtrees concurrently (same results).
+  // Thread-safety: const, may be called concurrently (with distinct `threads`).
+  void solve_in_place(Eigen::Matrix3Xd& B, HelperThread* threads = nullptr) const;
 
  private:
   int n_free_ = 0;
@@ -28,6 +33,14 @@ class GlobalSystem {
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::AMDOrdering<int>> ldlt_;
   Eigen::VectorXd inv_d_;
   Eigen::VectorXi perm_;  // P: b_perm[perm_[i]] = b[i]
+
+  // Split of the triangular solves (split_solve.cpp): subtree columns of each part (ascending), the top
+  // columns (ascending), and per factor entry the workspace column its forward update goes to: its row, or
+  // for a part's entry in a top row, that part's accumulator column n + part * #top + slot of the row.
+  void plan_split();
+  std::vector<int> part_columns_[2], top_columns_;
+  std::vector<int> forward_target_;
+  std::vector<int> planned_outer_, planned_inner_;  // the factor pattern the split was planned for
 };
 
 }  // namespace pushpull::deform::detail

@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <memory>
+#include <system_error>
+#include <thread>
 
 #include "deformer_impl.hpp"
-#include "rotation.hpp"
 
 namespace pushpull::deform {
 namespace {
@@ -30,99 +32,12 @@ double quadratic_form(const Eigen::SparseMatrix<double>& Q, const Eigen::Matrix3
 
 }  // namespace
 
-double Deformer::Impl::local_step(const Eigen::Matrix3Xd& X, std::vector<Eigen::Matrix3d>& R,
-                                  std::vector<Eigen::Quaterniond>& q, bool R_valid, int sweeps,
-                                  std::optional<double> known_quadratic, Eigen::Matrix3Xd* rhs) const {
-  const detail::EnergyModel& m = model;
-  const int clusters = m.cluster_count;
-  const bool smooth = m.smooth_scale > 0.0;
-  const int* start = m.cluster_start.data();
-  const int* vertex = m.term_vertex.data();
-  const double* g = m.term_g.data();
-  const double* x = X.data();
-  double* b = nullptr;
-  if (rhs) {
-    rhs->setZero(3, n_free);
-    b = rhs->data();
-  }
-  // B_f += R_c g_t over the free vertices of cluster c's terms (ascending t, as a separate pass would).
-  auto scatter = [&](int c, const Eigen::Matrix3d& Rc) {
-    for (int t = start[c]; t < start[c + 1]; ++t) {
-      const int v = vertex[t];
-      if (v >= n_free) continue;
-      const double g0 = g[3 * t], g1 = g[3 * t + 1], g2 = g[3 * t + 2];
-      double* bv = b + 3 * v;
-      bv[0] += Rc(0, 0) * g0 + Rc(0, 1) * g1 + Rc(0, 2) * g2;
-      bv[1] += Rc(1, 0) * g0 + Rc(1, 1) * g1 + Rc(1, 2) * g2;
-      bv[2] += Rc(2, 0) * g0 + Rc(2, 1) * g1 + Rc(2, 2) * g2;
-    }
-  };
-  // Warm rotations take one Newton step unless it is long (see closest_rotation); cold ones converge fully.
-  const double accept = R_valid ? 1e-2 : 1e-4;
-  std::vector<Eigen::Matrix3d> covariance;
-  if (smooth) covariance.resize(static_cast<std::size_t>(clusters));
-  double coupling = 0.0;  // sum_c R_c : A_c
-  for (int c = 0; c < clusters; ++c) {
-    Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
-    for (int t = start[c]; t < start[c + 1]; ++t) {
-      const double* xv = x + 3 * vertex[t];
-      const double* gt = g + 3 * t;
-      for (int j = 0; j < 3; ++j) {
-        for (int i = 0; i < 3; ++i) A(i, j) += xv[i] * gt[j];
-      }
-    }
-    Eigen::Matrix3d& Rc = R[static_cast<std::size_t>(c)];
-    if (smooth) {
-      covariance[static_cast<std::size_t>(c)] = A;
-      if (!R_valid) Rc = detail::closest_rotation(A, q[static_cast<std::size_t>(c)], 20, accept);
-    } else {
-      Rc = detail::closest_rotation(A, q[static_cast<std::size_t>(c)], 20, accept);
-      coupling += (Rc.array() * A.array()).sum();
-      if (b) scatter(c, Rc);
-    }
-  }
-  double smoothing = 0.0;
-  if (smooth) {
-    // sr-arap: one Gauss-Seidel sweep, each R_k optimal given its neighbours' latest rotations (so the
-    // energy cannot rise).
-    for (int sweep = 0; sweep < sweeps; ++sweep) {
-      for (int c = 0; c < clusters; ++c) {
-        Eigen::Matrix3d A = covariance[static_cast<std::size_t>(c)];
-        for (int k = m.smooth_start[static_cast<std::size_t>(c)];
-             k < m.smooth_start[static_cast<std::size_t>(c) + 1]; ++k) {
-          A += m.smooth_scale * m.smooth_weight[static_cast<std::size_t>(k)] *
-               R[static_cast<std::size_t>(m.smooth_cluster[static_cast<std::size_t>(k)])];
-        }
-        R[static_cast<std::size_t>(c)] =
-            detail::closest_rotation(A, q[static_cast<std::size_t>(c)], 20, accept);
-      }
-    }
-    for (int c = 0; c < clusters; ++c) {
-      coupling +=
-          (R[static_cast<std::size_t>(c)].array() * covariance[static_cast<std::size_t>(c)].array()).sum();
-      if (b) scatter(c, R[static_cast<std::size_t>(c)]);
-      for (int k = m.smooth_start[static_cast<std::size_t>(c)];
-           k < m.smooth_start[static_cast<std::size_t>(c) + 1]; ++k) {
-        const int d = m.smooth_cluster[static_cast<std::size_t>(k)];
-        if (d < c) continue;  // each edge once
-        smoothing +=
-            m.smooth_weight[static_cast<std::size_t>(k)] *
-            (6.0 -
-             2.0 * (R[static_cast<std::size_t>(c)].array() * R[static_cast<std::size_t>(d)].array()).sum());
-      }
-    }
-    smoothing *= m.smooth_scale;
-  }
-  // tr(X Q X^T), Q symmetric with both triangles stored.
-  const double quadratic = known_quadratic ? *known_quadratic : quadratic_form(m.Q, X);
-  return quadratic - 2.0 * coupling + m.constant + smoothing;
-}
-
 void Deformer::Impl::global_step(const Eigen::Matrix3Xd& B, const Eigen::Matrix3Xd& rhs_c,
-                                 double constrained_quadratic, Eigen::Matrix3Xd& G, double& quadratic) const {
+                                 double constrained_quadratic, Eigen::Matrix3Xd& G, double& quadratic,
+                                 detail::HelperThread* threads) const {
   G.resize(3, n_free);
   G.noalias() = B + rhs_c;
-  system.solve_in_place(G);
+  system.solve_in_place(G, threads);
   const double* xf = G.data();
   const double* bf = B.data();
   const double* rc = rhs_c.data();
@@ -157,21 +72,32 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
   std::vector<Eigen::Matrix3d> R(static_cast<std::size_t>(model.cluster_count), Eigen::Matrix3d::Identity());
   std::vector<Eigen::Quaterniond> q(R.size(), Eigen::Quaterniond::Identity());
   Eigen::Matrix3Xd B(3, n_free), G(3, n_free);  // B_f(R) for the current R; the plain global step
-  double energy = local_step(X, R, q, /*R_valid=*/false, 1, std::nullopt, &B);
+  // A second thread for the local step pays off once a step costs well over a thread hand-off (~10 us).
+  constexpr int kThreadedTerms = 20000;
+  if (!helper && model.cluster_start.back() >= kThreadedTerms && std::thread::hardware_concurrency() > 1) {
+    try {
+      helper = std::make_unique<detail::HelperThread>();
+    } catch (const std::system_error&) {  // no thread: the same two parts run one after the other
+    }
+  }
+  detail::HelperThread* threads = helper.get();
+  double energy = local_step(X, R, q, /*R_valid=*/false, 1, std::nullopt, &B, threads);
   result.initial_energy = energy;
   std::optional<detail::Anderson> anderson;
   if (options.anderson_window > 0 && n_free > 0) anderson.emplace(options.anderson_window, 3 * n_free);
   Eigen::MatrixXd preview;
 
+  Eigen::Matrix3Xd X_next =
+      X;  // its constrained columns stay X's; the free ones are rewritten each iteration
+
   result.stop_reason = StopReason::MaxIterations;
   for (int iteration = 1; iteration <= options.max_iterations && n_free > 0; ++iteration) {
     double plain_quadratic = 0.0;
-    global_step(B, rhs_c, constrained_quadratic, G, plain_quadratic);
-    Eigen::Matrix3Xd X_next = X;
+    global_step(B, rhs_c, constrained_quadratic, G, plain_quadratic, threads);
     bool accelerated = false;
     if (anderson) {
-      const Eigen::VectorXd x_vec = Eigen::Map<const Eigen::VectorXd>(X.data(), 3 * n_free);
-      const Eigen::VectorXd g_vec = Eigen::Map<const Eigen::VectorXd>(G.data(), 3 * n_free);
+      const Eigen::Map<const Eigen::VectorXd> x_vec(X.data(), 3 * n_free);
+      const Eigen::Map<const Eigen::VectorXd> g_vec(G.data(), 3 * n_free);
       const Eigen::VectorXd next = anderson->step(x_vec, g_vec);
       accelerated = !next.isApprox(g_vec, 0.0) && next.allFinite();
       X_next.leftCols(n_free) = accelerated ? Eigen::Map<const Eigen::Matrix3Xd>(next.data(), 3, n_free) : G;
@@ -179,17 +105,20 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
       X_next.leftCols(n_free) = G;
     }
     // R only warm-starts the next local step (R is a function of X), so it is updated in place.
-    double next_energy = accelerated ? local_step(X_next, R, q, true, 1, std::nullopt, &B)
-                                     : local_step(X_next, R, q, true, 1, plain_quadratic, &B);
+    double next_energy = accelerated ? local_step(X_next, R, q, true, 1, std::nullopt, &B, threads)
+                                     : local_step(X_next, R, q, true, 1, plain_quadratic, &B, threads);
     if (accelerated && !(next_energy <= energy)) {  // safeguard: take the plain (monotone) step
       X_next.leftCols(n_free) = G;
-      next_energy = local_step(X_next, R, q, true, 1, plain_quadratic, &B);
+      next_energy = local_step(X_next, R, q, true, 1, plain_quadratic, &B, threads);
       anderson->reset();
     }
     // The plain step's move (the fixed-point residual), also with Anderson, whose iterate differences can
     // stall before convergence.
-    const double move = (G - X.leftCols(n_free)).colwise().norm().maxCoeff() / reference;
-    X = std::move(X_next);
+    double largest_move2 = 0.0;
+    for (int i = 0; i < n_free; ++i)
+      largest_move2 = std::max(largest_move2, (G.col(i) - X.col(i)).squaredNorm());
+    const double move = std::sqrt(largest_move2) / reference;
+    X.swap(X_next);
     result.energy_trace.push_back(next_energy);
     result.iterations = iteration;
     const double previous_energy = energy;
