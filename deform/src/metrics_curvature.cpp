@@ -1,4 +1,5 @@
 // Discrete Gaussian curvature: angle defect over mixed Voronoi area (Meyer et al. 2003).
+#include "edge_key.hpp"
 #include "pushpull/deform/metrics.hpp"
 
 #include <Eigen/Geometry>
@@ -13,11 +14,7 @@ namespace pushpull::deform {
 
 namespace {
 
-std::uint64_t edge_key(int a, int b) {
-  const auto lo = static_cast<std::uint32_t>(std::min(a, b));
-  const auto hi = static_cast<std::uint32_t>(std::max(a, b));
-  return (static_cast<std::uint64_t>(lo) << 32) | hi;
-}
+using detail::edge_key;
 
 // Vertices on an edge that belongs to exactly one face.
 std::vector<bool> boundary_vertices(const Eigen::MatrixXi& F, Eigen::Index vertex_count) {

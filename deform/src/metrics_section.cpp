@@ -1,4 +1,5 @@
 // Plane sections of a triangle mesh, chained into polylines.
+#include "edge_key.hpp"
 #include "pushpull/deform/metrics.hpp"
 
 #include <algorithm>
@@ -9,15 +10,7 @@
 
 namespace pushpull::deform {
 
-namespace {
-
-std::uint64_t edge_key(int a, int b) {
-  const auto lo = static_cast<std::uint32_t>(std::min(a, b));
-  const auto hi = static_cast<std::uint32_t>(std::max(a, b));
-  return (static_cast<std::uint64_t>(lo) << 32) | hi;
-}
-
-}  // namespace
+using detail::edge_key;
 
 std::vector<SectionCurve> plane_section(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
                                         const Eigen::Vector3d& origin, const Eigen::Vector3d& normal) {

@@ -12,32 +12,14 @@
 
 #include "pushpull/deform/mesh.hpp"
 #include "pushpull/deform/mesh_io.hpp"
+#include "test_shapes.hpp"
 
 namespace pushpull::deform::solver_testing {
 
 // (nx+1) x (ny+1) vertices on [0, width] x [0, height] in the z = 0 plane, vertex (i, j) = row j*(nx+1)+i,
 // cells split along alternating diagonals.
 inline Mesh sheet(int nx, int ny, double width, double height) {
-  Mesh mesh;
-  mesh.V.resize((nx + 1) * (ny + 1), 3);
-  for (int j = 0; j <= ny; ++j) {
-    for (int i = 0; i <= nx; ++i) mesh.V.row(j * (nx + 1) + i) << width * i / nx, height * j / ny, 0.0;
-  }
-  mesh.F.resize(2 * nx * ny, 3);
-  int f = 0;
-  for (int j = 0; j < ny; ++j) {
-    for (int i = 0; i < nx; ++i) {
-      const int a = j * (nx + 1) + i, b = a + 1, c = a + nx + 1, d = c + 1;
-      if ((i + j) % 2 == 0) {
-        mesh.F.row(f++) << a, b, d;
-        mesh.F.row(f++) << a, d, c;
-      } else {
-        mesh.F.row(f++) << a, b, c;
-        mesh.F.row(f++) << b, d, c;
-      }
-    }
-  }
-  return mesh;
+  return testing::grid(nx, ny, 0.0, width, 0.0, height);
 }
 
 inline std::filesystem::path shared_mesh(const std::string& name) {
