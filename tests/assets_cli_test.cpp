@@ -1,6 +1,8 @@
 // `pushpull info` and `pushpull deform` on glTF/GLB/Draco models, end to end (issue 4).
 #include <gtest/gtest.h>
 
+#include "command_runner.hpp"
+
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -11,22 +13,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct CliRun {
-  int status = -1;
-  std::string output;
-};
-
-CliRun run(const std::string& arguments) {
-  CliRun result;
-  const std::string command = std::string(PUSHPULL_EXECUTABLE) + " " + arguments + " 2>&1";
-  FILE* pipe = ::popen(command.c_str(), "r");
-  if (!pipe) return result;
-  char buffer[4096];
-  while (std::fgets(buffer, sizeof buffer, pipe)) result.output += buffer;
-  const int status = ::pclose(pipe);
-  result.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
-}
+using CliRun = pushpull::testing::CommandResult;
+const auto& run = pushpull::testing::run_pushpull;
 
 fs::path data(const std::string& name) {
   return fs::path(PUSHPULL_SHARED_DATA) / "gltf" / name;
@@ -90,13 +78,9 @@ TEST(AssetsCli, DeformToyCarWritesAValidGlb) {
   const fs::path validator = fs::path(PUSHPULL_SOURCE_DIR) / "tools/gltf-validator/validate.js";
   ASSERT_TRUE(fs::exists(fs::path(PUSHPULL_SOURCE_DIR) / "tools/gltf-validator/node_modules/gltf-validator"))
       << "run npm ci in tools/gltf-validator (scripts/setup does)";
-  FILE* pipe = ::popen(("node '" + validator.string() + "' '" + out.string() + "' 2>&1").c_str(), "r");
-  ASSERT_NE(pipe, nullptr);
-  std::string report;
-  char buffer[4096];
-  while (std::fgets(buffer, sizeof buffer, pipe)) report += buffer;
-  const int status = ::pclose(pipe);
-  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << report;
+  const pushpull::testing::CommandResult report =
+      pushpull::testing::run_command("node '" + validator.string() + "' '" + out.string() + "'");
+  EXPECT_EQ(report.status, 0) << report.output;
   const CliRun info = run("info '" + out.string() + "'");
   EXPECT_EQ(info.status, 0) << info.output;
 }

@@ -1,11 +1,11 @@
 // End-to-end runs of `pushpull deform`: a mesh and METRICS.json come out for good input; bad input exits
 // non-zero with a message naming the file and the problem.
+#include "command_runner.hpp"
 #include "pushpull/deform/mesh_io.hpp"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <array>
@@ -21,23 +21,8 @@ namespace {
 
 const fs::path kHemisphere = fs::path(PUSHPULL_SHARED_DATA) / "meshes" / "hemisphere.off";
 
-struct RunResult {
-  int status = -1;
-  std::string output;  // stdout and stderr together
-};
-
-RunResult run_pushpull(const std::string& arguments) {
-  const std::string command = std::string(PUSHPULL_EXECUTABLE) + " " + arguments + " 2>&1";
-  RunResult result;
-  FILE* pipe = ::popen(command.c_str(), "r");
-  if (pipe == nullptr) return result;
-  std::array<char, 4096> buffer{};
-  std::size_t n = 0;
-  while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0) result.output.append(buffer.data(), n);
-  const int raw = ::pclose(pipe);
-  result.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  return result;
-}
+using RunResult = pushpull::testing::CommandResult;
+using pushpull::testing::run_pushpull;
 
 class DeformCli : public ::testing::Test {
  protected:

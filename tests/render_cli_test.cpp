@@ -2,6 +2,8 @@
 // displacement colour map where the displacement is known, and readable errors.
 #include <gtest/gtest.h>
 
+#include "command_runner.hpp"
+
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmissing-field-initializers"
 #pragma GCC diagnostic ignored "-Wsign-compare"
@@ -24,22 +26,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-  int status = -1;
-  std::string output;
-};
-
-Result run(const std::string& args) {
-  const std::string command = std::string(PUSHPULL_EXECUTABLE) + " " + args + " 2>&1";
-  Result result;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (pipe == nullptr) return result;
-  std::array<char, 4096> buffer{};
-  while (fgets(buffer.data(), int(buffer.size()), pipe) != nullptr) result.output += buffer.data();
-  const int status = pclose(pipe);
-  result.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
-}
+using Result = pushpull::testing::CommandResult;
+const auto& run = pushpull::testing::run_pushpull;
 
 fs::path temp_dir() {
   const fs::path dir = fs::path(PUSHPULL_BINARY_DIR) / "render-cli-test";
