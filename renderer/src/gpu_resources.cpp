@@ -4,6 +4,31 @@
 
 namespace pushpull::renderer::detail {
 
+namespace {
+
+UniqueMemory allocate_memory(const Context& context, const VkMemoryRequirements& requirements,
+                             VkMemoryPropertyFlags properties) {
+  VkMemoryAllocateInfo alloc{};
+  alloc.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
+  alloc.allocationSize = requirements.size;
+  alloc.memoryTypeIndex = context.find_memory_type(requirements.memoryTypeBits, properties);
+  VkDeviceMemory memory = VK_NULL_HANDLE;
+  PP_VK_CHECK(vkAllocateMemory(context.device(), &alloc, nullptr, &memory));
+  return UniqueMemory(context.device(), memory);
+}
+
+}  // namespace
+
+UniqueCommandPool create_command_pool(const Context& context, VkCommandPoolCreateFlags flags) {
+  VkCommandPoolCreateInfo info{};
+  info.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO;
+  info.flags = flags;
+  info.queueFamilyIndex = context.queue_family_index();
+  VkCommandPool pool = VK_NULL_HANDLE;
+  PP_VK_CHECK(vkCreateCommandPool(context.device(), &info, nullptr, &pool));
+  return UniqueCommandPool(context.device(), pool);
+}
+
 Buffer create_buffer(const Context& context, VkDeviceSize size, VkBufferUsageFlags usage, bool host_visible) {
   VkDevice device = context.device();
   Buffer result;
@@ -22,15 +47,10 @@ Buffer create_buffer(const Context& context, VkDeviceSize size, VkBufferUsageFla
   const VkMemoryPropertyFlags props =
       host_visible ? VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT
                    : VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
-  VkMemoryAllocateInfo alloc{};
-  alloc.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
-  alloc.allocationSize = requirements.size;
-  alloc.memoryTypeIndex = context.find_memory_type(requirements.memoryTypeBits, props);
-  VkDeviceMemory memory = VK_NULL_HANDLE;
-  PP_VK_CHECK(vkAllocateMemory(device, &alloc, nullptr, &memory));
-  result.memory = UniqueMemory(device, memory);
-  PP_VK_CHECK(vkBindBufferMemory(device, buffer, memory, 0));
-  if (host_visible) PP_VK_CHECK(vkMapMemory(device, memory, 0, VK_WHOLE_SIZE, 0, &result.mapped));
+  result.memory = allocate_memory(context, requirements, props);
+  PP_VK_CHECK(vkBindBufferMemory(device, buffer, result.memory.get(), 0));
+  if (host_visible)
+    PP_VK_CHECK(vkMapMemory(device, result.memory.get(), 0, VK_WHOLE_SIZE, 0, &result.mapped));
   return result;
 }
 
@@ -61,15 +81,8 @@ Image create_image(const Context& context, const ImageDesc& desc) {
 
   VkMemoryRequirements requirements;
   vkGetImageMemoryRequirements(device, image, &requirements);
-  VkMemoryAllocateInfo alloc{};
-  alloc.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
-  alloc.allocationSize = requirements.size;
-  alloc.memoryTypeIndex =
-      context.find_memory_type(requirements.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-  VkDeviceMemory memory = VK_NULL_HANDLE;
-  PP_VK_CHECK(vkAllocateMemory(device, &alloc, nullptr, &memory));
-  result.memory = UniqueMemory(device, memory);
-  PP_VK_CHECK(vkBindImageMemory(device, image, memory, 0));
+  result.memory = allocate_memory(context, requirements, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+  PP_VK_CHECK(vkBindImageMemory(device, image, result.memory.get(), 0));
 
   VkImageViewCreateInfo view_info{};
 
@@ -99,13 +112,7 @@ UniqueImageView create_layer_view(const Context& context, VkImage image, VkForma
 
 void submit_and_wait(const Context& context, const std::function<void(VkCommandBuffer)>& record) {
   VkDevice device = context.device();
-  VkCommandPoolCreateInfo pool_info{};
-  pool_info.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO;
-  pool_info.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
-  pool_info.queueFamilyIndex = context.queue_family_index();
-  VkCommandPool pool_handle = VK_NULL_HANDLE;
-  PP_VK_CHECK(vkCreateCommandPool(device, &pool_info, nullptr, &pool_handle));
-  UniqueCommandPool pool(device, pool_handle);
+  UniqueCommandPool pool = create_command_pool(context, VK_COMMAND_POOL_CREATE_TRANSIENT_BIT);
 
   VkCommandBufferAllocateInfo alloc{};
 

@@ -47,6 +47,9 @@ UniqueImageView create_layer_view(const Context& context, VkImage image, VkForma
 
 // Records commands into a fresh command buffer, submits them and waits for completion.
 // For setup work (texture uploads, readbacks), never inside the frame loop.
+// A command pool on the context's queue family. Throws (PP_VK_CHECK) on failure.
+UniqueCommandPool create_command_pool(const Context& context, VkCommandPoolCreateFlags flags);
+
 void submit_and_wait(const Context& context, const std::function<void(VkCommandBuffer)>& record);
 
 // Layout transition of `layers` layers starting at base_layer, mip 0..levels-1, with explicit stages.

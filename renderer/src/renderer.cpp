@@ -209,16 +209,10 @@ Renderer::Renderer(const Context& context, const RendererOptions& options)
 
   r.slots.resize(options.frames_in_flight);
   for (FrameSlot& slot : r.slots) {
-    VkCommandPoolCreateInfo cp{};
-    cp.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO;
-    cp.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
-    cp.queueFamilyIndex = context.queue_family_index();
-    VkCommandPool command_pool = VK_NULL_HANDLE;
-    PP_VK_CHECK(vkCreateCommandPool(device, &cp, nullptr, &command_pool));
-    slot.pool = UniqueCommandPool(device, command_pool);
+    slot.pool = create_command_pool(context, VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT);
     VkCommandBufferAllocateInfo alloc{};
     alloc.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO;
-    alloc.commandPool = command_pool;
+    alloc.commandPool = slot.pool.get();
     alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
     alloc.commandBufferCount = 1;
     PP_VK_CHECK(vkAllocateCommandBuffers(device, &alloc, &slot.cmd));
