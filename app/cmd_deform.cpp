@@ -9,6 +9,7 @@
 #include "pushpull/deform/mesh_io.hpp"
 #include "pushpull/deform/metrics.hpp"
 #include "pushpull/deform/roi.hpp"
+#include "pushpull/deform/surface_point.hpp"
 
 #include <CLI/CLI.hpp>
 
@@ -136,16 +137,25 @@ deform::Method parse_method_or_throw(const std::string& name, const char* option
   }
 }
 
+// --handle-at P --handle-radius R: the surface point closest to P, then every vertex within R of it along
+// the surface (on that point's component only), the rule the headset uses for a ray hit.
 std::vector<int> pick_handle(const DeformCommandOptions& o, const deform::Mesh& mesh) {
   if (!o.handle_file.empty()) return read_index_file(o.handle_file, mesh.vertex_count());
   const Eigen::Vector3d point = vector3(o.handle_at, "--handle-at");
-  std::vector<int> handle = vertices_within(mesh.V, point, o.handle_radius);
-  if (handle.empty()) {
-    throw CommandError(o.mesh + ": no vertex within --handle-radius " + std::to_string(o.handle_radius) +
-                       " of --handle-at (" + std::to_string(point.x()) + ", " + std::to_string(point.y()) +
-                       ", " + std::to_string(point.z()) + ")");
+  deform::SurfacePoint hit;
+  try {
+    hit = deform::closest_surface_point(mesh, point);
+  } catch (const std::invalid_argument& error) {
+    throw CommandError(o.mesh + ": " + error.what());
   }
-  return handle;
+  const double gap = (hit.point - point).norm();
+  if (gap > o.handle_radius) {
+    throw CommandError(o.mesh + ": --handle-at (" + std::to_string(point.x()) + ", " + std::to_string(point.y()) +
+                       ", " + std::to_string(point.z()) + ") is " + std::to_string(gap) +
+                       " from the surface, farther than --handle-radius " + std::to_string(o.handle_radius) +
+                       "; pick a point on the surface");
+  }
+  return deform::surface_handle(mesh, hit, o.handle_radius);
 }
 
 deform::DeformOptions solver_options(const DeformCommandOptions& o) {
@@ -290,7 +300,7 @@ void add_deform_command(CLI::App& root) {
   cmd->add_option("MESH", o->mesh, "Model to deform (.gltf, .glb, .drc, .off, .obj, .ply)")->required();
   cmd->add_option("--handle", o->handle_file,
                   "File of 0-based handle vertex indices (white-space separated)");
-  cmd->add_option("--handle-at", o->handle_at, "Handle = vertices within --handle-radius of this point")
+  cmd->add_option("--handle-at", o->handle_at, "Handle = vertices within --handle-radius of the surface point closest to this one, measured along the surface")
       ->expected(3);
   cmd->add_option("--handle-radius", o->handle_radius, "Radius for --handle-at (model units)");
   cmd->add_option("--fixed", o->fixed_file, "File of 0-based fixed vertex indices (the region stops there)");

@@ -7,6 +7,7 @@
 
 #include "pushpull/assets/model.hpp"
 #include "pushpull/deform/metrics.hpp"
+#include "pushpull/deform/surface_point.hpp"
 
 #include <CLI/CLI.hpp>
 
@@ -102,8 +103,10 @@ void run_render(const RenderCommandOptions& options) {
   if (!options.handle_at.empty()) {
     if (options.handle_radius <= 0.0)
       throw CommandError("--handle-at needs --handle-radius > 0 (model units)");
-    mark(vertices_within(V0, vec3(options.handle_at), options.handle_radius),
-         &renderer::OverlayWeights::handle);
+    // The same rule as `pushpull deform`: along the surface from the closest surface point.
+    const deform::Mesh rest{V0, F};
+    const deform::SurfacePoint hit = deform::closest_surface_point(rest, vec3(options.handle_at));
+    mark(deform::surface_handle(rest, hit, options.handle_radius), &renderer::OverlayWeights::handle);
   }
   if (any_overlay) {
     inputs.overlays.resize(inputs.render.deform_vertex.size());

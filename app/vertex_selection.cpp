@@ -43,13 +43,4 @@ std::vector<int> read_index_file(const std::filesystem::path& path, Eigen::Index
   return indices;
 }
 
-std::vector<int> vertices_within(const Eigen::MatrixXd& V, const Eigen::Vector3d& point, double radius) {
-  std::vector<int> picked;
-  const double r2 = radius * radius;
-  for (Eigen::Index i = 0; i < V.rows(); ++i) {
-    if ((V.row(i).transpose() - point).squaredNorm() <= r2) picked.push_back(static_cast<int>(i));
-  }
-  return picked;
-}
-
 }  // namespace pushpull::app

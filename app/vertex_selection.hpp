@@ -14,8 +14,4 @@ namespace pushpull::app {
 // lie in [0, vertex_count); duplicates are dropped; the result is sorted. An empty file is an error.
 [[nodiscard]] std::vector<int> read_index_file(const std::filesystem::path& path, Eigen::Index vertex_count);
 
-// Vertices (rows of V, #V by 3) within Euclidean distance `radius` of `point`, sorted.
-[[nodiscard]] std::vector<int> vertices_within(const Eigen::MatrixXd& V, const Eigen::Vector3d& point,
-                                               double radius);
-
 }  // namespace pushpull::app

@@ -25,6 +25,7 @@ void check_options(const DeformOptions& o) {
   if (!(o.tolerance >= 0.0)) fail("tolerance must be >= 0");
   if (!(o.energy_tolerance >= 0.0)) fail("energy_tolerance must be >= 0");
   if (o.anderson_window < 0) fail("anderson_window must be >= 0");
+  if (o.threads < 0) fail("threads must be 0 (automatic) or >= 1, got " + std::to_string(o.threads));
   if (o.arap_n_rings < 1) fail("arap_n_rings must be >= 1, got " + std::to_string(o.arap_n_rings));
   if (!(o.sr_arap_alpha >= 0.0) || !std::isfinite(o.sr_arap_alpha))
     fail("sr_arap_alpha must be finite and >= 0");
@@ -218,9 +219,11 @@ double Deformer::Impl::prepare_weights(const Eigen::Vector3d& push_direction,
       unit = d_o.normalized();
     else
       warnings.push_back("asan: zero push/pull direction, the unstretched (arap) weights are used");
-    // tau depends on d_o d_o^T only: opposite directions share weights.
+    // tau depends on d_o d_o^T only: opposite directions share weights. Bit-equal directions only, so that
+    // the weights of a solve never depend on the directions of earlier solves (deform::Service commits and
+    // replays rely on it).
     const bool same = unit.has_value() == weight_direction.has_value() &&
-                      (!unit || std::abs(unit->dot(*weight_direction)) >= 1.0 - 1e-14);
+                      (!unit || *unit == *weight_direction || *unit == -*weight_direction);
     if (!same || !factored) {
       model.set_weights(unit ? detail::half_cotangents(detail::stretch_along(P, *unit, options.mu), faces)
                              : rest_half_cot);
@@ -258,7 +261,7 @@ Deformer::~Deformer() = default;
 Deformer::Deformer(Deformer&&) noexcept = default;
 Deformer& Deformer::operator=(Deformer&&) noexcept = default;
 
-DeformResult Deformer::solve(const Eigen::Vector3d& d) {
+ConstraintTargets Deformer::push_pull_targets(const Eigen::Vector3d& d) const {
   if (!d.allFinite()) throw std::invalid_argument("deformer: the displacement d is not finite");
   ConstraintTargets targets;
   targets.handle_positions.resize(impl_->n_handle, 3);
@@ -267,10 +270,18 @@ DeformResult Deformer::solve(const Eigen::Vector3d& d) {
         impl_->mesh->V.row(impl_->roi.handle[static_cast<std::size_t>(k)]) + d.transpose();
   }
   targets.push_direction = d;
-  return solve(targets);
+  return targets;
 }
 
-DeformResult Deformer::solve(const ConstraintTargets& targets) {
+const std::shared_ptr<const Mesh>& Deformer::rest_mesh() const {
+  return impl_->mesh;
+}
+
+DeformResult Deformer::solve(const Eigen::Vector3d& d, const ProgressCallback& progress) {
+  return solve(push_pull_targets(d), progress);
+}
+
+DeformResult Deformer::solve(const ConstraintTargets& targets, const ProgressCallback& progress) {
   Impl& s = *impl_;
   auto shape = [](const Eigen::MatrixXd& M) {
     return std::to_string(M.rows()) + " by " + std::to_string(M.cols());
@@ -305,7 +316,7 @@ DeformResult Deformer::solve(const ConstraintTargets& targets) {
   } else {
     push = (X_c.leftCols(s.n_handle) - s.P.middleCols(s.n_free, s.n_handle)).rowwise().mean();
   }
-  return s.run(X_c, push, targets.initial_guess);
+  return s.run(X_c, push, targets.initial_guess, progress ? progress : s.options.progress);
 }
 
 const RegionOfInterest& Deformer::roi() const {

@@ -67,7 +67,7 @@ struct Deformer::Impl {
                    Eigen::Matrix3Xd& G, double& quadratic, detail::HelperThread* threads = nullptr) const;
   [[nodiscard]] Eigen::MatrixXd to_full(const Eigen::Matrix3Xd& X) const;
   DeformResult run(const Eigen::Matrix3Xd& X_c, const Eigen::Vector3d& push_direction,
-                   const Eigen::MatrixXd& initial_guess);
+                   const Eigen::MatrixXd& initial_guess, const ProgressCallback& progress);
 };
 
 }  // namespace pushpull::deform

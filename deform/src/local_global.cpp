@@ -47,7 +47,7 @@ void Deformer::Impl::global_step(const Eigen::Matrix3Xd& B, const Eigen::Matrix3
 }
 
 DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vector3d& push_direction,
-                                 const Eigen::MatrixXd& initial_guess) {
+                                 const Eigen::MatrixXd& initial_guess, const ProgressCallback& progress) {
   DeformResult result;
   result.warnings = setup_warnings;
   result.timing.precompute = precompute_ms;
@@ -74,18 +74,18 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
   Eigen::Matrix3Xd B(3, n_free), G(3, n_free);  // B_f(R) for the current R; the plain global step
   // A second thread for the local step pays off once a step costs well over a thread hand-off (~10 us).
   constexpr int kThreadedTerms = 20000;
-  if (!helper && model.cluster_start.back() >= kThreadedTerms && std::thread::hardware_concurrency() > 1) {
+  if (!helper && options.threads != 1 && model.cluster_start.back() >= kThreadedTerms &&
+      std::thread::hardware_concurrency() > 1) {
     try {
       helper = std::make_unique<detail::HelperThread>();
     } catch (const std::system_error&) {  // no thread: the same two parts run one after the other
     }
   }
-  detail::HelperThread* threads = helper.get();
+  detail::HelperThread* threads = options.threads == 1 ? nullptr : helper.get();
   double energy = local_step(X, R, q, /*R_valid=*/false, 1, std::nullopt, &B, threads);
   result.initial_energy = energy;
   std::optional<detail::Anderson> anderson;
   if (options.anderson_window > 0 && n_free > 0) anderson.emplace(options.anderson_window, 3 * n_free);
-  Eigen::MatrixXd preview;
 
   Eigen::Matrix3Xd X_next =
       X;  // its constrained columns stay X's; the free ones are rewritten each iteration
@@ -124,10 +124,9 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
     const double previous_energy = energy;
     energy = next_energy;
 
-    if (options.progress) {
-      preview = to_full(X);
-      const IterationReport report{iteration, energy, move, &preview};
-      if (!options.progress(report)) {
+    if (progress) {
+      const IterationReport report{iteration, energy, move, std::make_shared<const Eigen::MatrixXd>(to_full(X))};
+      if (!progress(report)) {
         result.cancelled = true;
         result.stop_reason = StopReason::Cancelled;
         break;

@@ -44,7 +44,10 @@
 // Units: model units (metres for glTF). Frame: model space. Shapes stated at each member.
 // Ownership: the Deformer shares the rest mesh (shared_ptr<const Mesh>) and owns everything else.
 // Thread-safety: a Deformer may be moved to and used from any one thread at a time; const members are safe
-// to call concurrently. The progress callback runs on the solving thread.
+// to call concurrently. The progress callback runs on the solving thread. With DeformOptions::threads = 1 a
+// solve uses the calling thread only (deform::Service runs it so on its worker); otherwise regions with more
+// than ~20K cluster terms split the local step and the triangular solves with one helper thread, with
+// bit-identical results.
 #pragma once
 
 #include <Eigen/Core>
@@ -70,13 +73,19 @@ enum class StopReason {
 
 [[nodiscard]] std::string_view stop_reason_name(StopReason reason);
 
-// Passed to DeformOptions::progress after every iteration.
+// Passed to the progress callback after every iteration.
 struct IterationReport {
   int iteration = 0;      // 1-based
   double energy = 0.0;    // energy of the current positions (model units^2)
   double max_move = 0.0;  // largest vertex move of this iteration's plain step / reference length
-  const Eigen::MatrixXd* V = nullptr;  // #V by 3 current full-mesh positions; valid during the callback only
+  // #V by 3 full-mesh positions after this iteration: an immutable copy the receiver may keep (e.g. publish
+  // as a preview snapshot to another thread). Never null.
+  std::shared_ptr<const Eigen::MatrixXd> V;
 };
+
+// Called on the solving thread after every iteration; return false to stop the solve at this iteration
+// boundary (the result then has cancelled = true and holds this iteration's positions).
+using ProgressCallback = std::function<bool(const IterationReport&)>;
 
 struct DeformOptions {
   Method method = Method::Asan;
@@ -103,8 +112,11 @@ struct DeformOptions {
   double arap_h_lambda = 1.0;   // arap-h: lambda / mean vertex area (dimensionless), >= 0
   // Validate the mesh in the constructor (throws MeshValidationError); turning it off skips O(F log F) work.
   bool validate = true;
-  // Called after every iteration; return false to stop (the result then has cancelled = true).
-  std::function<bool(const IterationReport&)> progress;
+  // Threads a solve may use: 0 = automatic (one helper thread on large regions), 1 = the calling thread
+  // only. Results are bit-identical either way.
+  int threads = 0;
+  // Default progress callback of every solve (a per-solve one given to solve() takes precedence).
+  ProgressCallback progress;
 };
 
 struct TimingMs {
@@ -150,11 +162,16 @@ class Deformer {
   Deformer(const Deformer&) = delete;
   Deformer& operator=(const Deformer&) = delete;
 
-  // Push/pull: every handle vertex moves by d (model units), fixed vertices stay at rest.
-  [[nodiscard]] DeformResult solve(const Eigen::Vector3d& d);
-  // General targets (e.g. a rigid transform of the handle as in the cactus benchmark). Throws
-  // std::invalid_argument when shapes do not match or a value is not finite.
-  [[nodiscard]] DeformResult solve(const ConstraintTargets& targets);
+  // Push/pull: every handle vertex moves by d (model units), fixed vertices stay at rest. `progress`, when
+  // set, replaces DeformOptions::progress for this solve.
+  [[nodiscard]] DeformResult solve(const Eigen::Vector3d& d, const ProgressCallback& progress = {});
+  // General targets (e.g. a rigid transform of the handle as in the cactus benchmark, or a push/pull with a
+  // warm start). Throws std::invalid_argument when shapes do not match or a value is not finite.
+  [[nodiscard]] DeformResult solve(const ConstraintTargets& targets, const ProgressCallback& progress = {});
+  // The targets solve(d) uses: handle vertices at rest + d, push_direction = d, no initial guess.
+  [[nodiscard]] ConstraintTargets push_pull_targets(const Eigen::Vector3d& d) const;
+  // The rest mesh this Deformer was built on.
+  [[nodiscard]] const std::shared_ptr<const Mesh>& rest_mesh() const;
 
   [[nodiscard]] const RegionOfInterest& roi() const;
   [[nodiscard]] const DeformOptions& options() const;

@@ -1,0 +1,476 @@
+// deform::Service: one worker thread, a superseding request slot, a command queue, snapshots published
+// through an atomic shared_ptr (see service.hpp).
+#include "pushpull/deform/service.hpp"
+
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <cstring>
+#include <deque>
+#include <exception>
+#include <mutex>
+#include <stdexcept>
+#include <thread>
+#include <utility>
+
+#include "pushpull/deform/mesh_validation.hpp"
+#include "snapshot_handoff.hpp"
+
+namespace pushpull::deform {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double ms_between(Clock::time_point from, Clock::time_point to) {
+  return std::chrono::duration<double, std::milli>(to - from).count();
+}
+
+bool same_handle(const Request& a, const Request& b) {
+  if (a.handle.index() != b.handle.index()) return false;
+  if (const auto* sa = std::get_if<SurfaceHandle>(&a.handle)) {
+    const auto& sb = std::get<SurfaceHandle>(b.handle);
+    return sa->point.face == sb.point.face && sa->point.point == sb.point.point && sa->radius == sb.radius;
+  }
+  return std::get<VertexHandle>(a.handle).vertices == std::get<VertexHandle>(b.handle).vertices;
+}
+
+bool same_options(const DeformOptions& a, const DeformOptions& b) {
+  return a.method == b.method && a.mu == b.mu && a.stretch_direction == b.stretch_direction &&
+         a.asan_base == b.asan_base && a.max_iterations == b.max_iterations && a.tolerance == b.tolerance &&
+         a.energy_tolerance == b.energy_tolerance && a.anderson_window == b.anderson_window &&
+         a.arap_n_rings == b.arap_n_rings && a.sr_arap_alpha == b.sr_arap_alpha &&
+         a.arap_h_lambda == b.arap_h_lambda && a.validate == b.validate;
+}
+
+// Same Deformer setup: handle, region and options (d may differ).
+bool same_setup(const Request& a, const Request& b) {
+  return a.drag == b.drag && same_handle(a, b) && a.region.max_distance == b.region.max_distance &&
+         a.region.fixed == b.region.fixed && same_options(a.options, b.options);
+}
+
+double largest_displacement(const Eigen::MatrixXd& V, const Eigen::MatrixXd& rest) {
+  return V.rows() == 0 ? 0.0 : (V - rest).rowwise().norm().maxCoeff();
+}
+
+}  // namespace
+
+std::uint64_t position_hash(const Eigen::MatrixXd& V) {
+  std::uint64_t hash = 1469598103934665603ull;
+  auto mix = [&](const void* data, std::size_t size) {
+    const auto* bytes = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < size; ++i) {
+      hash ^= bytes[i];
+      hash *= 1099511628211ull;
+    }
+  };
+  for (Eigen::Index r = 0; r < V.rows(); ++r) {
+    for (Eigen::Index c = 0; c < V.cols(); ++c) {
+      double x = V(r, c);
+      if (x == 0.0) x = 0.0;  // -0 and +0 hash alike
+      mix(&x, sizeof x);
+    }
+  }
+  return hash;
+}
+
+struct Service::Impl {
+  struct Pending {
+    std::uint64_t sequence = 0;
+    Request request;
+    Clock::time_point submitted;
+  };
+  enum class CommandKind { Commit, Undo, Redo, Cancel };
+  struct Command {
+    CommandKind kind = CommandKind::Commit;
+    std::optional<Pending> request;  // Commit: what to commit
+    Clock::time_point issued;
+  };
+  // The worker's current solve setup, reused while a drag's requests keep handle, region and options.
+  struct Active {
+    Request request;  // the last request solved with this setup
+    std::uint64_t state_id = 0;
+    std::unique_ptr<Deformer> deformer;
+    std::shared_ptr<const RegionOfInterest> region;
+    std::shared_ptr<const Eigen::MatrixXd> last_iterate;  // warm start for the next request of the drag
+  };
+  struct State {  // one committed state of the history
+    std::uint64_t id = 0;
+    HistoryEntry entry;
+  };
+
+  ServiceOptions options;
+
+  // Guarded by mutex: the hand-off between callers and the worker (held for moves, never while solving).
+  mutable std::mutex mutex;
+  std::condition_variable wake;          // worker waits for work
+  mutable std::condition_variable idle;  // wait_idle() waits for the worker
+  std::optional<Pending> pending;        // newest request not yet taken by the worker
+  std::optional<Pending> last_submitted; // what commit() commits
+  std::deque<Command> commands;
+  std::uint64_t next_sequence = 1;
+  bool busy = false;
+  bool stop = false;
+
+  std::atomic<bool> interrupt{false};   // new work arrived: the running preview solve stops at its next iteration
+  std::atomic<bool> stopping{false};    // destructor: every solve stops at its next iteration
+  detail::NewestValue<const Snapshot> newest;
+  std::atomic<std::uint64_t> revision{1};
+
+  // Guarded by history_mutex (written by the worker, read by history()).
+  mutable std::mutex history_mutex;
+  std::vector<State> states;
+  std::size_t position = 0;
+  std::uint64_t next_state_id = 2;
+
+  // Worker-only.
+  std::uint64_t generation = 0;
+  std::optional<Active> active;
+
+  std::thread worker;  // last: started once everything above exists
+
+  const State& current() const { return states[position]; }  // worker, or under history_mutex
+
+  void publish(Snapshot snapshot) {
+    snapshot.generation = ++generation;
+    auto shared = std::make_shared<const Snapshot>(std::move(snapshot));
+    newest.store(shared);
+    if (options.on_publish) options.on_publish(shared);
+  }
+
+  Snapshot state_snapshot(Snapshot::Kind kind, std::uint64_t request, Clock::time_point since) const {
+    Snapshot s;
+    s.kind = kind;
+    s.request = request;
+    s.revision = current().id;
+    s.rest = current().entry.state;
+    s.positions = std::shared_ptr<const Eigen::MatrixXd>(s.rest, &s.rest->V);  // aliases the state's V
+    s.final = true;
+    s.converged = kind != Snapshot::Kind::Error;
+    s.latency_ms = ms_between(since, Clock::now());
+    return s;
+  }
+
+  void publish_error(std::uint64_t request, Clock::time_point since, std::string what) {
+    Snapshot s = state_snapshot(Snapshot::Kind::Error, request, since);
+    s.error = std::move(what);
+    publish(std::move(s));
+  }
+
+  // The Deformer for `request` on the current state: the active one when the setup is the same.
+  Active& setup_for(const Request& request, double& setup_ms) {
+    const auto start = Clock::now();
+    setup_ms = 0.0;
+    if (active && active->state_id == current().id && same_setup(active->request, request)) return *active;
+    active.reset();  // frees the old factorization before building the new one
+    const Mesh& mesh = *current().entry.state;
+    std::vector<int> handle;
+    if (const auto* surface = std::get_if<SurfaceHandle>(&request.handle)) {
+      handle = surface_handle(mesh, surface->point, surface->radius);
+    } else {
+      handle = std::get<VertexHandle>(request.handle).vertices;
+    }
+    RegionOfInterest roi = build_roi(mesh, handle, request.region.fixed, request.region.max_distance);
+    DeformOptions options = request.options;
+    options.progress = nullptr;
+    options.threads = 1;  // the worker alone: the frame loop keeps the other core
+    Active a;
+    a.request = request;
+    a.state_id = current().id;
+    a.region = std::make_shared<const RegionOfInterest>(roi);
+    a.deformer = std::make_unique<Deformer>(current().entry.state, std::move(roi), options);
+    active = std::move(a);
+    setup_ms = ms_between(start, Clock::now());
+    return *active;
+  }
+
+  Snapshot result_snapshot(const Pending& p, const Active& a, const DeformResult& r, Snapshot::Kind kind) const {
+    Snapshot s;
+    s.kind = kind;
+    s.request = p.sequence;
+    s.revision = current().id;
+    s.rest = current().entry.state;
+    s.positions = std::make_shared<const Eigen::MatrixXd>(r.V);
+    s.region = a.region;
+    s.method = p.request.options.method;
+    s.d = p.request.d;
+    s.iteration = r.iterations;
+    s.converged = r.converged;
+    s.final = true;
+    s.energy = r.energy_trace.empty() ? r.initial_energy : r.energy_trace.back();
+    s.max_displacement = largest_displacement(r.V, s.rest->V);
+    s.factorize_ms = r.timing.factorize;
+    s.solve_ms = r.timing.solve;
+    s.latency_ms = ms_between(p.submitted, Clock::now());
+    s.warnings = r.warnings;
+    return s;
+  }
+
+  bool stale(const Request& request) const { return request.revision != 0 && request.revision != current().id; }
+
+  void solve_preview(const Pending& p) {
+    if (stale(p.request)) {
+      publish_error(p.sequence, p.submitted,
+                    "request " + std::to_string(p.sequence) + " was made for state " +
+                        std::to_string(p.request.revision) + " but state " + std::to_string(current().id) +
+                        " is committed now");
+      return;
+    }
+    double setup_ms = 0.0;
+    Active& a = setup_for(p.request, setup_ms);
+    ConstraintTargets targets = a.deformer->push_pull_targets(p.request.d);
+    // Warm start from the drag's previous iterate (previews only; commits start cold).
+    if (a.last_iterate) targets.initial_guess = *a.last_iterate;
+    const Eigen::MatrixXd& rest = current().entry.state->V;
+    const auto solve_start = Clock::now();
+    auto progress = [&](const IterationReport& report) {
+      Snapshot s;
+      s.kind = Snapshot::Kind::Preview;
+      s.request = p.sequence;
+      s.revision = current().id;
+      s.rest = current().entry.state;
+      s.positions = report.V;
+      s.region = a.region;
+      s.method = p.request.options.method;
+      s.d = p.request.d;
+      s.iteration = report.iteration;
+      s.energy = report.energy;
+      s.max_displacement = largest_displacement(*report.V, rest);
+      s.setup_ms = setup_ms;
+      s.solve_ms = ms_between(solve_start, Clock::now());
+      s.latency_ms = ms_between(p.submitted, Clock::now());
+      a.last_iterate = report.V;
+      publish(std::move(s));
+      return !interrupt.load(std::memory_order_acquire) && !stopping.load(std::memory_order_acquire);
+    };
+    const DeformResult r = a.deformer->solve(targets, progress);
+    a.request = p.request;
+    a.last_iterate = std::make_shared<const Eigen::MatrixXd>(r.V);
+    Snapshot s = result_snapshot(p, a, r, Snapshot::Kind::Preview);
+    s.setup_ms = setup_ms;
+    s.positions = a.last_iterate;
+    publish(std::move(s));
+  }
+
+  void run_commit(const Pending& p, Clock::time_point issued) {
+    if (stale(p.request)) {
+      publish_error(p.sequence, issued, "commit of request " + std::to_string(p.sequence) +
+                                            ": it was made for state " + std::to_string(p.request.revision) +
+                                            " but state " + std::to_string(current().id) + " is committed now");
+      return;
+    }
+    double setup_ms = 0.0;
+    Active& a = setup_for(p.request, setup_ms);
+    // Cold: rest positions, identity rotations; a pure function of the request and the committed state.
+    auto progress = [&](const IterationReport&) { return !stopping.load(std::memory_order_acquire); };
+    const DeformResult r = a.deformer->solve(p.request.d, progress);
+    if (r.cancelled) return;  // only when the service is being destroyed
+    Snapshot s = result_snapshot(p, a, r, Snapshot::Kind::Committed);
+    s.setup_ms = setup_ms;
+    s.latency_ms = ms_between(issued, Clock::now());
+    auto next = std::make_shared<Mesh>();
+    next->V = r.V;
+    next->F = current().entry.state->F;
+    State state;
+    state.entry.state = std::move(next);
+    state.entry.request = p.request;
+    state.entry.request->options.progress = nullptr;
+    state.entry.hash = position_hash(r.V);
+    {
+      std::lock_guard lock(history_mutex);
+      state.id = next_state_id++;
+      states.resize(position + 1);  // a commit after undo drops the undone states
+      states.push_back(std::move(state));
+      position = states.size() - 1;
+    }
+    revision.store(current().id);
+    active.reset();  // the setup belonged to the old state
+    s.revision = current().id;
+    s.rest = current().entry.state;
+    s.positions = std::shared_ptr<const Eigen::MatrixXd>(s.rest, &s.rest->V);  // the new state itself
+    publish(std::move(s));
+  }
+
+  void move_to(std::size_t index, Clock::time_point issued) {
+    if (index != position) {
+      {
+        std::lock_guard lock(history_mutex);
+        position = index;
+      }
+      revision.store(current().id);
+      active.reset();
+    }
+    publish(state_snapshot(Snapshot::Kind::Rest, 0, issued));
+  }
+
+  void run_command(const Command& command) {
+    switch (command.kind) {
+      case CommandKind::Commit:
+        run_commit(*command.request, command.issued);
+        break;
+      case CommandKind::Undo:
+        move_to(position > 0 ? position - 1 : 0, command.issued);
+        break;
+      case CommandKind::Redo:
+        move_to(position + 1 < states.size() ? position + 1 : position, command.issued);
+        break;
+      case CommandKind::Cancel:
+        active.reset();
+        publish(state_snapshot(Snapshot::Kind::Rest, 0, command.issued));
+        break;
+    }
+  }
+
+  void loop() {
+    for (;;) {
+      std::optional<Command> command;
+      std::optional<Pending> request;
+      {
+        std::unique_lock lock(mutex);
+        busy = false;
+        idle.notify_all();
+        wake.wait(lock, [&] { return stop || !commands.empty() || pending.has_value(); });
+        if (stop) return;
+        busy = true;
+        // Cleared while holding the lock: any work queued after this point sets it again.
+        interrupt.store(false, std::memory_order_release);
+        if (!commands.empty()) {
+          command = std::move(commands.front());
+          commands.pop_front();
+        } else {
+          request = std::move(pending);
+          pending.reset();
+        }
+      }
+      const std::uint64_t sequence = command ? (command->request ? command->request->sequence : 0)
+                                             : request->sequence;
+      const Clock::time_point since = command ? command->issued : request->submitted;
+      try {
+        if (command)
+          run_command(*command);
+        else
+          solve_preview(*request);
+      } catch (const std::exception& error) {
+        active.reset();
+        publish_error(sequence, since, error.what());
+      } catch (...) {
+        active.reset();
+        publish_error(sequence, since, "unknown error in the deformation worker");
+      }
+    }
+  }
+
+  void post(Command command) {
+    {
+      std::lock_guard lock(mutex);
+      pending.reset();
+      commands.push_back(std::move(command));
+      interrupt.store(true, std::memory_order_release);
+    }
+    wake.notify_one();
+  }
+};
+
+Service::Service(std::shared_ptr<const Mesh> initial, ServiceOptions options) : impl_(std::make_unique<Impl>()) {
+  if (!initial) throw std::invalid_argument("deformation service: the initial mesh is null");
+  (void)validate_mesh(*initial);  // throws MeshValidationError naming the problem
+  impl_->options = std::move(options);
+  Impl::State state;
+  state.id = 1;
+  state.entry.state = std::move(initial);
+  state.entry.hash = position_hash(state.entry.state->V);
+  impl_->states.push_back(std::move(state));
+  impl_->publish(impl_->state_snapshot(Snapshot::Kind::Rest, 0, Clock::now()));
+  impl_->worker = std::thread([impl = impl_.get()] { impl->loop(); });
+}
+
+Service::~Service() {
+  {
+    std::lock_guard lock(impl_->mutex);
+    impl_->stop = true;
+    impl_->interrupt.store(true);
+    impl_->stopping.store(true);
+  }
+  impl_->wake.notify_one();
+  impl_->worker.join();
+}
+
+std::uint64_t Service::submit(Request request) {
+  std::uint64_t sequence = 0;
+  {
+    std::lock_guard lock(impl_->mutex);
+    sequence = impl_->next_sequence++;
+    request.options.progress = nullptr;
+    Impl::Pending p{sequence, std::move(request), Clock::now()};
+    impl_->last_submitted = p;
+    impl_->pending = std::move(p);
+    impl_->interrupt.store(true, std::memory_order_release);
+  }
+  impl_->wake.notify_one();
+  return sequence;
+}
+
+std::uint64_t Service::commit() {
+  std::optional<Impl::Pending> what;
+  {
+    std::lock_guard lock(impl_->mutex);
+    what = std::move(impl_->last_submitted);
+    impl_->last_submitted.reset();
+  }
+  if (!what) return 0;
+  const std::uint64_t sequence = what->sequence;
+  impl_->post({Impl::CommandKind::Commit, std::move(what), Clock::now()});
+  return sequence;
+}
+
+void Service::undo() {
+  {
+    std::lock_guard lock(impl_->mutex);
+    impl_->last_submitted.reset();
+  }
+  impl_->post({Impl::CommandKind::Undo, std::nullopt, Clock::now()});
+}
+
+void Service::redo() {
+  {
+    std::lock_guard lock(impl_->mutex);
+    impl_->last_submitted.reset();
+  }
+  impl_->post({Impl::CommandKind::Redo, std::nullopt, Clock::now()});
+}
+
+void Service::cancel() {
+  {
+    std::lock_guard lock(impl_->mutex);
+    impl_->last_submitted.reset();
+  }
+  impl_->post({Impl::CommandKind::Cancel, std::nullopt, Clock::now()});
+}
+
+std::shared_ptr<const Snapshot> Service::latest() const {
+  return impl_->newest.load();
+}
+
+std::shared_ptr<const Snapshot> Service::wait_idle() const {
+  std::unique_lock lock(impl_->mutex);
+  impl_->idle.wait(lock, [&] { return !impl_->busy && impl_->commands.empty() && !impl_->pending; });
+  return latest();
+}
+
+std::uint64_t Service::revision() const {
+  return impl_->revision.load();
+}
+
+std::vector<HistoryEntry> Service::history() const {
+  std::lock_guard lock(impl_->history_mutex);
+  std::vector<HistoryEntry> out;
+  out.reserve(impl_->states.size());
+  for (const auto& s : impl_->states) out.push_back(s.entry);
+  return out;
+}
+
+std::size_t Service::history_position() const {
+  std::lock_guard lock(impl_->history_mutex);
+  return impl_->position;
+}
+
+}  // namespace pushpull::deform

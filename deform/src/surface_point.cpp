@@ -1,0 +1,132 @@
+// Surface points, distances along the surface and the handle grown from a point (see surface_point.hpp).
+#include "pushpull/deform/surface_point.hpp"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <queue>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include "mesh_graph.hpp"
+
+namespace pushpull::deform {
+namespace {
+
+// Closest point to p on triangle (a, b, c) (Ericson, Real-Time Collision Detection, 5.1.5).
+Eigen::Vector3d closest_on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                    const Eigen::Vector3d& c) {
+  const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0.0 && d2 <= 0.0) return a;
+  const Eigen::Vector3d bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0.0 && d4 <= d3) return b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return a + (d1 / (d1 - d3)) * ab;
+  const Eigen::Vector3d cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0.0 && d5 <= d6) return c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return a + (d2 / (d2 - d6)) * ac;
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0) return b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b);
+  const double denom = 1.0 / (va + vb + vc);
+  return a + ab * (vb * denom) + ac * (vc * denom);
+}
+
+bool degenerate(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+  const double longest2 = std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
+  return !((b - a).cross(c - a).norm() > 1e-14 * longest2);
+}
+
+void check_face(const Mesh& mesh, const SurfacePoint& from) {
+  if (from.face < 0 || from.face >= mesh.F.rows()) {
+    throw std::invalid_argument("surface point: face " + std::to_string(from.face) + " is out of range [0, " +
+                                std::to_string(mesh.F.rows()) + ")");
+  }
+  if (!from.point.allFinite()) throw std::invalid_argument("surface point: the point is not finite");
+}
+
+}  // namespace
+
+SurfacePoint closest_surface_point(const Mesh& mesh, const Eigen::Vector3d& p) {
+  if (!p.allFinite()) throw std::invalid_argument("closest surface point: the query point is not finite");
+  SurfacePoint best;
+  double best_distance2 = std::numeric_limits<double>::infinity();
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
+    const Eigen::Vector3d a = mesh.V.row(mesh.F(f, 0)), b = mesh.V.row(mesh.F(f, 1)), c = mesh.V.row(mesh.F(f, 2));
+    if (degenerate(a, b, c)) continue;
+    const Eigen::Vector3d q = closest_on_triangle(p, a, b, c);
+    const double distance2 = (q - p).squaredNorm();
+    if (distance2 < best_distance2) {
+      best_distance2 = distance2;
+      best.face = static_cast<int>(f);
+      best.point = q;
+    }
+  }
+  if (best.face < 0) {
+    throw std::invalid_argument("closest surface point: the mesh has no non-degenerate triangle");
+  }
+  return best;
+}
+
+std::vector<double> surface_distances(const Mesh& mesh, const SurfacePoint& from, double max_distance) {
+  check_face(mesh, from);
+  if (std::isnan(max_distance) || max_distance < 0.0) {
+    throw std::invalid_argument("surface distances: the maximum distance must be >= 0, got " +
+                                std::to_string(max_distance));
+  }
+  const int nv = static_cast<int>(mesh.V.rows());
+  const detail::VertexGraph graph = detail::build_vertex_graph(nv, mesh.F);
+  std::vector<double> distance(static_cast<std::size_t>(nv), std::numeric_limits<double>::infinity());
+  using Entry = std::pair<double, int>;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue;
+  for (int c = 0; c < 3; ++c) {
+    const int v = mesh.F(from.face, c);
+    const double dv = (mesh.V.row(v).transpose() - from.point).norm();
+    if (dv <= max_distance && dv < distance[static_cast<std::size_t>(v)]) {
+      distance[static_cast<std::size_t>(v)] = dv;
+      queue.emplace(dv, v);
+    }
+  }
+  while (!queue.empty()) {
+    const auto [dv, v] = queue.top();
+    queue.pop();
+    if (dv > distance[static_cast<std::size_t>(v)]) continue;
+    for (const int* n = graph.begin(v); n != graph.end(v); ++n) {
+      const double dn = dv + (mesh.V.row(*n) - mesh.V.row(v)).norm();
+      if (dn <= max_distance && dn < distance[static_cast<std::size_t>(*n)]) {
+        distance[static_cast<std::size_t>(*n)] = dn;
+        queue.emplace(dn, *n);
+      }
+    }
+  }
+  return distance;
+}
+
+std::vector<int> surface_handle(const Mesh& mesh, const SurfacePoint& from, double radius) {
+  if (std::isnan(radius) || radius < 0.0) {
+    throw std::invalid_argument("surface handle: the radius must be >= 0, got " + std::to_string(radius));
+  }
+  const std::vector<double> distance = surface_distances(mesh, from, radius);
+  std::vector<int> handle;
+  for (std::size_t v = 0; v < distance.size(); ++v) {
+    if (distance[v] <= radius) handle.push_back(static_cast<int>(v));
+  }
+  if (handle.empty()) {  // radius smaller than the distance to every corner: the nearest corner
+    int nearest = mesh.F(from.face, 0);
+    for (int c = 1; c < 3; ++c) {
+      const int v = mesh.F(from.face, c);
+      if ((mesh.V.row(v).transpose() - from.point).squaredNorm() <
+          (mesh.V.row(nearest).transpose() - from.point).squaredNorm())
+        nearest = v;
+    }
+    handle.push_back(nearest);
+  }
+  return handle;
+}
+
+}  // namespace pushpull::deform

@@ -1,0 +1,398 @@
+// deform::Service: snapshots, supersession, commit/undo/redo, errors, cancellation, shutdown. Also built
+// and run under ThreadSanitizer (scripts/build tsan).
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cstdio>
+#include <chrono>
+#include <memory>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+#include "../test_shapes.hpp"
+#include "pushpull/deform/deformer.hpp"
+#include "pushpull/deform/roi.hpp"
+#include "pushpull/deform/service.hpp"
+
+namespace pushpull::deform {
+namespace {
+
+using Kind = Snapshot::Kind;
+
+// A gently curved n x n sheet on [0,1]^2; the handle is the disk of radius 0.1 at the centre, the border
+// is held by the region's growth limit.
+struct Problem {
+  std::shared_ptr<const Mesh> mesh;
+  std::vector<int> handle;
+};
+
+Problem make_problem(int n) {
+  Problem p;
+  p.mesh = std::make_shared<const Mesh>(
+      testing::grid(n, n, 0.0, 1.0, 0.0, 1.0, [](double x, double y) { return 0.1 * x * (1 - x) + 0.05 * y; }));
+  for (Eigen::Index v = 0; v < p.mesh->V.rows(); ++v) {
+    if (std::hypot(p.mesh->V(v, 0) - 0.5, p.mesh->V(v, 1) - 0.5) < 0.1) p.handle.push_back(static_cast<int>(v));
+  }
+  return p;
+}
+
+Request make_request(const Problem& p, const Eigen::Vector3d& d, std::uint64_t drag = 1,
+                     Method method = Method::Asan) {
+  Request r;
+  r.drag = drag;
+  r.handle = VertexHandle{p.handle};
+  r.region.max_distance = 0.35;
+  r.d = d;
+  r.options.method = method;
+  return r;
+}
+
+// The same request solved by a Deformer of its own, from rest (what a commit must equal).
+Eigen::MatrixXd cold_solve(const Problem& p, const Request& r) {
+  DeformOptions options = r.options;
+  Deformer deformer(p.mesh, build_roi(*p.mesh, p.handle, r.region.fixed, r.region.max_distance), options);
+  return deformer.solve(r.d).V;
+}
+
+TEST(Service, StartsWithTheRestState) {
+  const Problem p = make_problem(10);
+  Service service(p.mesh);
+  const auto s = service.latest();
+  ASSERT_TRUE(s);
+  EXPECT_EQ(s->kind, Kind::Rest);
+  EXPECT_EQ(s->revision, 1u);
+  EXPECT_EQ(service.revision(), 1u);
+  EXPECT_EQ(*s->positions, p.mesh->V);
+  EXPECT_EQ(service.history().size(), 1u);
+}
+
+TEST(Service, NullOrInvalidMeshIsRefused) {
+  EXPECT_THROW(Service(nullptr), std::invalid_argument);
+  Mesh bad = testing::grid(2, 2, 0, 1, 0, 1);
+  bad.V(0, 0) = std::nan("");
+  EXPECT_THROW(Service(std::make_shared<const Mesh>(bad)), MeshValidationError);
+}
+
+TEST(Service, FirstRequestEqualsTheDeformer) {
+  const Problem p = make_problem(20);
+  Service service(p.mesh);
+  const Request r = make_request(p, {0.0, 0.0, 0.05});
+  const std::uint64_t id = service.submit(r);
+  const auto s = service.wait_idle();
+  EXPECT_EQ(s->kind, Kind::Preview);
+  EXPECT_EQ(s->request, id);
+  EXPECT_TRUE(s->final);
+  EXPECT_TRUE(s->converged);
+  ASSERT_TRUE(s->region);
+  EXPECT_EQ(s->region->handle, p.handle);
+  EXPECT_NEAR(s->max_displacement, 0.05, 1e-12);
+  // No warm start for the first request of a drag: the very same computation as a Deformer of its own.
+  EXPECT_EQ(*s->positions, cold_solve(p, r));
+}
+
+TEST(Service, SurfaceHandleGrowsFromTheHitPoint) {
+  const Problem p = make_problem(20);
+  Service service(p.mesh);
+  Request r = make_request(p, {0.0, 0.0, 0.05});
+  const SurfacePoint hit = closest_surface_point(*p.mesh, Eigen::Vector3d(0.5, 0.5, 0.2));
+  r.handle = SurfaceHandle{hit, 0.1};
+  service.submit(r);
+  const auto s = service.wait_idle();
+  ASSERT_EQ(s->kind, Kind::Preview) << s->error;
+  ASSERT_TRUE(s->region);
+  EXPECT_EQ(s->region->handle, surface_handle(*p.mesh, hit, 0.1));
+  EXPECT_TRUE(s->converged);
+}
+
+TEST(Service, CommitIsTheColdSolveWhateverThePreviews) {
+  const Problem p = make_problem(20);
+  const Request last = make_request(p, {0.02, 0.0, 0.06});
+  std::uint64_t hash_with_drag = 0, hash_direct = 0;
+  {
+    Service service(p.mesh);
+    for (int k = 1; k <= 5; ++k) {  // a drag: previews warm-started from each other
+      service.submit(make_request(p, {0.004 * k, 0.0, 0.012 * k}));
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+    service.submit(last);
+    service.wait_idle();
+    EXPECT_NE(service.commit(), 0u);
+    const auto s = service.wait_idle();
+    ASSERT_EQ(s->kind, Kind::Committed) << s->error;
+    EXPECT_EQ(s->revision, service.revision());
+    EXPECT_EQ(*s->positions, s->rest->V);
+    EXPECT_EQ(s->rest->V, cold_solve(p, last));
+    hash_with_drag = service.history().back().hash;
+    EXPECT_EQ(service.commit(), 0u);  // nothing submitted since
+  }
+  {
+    Service service(p.mesh);
+    service.submit(last);
+    service.commit();  // before any preview ran
+    const auto s = service.wait_idle();
+    ASSERT_EQ(s->kind, Kind::Committed);
+    hash_direct = service.history().back().hash;
+  }
+  EXPECT_EQ(hash_with_drag, hash_direct);
+}
+
+TEST(Service, UndoRedoRoundTripsAreBitIdentical) {
+  const Problem p = make_problem(16);
+  Service service(p.mesh);
+  service.submit(make_request(p, {0.0, 0.0, 0.04}, 1));
+  service.commit();
+  service.wait_idle();
+  const auto first = service.history().back();
+  service.submit(make_request(p, {0.03, 0.0, 0.0}, 2, Method::ArapSR));
+  service.commit();
+  service.wait_idle();
+  const auto second = service.history().back();
+  ASSERT_EQ(service.history().size(), 3u);
+  EXPECT_NE(first.hash, second.hash);
+  EXPECT_EQ(first.hash, position_hash(first.state->V));
+
+  service.undo();
+  auto s = service.wait_idle();
+  EXPECT_EQ(s->kind, Kind::Rest);
+  EXPECT_EQ(*s->positions, first.state->V);
+  service.undo();
+  s = service.wait_idle();
+  EXPECT_EQ(*s->positions, p.mesh->V);
+  service.undo();  // at the start: stays
+  s = service.wait_idle();
+  EXPECT_EQ(service.history_position(), 0u);
+  EXPECT_EQ(*s->positions, p.mesh->V);
+  service.redo();
+  service.redo();
+  service.redo();  // at the end: stays
+  s = service.wait_idle();
+  EXPECT_EQ(position_hash(*s->positions), second.hash);
+  EXPECT_EQ(service.history_position(), 2u);
+
+  // A commit after an undo drops the undone state.
+  service.undo();
+  service.submit(make_request(p, {0.0, 0.02, 0.0}, 3));
+  service.commit();
+  s = service.wait_idle();
+  ASSERT_EQ(s->kind, Kind::Committed);
+  const auto history = service.history();
+  ASSERT_EQ(history.size(), 3u);
+  EXPECT_EQ(history[1].hash, first.hash);
+  EXPECT_NE(history[2].hash, second.hash);
+  ASSERT_TRUE(history[2].request.has_value());
+  EXPECT_EQ(history[2].request->d, Eigen::Vector3d(0.0, 0.02, 0.0));
+}
+
+TEST(Service, SameRequestSequenceGivesTheSameCommits) {
+  const Problem p = make_problem(16);
+  auto run = [&] {
+    Service service(p.mesh);
+    for (int pull = 0; pull < 3; ++pull) {
+      for (int k = 1; k <= 4; ++k) service.submit(make_request(p, {0.0, 0.01 * k, 0.01 * pull + 0.005 * k}, pull));
+      service.commit();
+    }
+    service.wait_idle();
+    std::vector<std::uint64_t> hashes;
+    for (const auto& e : service.history()) hashes.push_back(e.hash);
+    return hashes;
+  };
+  const auto a = run(), b = run();
+  ASSERT_EQ(a.size(), 4u);
+  EXPECT_EQ(a, b);
+}
+
+TEST(Service, FloodOfSubmitsWhileAnotherThreadReads) {
+  const Problem p = make_problem(12);
+  std::mutex published_mutex;
+  std::vector<std::weak_ptr<const Snapshot>> published;
+  ServiceOptions options;
+  options.on_publish = [&](const std::shared_ptr<const Snapshot>& s) {
+    std::lock_guard lock(published_mutex);
+    published.push_back(s);
+  };
+  auto service = std::make_unique<Service>(p.mesh, options);
+  std::atomic<bool> done{false};
+  std::atomic<long> reads{0};
+  std::thread reader([&] {
+    std::uint64_t last_generation = 0;
+    do {
+      const auto s = service->latest();
+      ASSERT_TRUE(s && s->positions);
+      ASSERT_EQ(s->positions->rows(), p.mesh->V.rows());
+      ASSERT_GE(s->generation, last_generation);
+      last_generation = s->generation;
+      ++reads;
+    } while (!done.load());
+  });
+  constexpr int kSubmits = 10000;
+  std::uint64_t last = 0;
+  Request final_request;
+  for (int k = 1; k <= kSubmits; ++k) {
+    final_request = make_request(p, {0.0, 0.0, 0.05 * std::sin(0.001 * k)});
+    last = service->submit(final_request);
+    if (k % 64 == 0) std::this_thread::yield();  // let the worker interleave now and then
+  }
+  auto s = service->wait_idle();
+  done = true;
+  reader.join();
+  EXPECT_EQ(last, static_cast<std::uint64_t>(kSubmits));
+  EXPECT_EQ(s->request, last);
+  EXPECT_EQ(s->kind, Kind::Preview);
+  EXPECT_TRUE(s->final);
+  EXPECT_TRUE(s->converged);
+  EXPECT_EQ(s->d, final_request.d);
+  // Warm-started from the drag's previous iterates: within the stopping rule of the cold solve.
+  EXPECT_LT((*s->positions - cold_solve(p, final_request)).rowwise().norm().maxCoeff(), 0.02 * 0.05);
+  EXPECT_GT(reads.load(), 0);
+  // Memory returns: once idle, only the newest snapshot and the drag's warm start are alive.
+  std::size_t alive = 0;
+  {
+    std::lock_guard lock(published_mutex);
+    for (const auto& w : published) alive += w.expired() ? 0 : 1;
+    EXPECT_GT(published.size(), 1u);
+  }
+  EXPECT_LE(alive, 2u);
+  std::size_t published_count = 0;
+  {
+    std::lock_guard lock(published_mutex);
+    published_count = published.size();
+  }
+  std::printf("flood: %d submits, %llu snapshots published, %ld reads\n", kSubmits,
+              static_cast<unsigned long long>(published_count), reads.load());
+  service.reset();
+  s.reset();
+  std::lock_guard lock(published_mutex);
+  for (const auto& w : published) EXPECT_TRUE(w.expired());
+}
+
+// Deterministic supersession: a request submitted from inside iteration 5's publication stops the old
+// solve at that iteration boundary.
+TEST(Service, NewRequestStopsTheRunningSolveAtTheNextIteration) {
+  const Problem p = make_problem(20);
+  Request slow = make_request(p, {0.0, 0.0, 0.08}, 1);
+  slow.options.tolerance = 0.0;
+  slow.options.energy_tolerance = 0.0;
+  slow.options.max_iterations = 100000;
+  const Request next = make_request(p, {0.0, 0.0, 0.04}, 1);
+  Service* self = nullptr;
+  std::atomic<bool> submitted{false};
+  std::mutex seen_mutex;
+  std::vector<std::shared_ptr<const Snapshot>> seen;
+  ServiceOptions options;
+  options.on_publish = [&](const std::shared_ptr<const Snapshot>& s) {
+    {
+      std::lock_guard lock(seen_mutex);
+      seen.push_back(s);
+    }
+    if (s->request == 1 && s->iteration == 5 && !submitted.exchange(true)) self->submit(next);
+  };
+  Service service(p.mesh, options);
+  self = &service;
+  service.submit(slow);
+  service.wait_idle();
+  std::lock_guard lock(seen_mutex);
+  int last_iteration_of_first = 0;
+  bool first_final = false;
+  for (const auto& s : seen) {
+    if (s->request != 1) continue;
+    last_iteration_of_first = std::max(last_iteration_of_first, s->iteration);
+    first_final |= s->final;
+  }
+  EXPECT_EQ(last_iteration_of_first, 5);
+  EXPECT_TRUE(first_final);
+  ASSERT_FALSE(seen.empty());
+  EXPECT_EQ(seen.back()->request, 2u);
+  EXPECT_TRUE(seen.back()->converged);
+}
+
+TEST(Service, RequestFromAnotherThreadSupersedesMidSolve) {
+  const Problem p = make_problem(30);
+  Request slow = make_request(p, {0.0, 0.0, 0.08}, 1);
+  slow.options.tolerance = 0.0;
+  slow.options.energy_tolerance = 0.0;
+  slow.options.max_iterations = 100000;
+  Service service(p.mesh);
+  service.submit(slow);
+  while (service.latest()->iteration < 3) std::this_thread::yield();
+  const std::uint64_t id = service.submit(make_request(p, {0.0, 0.0, 0.04}, 1));
+  const auto s = service.wait_idle();  // would take minutes if the first solve ran to its end
+  EXPECT_EQ(s->request, id);
+  EXPECT_TRUE(s->converged);
+}
+
+TEST(Service, ErrorsComeBackAsSnapshotsAndTheWorkerLives) {
+  const Problem p = make_problem(10);
+  Service service(p.mesh);
+  Request bad = make_request(p, {0.0, 0.0, 0.01});
+  bad.handle = VertexHandle{{static_cast<int>(p.mesh->V.rows()) + 5}};
+  service.submit(bad);
+  auto s = service.wait_idle();
+  EXPECT_EQ(s->kind, Kind::Error);
+  EXPECT_NE(s->error.find("out of range"), std::string::npos) << s->error;
+  EXPECT_EQ(*s->positions, p.mesh->V);
+
+  Request stale = make_request(p, {0.0, 0.0, 0.01});
+  stale.revision = 7;
+  service.submit(stale);
+  s = service.wait_idle();
+  EXPECT_EQ(s->kind, Kind::Error);
+  EXPECT_NE(s->error.find("state 7"), std::string::npos) << s->error;
+
+  Request bad_options = make_request(p, {0.0, 0.0, 0.01});
+  bad_options.options.mu = 0.5;
+  service.submit(bad_options);
+  s = service.wait_idle();
+  EXPECT_EQ(s->kind, Kind::Error);
+  EXPECT_NE(s->error.find("mu"), std::string::npos) << s->error;
+
+  service.submit(make_request(p, {0.0, 0.0, 0.01}));
+  s = service.wait_idle();
+  EXPECT_EQ(s->kind, Kind::Preview);
+  EXPECT_TRUE(s->converged);
+}
+
+TEST(Service, CancelMidDragShowsTheCommittedStateAgain) {
+  const Problem p = make_problem(20);
+  Service service(p.mesh);
+  service.submit(make_request(p, {0.0, 0.0, 0.03}));
+  service.commit();
+  service.wait_idle();
+  const auto committed = service.history().back();
+  Request slow = make_request(p, {0.0, 0.05, 0.0}, 2);
+  slow.options.tolerance = 0.0;
+  slow.options.energy_tolerance = 0.0;
+  slow.options.max_iterations = 100000;
+  service.submit(slow);
+  while (service.latest()->request != 2) std::this_thread::yield();
+  service.cancel();
+  const auto s = service.wait_idle();
+  EXPECT_EQ(s->kind, Kind::Rest);
+  EXPECT_EQ(*s->positions, committed.state->V);
+  EXPECT_EQ(service.commit(), 0u);  // the cancelled drag cannot be committed
+  EXPECT_EQ(service.history().size(), 2u);
+}
+
+TEST(Service, DestructorStopsTheSolveWithinOneIteration) {
+  const Problem p = make_problem(30);
+  std::atomic<int> published_after_destruction{0};
+  std::atomic<bool> destroying{false};
+  ServiceOptions options;
+  options.on_publish = [&](const std::shared_ptr<const Snapshot>&) {
+    if (destroying.load()) ++published_after_destruction;
+  };
+  auto service = std::make_unique<Service>(p.mesh, options);
+  Request slow = make_request(p, {0.0, 0.0, 0.08});
+  slow.options.tolerance = 0.0;
+  slow.options.energy_tolerance = 0.0;
+  slow.options.max_iterations = 100000;
+  service->submit(slow);
+  while (service->latest()->iteration < 2) std::this_thread::yield();
+  destroying = true;
+  service.reset();
+  // The iteration in flight publishes its preview and the stopped solve its final snapshot: at most 2.
+  EXPECT_LE(published_after_destruction.load(), 2);
+}
+
+}  // namespace
+}  // namespace pushpull::deform
