@@ -155,7 +155,7 @@ TEST_F(DeformCli, BadInputsExitNonZeroNamingTheFileAndProblem) {
        "--roi-radius"},
       {"deform " + kHemisphere.string() +
            " --handle-at 5 5 5 --handle-radius 0.1 --roi-radius 1 --displacement 0 0 1" + tail,
-       "no vertex within --handle-radius"},
+       "farther than --handle-radius"},
   };
   for (const Case& c : cases) {
     const RunResult run = run_pushpull(c.arguments);

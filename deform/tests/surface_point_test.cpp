@@ -1,0 +1,108 @@
+// Handles grown along the surface from a surface point (issue: a Euclidean ball grabbed parts of other
+// components lying close to the hit point).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "pushpull/deform/surface_point.hpp"
+#include "test_shapes.hpp"
+
+namespace pushpull::deform {
+namespace {
+
+// Two parallel unit sheets 1 cm apart (z = 0 and z = 0.01): separate components, like a lamp lens on a
+// body panel or a dashboard behind a cab wall.
+Mesh two_sheets() {
+  const Mesh a = testing::grid(20, 20, 0.0, 1.0, 0.0, 1.0);
+  const Mesh b = testing::grid(20, 20, 0.0, 1.0, 0.0, 1.0, [](double, double) { return 0.01; });
+  Mesh m;
+  m.V.resize(a.V.rows() + b.V.rows(), 3);
+  m.V << a.V, b.V;
+  m.F.resize(a.F.rows() + b.F.rows(), 3);
+  m.F << a.F, (b.F.array() + static_cast<int>(a.V.rows())).matrix();
+  return m;
+}
+
+TEST(SurfacePoint, ClosestPointLiesInsideTheTriangleNotAtAVertex) {
+  const Mesh m = testing::grid(4, 4, 0.0, 1.0, 0.0, 1.0);
+  const SurfacePoint hit = closest_surface_point(m, Eigen::Vector3d(0.33, 0.41, 0.2));
+  ASSERT_GE(hit.face, 0);
+  EXPECT_NEAR(hit.point.x(), 0.33, 1e-12);
+  EXPECT_NEAR(hit.point.y(), 0.41, 1e-12);
+  EXPECT_NEAR(hit.point.z(), 0.0, 1e-12);
+  // Outside the sheet: the closest point is on its border.
+  const SurfacePoint edge = closest_surface_point(m, Eigen::Vector3d(1.5, 0.5, 0.0));
+  EXPECT_NEAR(edge.point.x(), 1.0, 1e-12);
+  EXPECT_NEAR(edge.point.y(), 0.5, 1e-12);
+}
+
+TEST(SurfacePoint, HandleStaysOnTheHitComponent) {
+  const Mesh m = two_sheets();
+  const SurfacePoint hit = closest_surface_point(m, Eigen::Vector3d(0.5, 0.5, -0.001));  // below sheet 1
+  const std::vector<int> handle = surface_handle(m, hit, 0.1);
+  ASSERT_FALSE(handle.empty());
+  const int first_sheet = 21 * 21;
+  EXPECT_TRUE(std::all_of(handle.begin(), handle.end(), [&](int v) { return v < first_sheet; }));
+  // A Euclidean ball of the same radius would have taken vertices of both sheets.
+  int ball_other = 0;
+  for (Eigen::Index v = first_sheet; v < m.V.rows(); ++v)
+    ball_other += (m.V.row(v).transpose() - hit.point).norm() <= 0.1;
+  EXPECT_GT(ball_other, 0);
+  // From above, the other sheet.
+  const SurfacePoint top = closest_surface_point(m, Eigen::Vector3d(0.5, 0.5, 0.02));
+  const std::vector<int> top_handle = surface_handle(m, top, 0.1);
+  EXPECT_TRUE(std::all_of(top_handle.begin(), top_handle.end(), [&](int v) { return v >= first_sheet; }));
+}
+
+TEST(SurfacePoint, DistancesFollowTheSurfaceAroundAFold) {
+  // A strip folded into a U: the two arms are 0.1 apart in space but 1 + 0.1 apart along the surface.
+  Mesh m;
+  const int n = 40;  // segments along the strip of length 2.1: arm (1), bottom (0.1), arm (1)
+  m.V.resize(2 * (n + 1), 3);
+  auto at = [](double s) -> Eigen::Vector2d {  // arc length -> (x, z)
+    if (s <= 1.0) return {0.0, 1.0 - s};
+    if (s <= 1.1) return {s - 1.0, 0.0};
+    return {0.1, s - 1.1};
+  };
+  for (int i = 0; i <= n; ++i) {
+    const Eigen::Vector2d p = at(2.1 * i / n);
+    m.V.row(2 * i) << p.x(), 0.0, p.y();
+    m.V.row(2 * i + 1) << p.x(), 0.05, p.y();
+  }
+  m.F.resize(2 * n, 3);
+  for (int i = 0; i < n; ++i) {
+    m.F.row(2 * i) << 2 * i, 2 * i + 2, 2 * i + 1;
+    m.F.row(2 * i + 1) << 2 * i + 1, 2 * i + 2, 2 * i + 3;
+  }
+  const SurfacePoint hit = closest_surface_point(m, Eigen::Vector3d(-0.01, 0.0, 0.9));  // near the top of arm 1
+  const std::vector<int> handle = surface_handle(m, hit, 0.3);
+  for (int v : handle) EXPECT_LT(m.V(v, 0), 0.05) << "vertex " << v << " is on the other arm";
+  const std::vector<double> distance = surface_distances(m, hit);
+  const int other_arm_top = 2 * n;  // (0.1, 0, 1): 0.1 away in space
+  EXPECT_GT(distance[static_cast<std::size_t>(other_arm_top)], 1.0);
+}
+
+TEST(SurfacePoint, TinyRadiusTakesTheNearestCorner) {
+  const Mesh m = testing::grid(4, 4, 0.0, 1.0, 0.0, 1.0);
+  const SurfacePoint hit = closest_surface_point(m, Eigen::Vector3d(0.26, 0.24, 0.0));
+  const std::vector<int> handle = surface_handle(m, hit, 1e-6);
+  ASSERT_EQ(handle.size(), 1u);
+  EXPECT_EQ(handle[0], 1 * 5 + 1);  // (0.25, 0.25)
+}
+
+TEST(SurfacePoint, BadInputIsRefused) {
+  const Mesh m = testing::grid(2, 2, 0.0, 1.0, 0.0, 1.0);
+  EXPECT_THROW((void)closest_surface_point(m, Eigen::Vector3d(std::nan(""), 0, 0)), std::invalid_argument);
+  EXPECT_THROW((void)surface_handle(m, SurfacePoint{99, Eigen::Vector3d::Zero()}, 0.1), std::invalid_argument);
+  EXPECT_THROW((void)surface_handle(m, SurfacePoint{0, Eigen::Vector3d::Zero()}, -1.0), std::invalid_argument);
+  Mesh flat;
+  flat.V = Eigen::MatrixXd::Zero(3, 3);
+  flat.F.resize(1, 3);
+  flat.F << 0, 1, 2;
+  EXPECT_THROW((void)closest_surface_point(flat, Eigen::Vector3d::Zero()), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace pushpull::deform
