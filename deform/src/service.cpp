@@ -82,7 +82,7 @@ struct Service::Impl {
   enum class CommandKind { Commit, Undo, Redo, Cancel };
   struct Command {
     CommandKind kind = CommandKind::Commit;
-    std::optional<Pending> request;  // Commit: what to commit
+    std::shared_ptr<const Pending> request;  // Commit: what to commit
     Clock::time_point issued;
   };
   // The worker's current solve setup, reused while a drag's requests keep handle, region and options.
@@ -104,8 +104,9 @@ struct Service::Impl {
   mutable std::mutex mutex;
   std::condition_variable wake;          // worker waits for work
   mutable std::condition_variable idle;  // wait_idle() waits for the worker
-  std::optional<Pending> pending;        // newest request not yet taken by the worker
-  std::optional<Pending> last_submitted; // what commit() commits
+  // Built outside the lock; only the pointers move under it.
+  std::shared_ptr<const Pending> pending;         // newest request not yet taken by the worker
+  std::shared_ptr<const Pending> last_submitted;  // what commit() commits
   std::deque<Command> commands;
   std::uint64_t next_sequence = 1;
   bool busy = false;
@@ -323,12 +324,12 @@ struct Service::Impl {
   void loop() {
     for (;;) {
       std::optional<Command> command;
-      std::optional<Pending> request;
+      std::shared_ptr<const Pending> request;
       {
         std::unique_lock lock(mutex);
         busy = false;
         idle.notify_all();
-        wake.wait(lock, [&] { return stop || !commands.empty() || pending.has_value(); });
+        wake.wait(lock, [&] { return stop || !commands.empty() || pending != nullptr; });
         if (stop) return;
         busy = true;
         // Cleared while holding the lock: any work queued after this point sets it again.
@@ -338,7 +339,6 @@ struct Service::Impl {
           commands.pop_front();
         } else {
           request = std::move(pending);
-          pending.reset();
         }
       }
       const std::uint64_t sequence = command ? (command->request ? command->request->sequence : 0)
@@ -359,10 +359,14 @@ struct Service::Impl {
     }
   }
 
-  void post(Command command) {
+  // Queues a command; drops the request not yet taken (the command supersedes it). end_drag: commit() can no
+  // longer commit the drag's requests.
+  void post(Command command, bool end_drag = false) {
+    std::shared_ptr<const Pending> dropped, ended;  // released outside the lock
     {
       std::lock_guard lock(mutex);
-      pending.reset();
+      dropped = std::move(pending);
+      if (end_drag) ended = std::move(last_submitted);
       commands.push_back(std::move(command));
       interrupt.store(true, std::memory_order_release);
     }
@@ -395,14 +399,15 @@ Service::~Service() {
 }
 
 std::uint64_t Service::submit(Request request) {
+  request.options.progress = nullptr;
+  auto p = std::make_shared<Impl::Pending>(Impl::Pending{0, std::move(request), Clock::now()});
+  std::shared_ptr<const Impl::Pending> superseded;  // released outside the lock
   std::uint64_t sequence = 0;
   {
     std::lock_guard lock(impl_->mutex);
-    sequence = impl_->next_sequence++;
-    request.options.progress = nullptr;
-    Impl::Pending p{sequence, std::move(request), Clock::now()};
+    sequence = p->sequence = impl_->next_sequence++;  // numbered in the order the slot sees them
     impl_->last_submitted = p;
-    impl_->pending = std::move(p);
+    superseded = std::exchange(impl_->pending, std::move(p));
     impl_->interrupt.store(true, std::memory_order_release);
   }
   impl_->wake.notify_one();
@@ -410,11 +415,10 @@ std::uint64_t Service::submit(Request request) {
 }
 
 std::uint64_t Service::commit() {
-  std::optional<Impl::Pending> what;
+  std::shared_ptr<const Impl::Pending> what;
   {
     std::lock_guard lock(impl_->mutex);
     what = std::move(impl_->last_submitted);
-    impl_->last_submitted.reset();
   }
   if (!what) return 0;
   const std::uint64_t sequence = what->sequence;
@@ -423,27 +427,15 @@ std::uint64_t Service::commit() {
 }
 
 void Service::undo() {
-  {
-    std::lock_guard lock(impl_->mutex);
-    impl_->last_submitted.reset();
-  }
-  impl_->post({Impl::CommandKind::Undo, std::nullopt, Clock::now()});
+  impl_->post({Impl::CommandKind::Undo, nullptr, Clock::now()}, /*end_drag=*/true);
 }
 
 void Service::redo() {
-  {
-    std::lock_guard lock(impl_->mutex);
-    impl_->last_submitted.reset();
-  }
-  impl_->post({Impl::CommandKind::Redo, std::nullopt, Clock::now()});
+  impl_->post({Impl::CommandKind::Redo, nullptr, Clock::now()}, /*end_drag=*/true);
 }
 
 void Service::cancel() {
-  {
-    std::lock_guard lock(impl_->mutex);
-    impl_->last_submitted.reset();
-  }
-  impl_->post({Impl::CommandKind::Cancel, std::nullopt, Clock::now()});
+  impl_->post({Impl::CommandKind::Cancel, nullptr, Clock::now()}, /*end_drag=*/true);
 }
 
 std::shared_ptr<const Snapshot> Service::latest() const {
