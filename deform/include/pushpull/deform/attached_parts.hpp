@@ -1,0 +1,71 @@
+// pushpull::deform::AttachedParts: lamps, lenses, number plates, grilles and trims that ride on the solved
+// surface follow it.
+//
+// A car is many welded components; the region of interest grows along the surface from the handle, so it
+// covers (part of) one body component and never the parts lying on it. Left alone they stay put while the
+// body moves: a plate is swallowed by a pulled nose, a lamp cuts through its moved panel. Each such part is
+// therefore bound to the solved surface at rest and carried along:
+//
+// - Which parts: every component with no vertex in the region that has a vertex within `reach` of a region
+//   triangle at rest. A component is either solved (it holds region vertices) or follows whole: no part is
+//   ever split between moving and staying.
+// - How (chosen over a rigid motion per part): each vertex binds to its closest point on the carrier surface
+//   (all triangles of the solved components, moving or not) as that triangle, its barycentric coordinates
+//   and the vertex's offset in the triangle's frame (edge, in-plane normal, face normal), as Blender's
+//   Surface Deform modifier binds a mesh to a target. After the solve the offset is re-expressed in the
+//   moved triangle's frame. So a part keeps its height above the panel under it everywhere (it never sinks
+//   in, which a rigid fit cannot promise on a panel that bends under a long trim), bends as little as the
+//   panel does, and a part straddling the region's border stays attached to both sides without a tear.
+//   Vertices bound to triangles whose corners did not move are left bit-identical.
+//
+// Units: model units (reach too). Frame: model space. Shapes: positions #V by 3.
+// Ownership: a value type holding the binding. Thread-safety: const members may run concurrently.
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "pushpull/deform/mesh.hpp"
+#include "pushpull/deform/roi.hpp"
+
+namespace pushpull::deform {
+
+struct AttachOptions {
+  // A part within this distance of a region triangle at rest follows the surface. <= 0: automatic,
+  // 3% of the region's bounding-box diagonal (3 cm for a 1 m region).
+  double reach = 0.0;
+};
+
+struct AttachedPart {
+  int component = -1;            // connected component (of the face graph, numbered by lowest vertex)
+  std::vector<int> vertices;     // its vertices, sorted
+  double rest_gap = 0.0;         // its smallest distance to a region triangle at rest
+};
+
+class AttachedParts {
+ public:
+  AttachedParts() = default;
+  // Binds the parts of `rest` near the region `roi` (roles for every vertex of rest). Throws
+  // std::invalid_argument when roi does not match the mesh.
+  AttachedParts(const Mesh& rest, const RegionOfInterest& roi, const AttachOptions& options = {});
+
+  [[nodiscard]] const std::vector<AttachedPart>& parts() const { return parts_; }
+  [[nodiscard]] double reach() const { return reach_; }
+  [[nodiscard]] std::size_t vertex_count() const { return bound_vertex_.size(); }
+
+  // Moves the bound vertices of V (#V by 3: the solver's result, region solved, the rest at rest) with the
+  // surface under them. Vertices whose carrier triangle did not move keep their exact values.
+  void apply(Eigen::MatrixXd& V) const;
+
+ private:
+  std::vector<int> bound_vertex_;     // mesh vertex
+  std::vector<int> carrier_face_;     // row of F it is bound to
+  std::vector<Eigen::Vector3d> bary_;    // barycentric coordinates of the bound point
+  std::vector<Eigen::Vector3d> offset_;  // vertex - bound point in the face frame (edge, in-plane, normal)
+  Eigen::MatrixXi F_;                    // the mesh's faces
+  Eigen::MatrixXd rest_V_;               // rest corners, to tell moved triangles from unmoved ones
+  std::vector<AttachedPart> parts_;
+  double reach_ = 0.0;
+};
+
+}  // namespace pushpull::deform

@@ -1,0 +1,150 @@
+// Parts lying on the solved surface (plates, lamps, trims) follow it whole; parts out of reach stay
+// bit-identical.
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+
+#include "pushpull/deform/attached_parts.hpp"
+#include "pushpull/deform/deformer.hpp"
+#include "pushpull/deform/roi.hpp"
+#include "pushpull/deform/triangle_bvh.hpp"
+#include "test_shapes.hpp"
+
+namespace pushpull::deform {
+namespace {
+
+Mesh append(const Mesh& a, const Mesh& b) {
+  Mesh m;
+  m.V.resize(a.V.rows() + b.V.rows(), 3);
+  m.V << a.V, b.V;
+  m.F.resize(a.F.rows() + b.F.rows(), 3);
+  m.F << a.F, (b.F.array() + static_cast<int>(a.V.rows())).matrix();
+  return m;
+}
+
+// A body panel (2 x 2 m, 40 x 40 cells), a plate 1 cm above its centre, a badge far away 1 cm above a
+// corner, all separate components.
+struct Scene {
+  Mesh mesh;
+  int body_vertices = 0, plate_first = 0, plate_count = 0, badge_first = 0, badge_count = 0;
+};
+
+Scene make_scene() {
+  Scene s;
+  const Mesh body = testing::grid(40, 40, -1.0, 1.0, -1.0, 1.0);
+  const Mesh plate = testing::grid(4, 2, -0.2, 0.2, -0.05, 0.05, [](double, double) { return 0.01; });
+  const Mesh badge = testing::grid(2, 2, 0.85, 0.95, 0.85, 0.95, [](double, double) { return 0.01; });
+  s.body_vertices = static_cast<int>(body.V.rows());
+  s.plate_first = s.body_vertices;
+  s.plate_count = static_cast<int>(plate.V.rows());
+  s.badge_first = s.plate_first + s.plate_count;
+  s.badge_count = static_cast<int>(badge.V.rows());
+  s.mesh = append(append(body, plate), badge);
+  return s;
+}
+
+TEST(AttachedParts, PlateFollowsThePulledPanelAndKeepsItsGap) {
+  const Scene s = make_scene();
+  std::vector<int> handle;
+  for (int v = 0; v < s.body_vertices; ++v)
+    if (std::hypot(s.mesh.V(v, 0), s.mesh.V(v, 1)) < 0.15) handle.push_back(v);
+  const RegionOfInterest roi = build_roi(s.mesh, handle, {}, 0.7);
+  const AttachedParts parts(s.mesh, roi);
+  ASSERT_EQ(parts.parts().size(), 1u);  // the plate; the badge is out of reach
+  EXPECT_EQ(parts.parts()[0].vertices.front(), s.plate_first);
+  EXPECT_EQ(parts.parts()[0].vertices.size(), static_cast<std::size_t>(s.plate_count));
+  EXPECT_NEAR(parts.parts()[0].rest_gap, 0.01, 1e-12);
+
+  DeformOptions options;
+  options.method = Method::Asan;
+  Deformer deformer(std::make_shared<const Mesh>(s.mesh), roi, options);
+  Eigen::MatrixXd V = deformer.solve(Eigen::Vector3d(0.0, 0.0, 0.1)).V;
+  // Without the binding the plate stays put and the panel passes through it.
+  EXPECT_EQ(V.row(s.plate_first), s.mesh.V.row(s.plate_first));
+  parts.apply(V);
+
+  // Every plate vertex is still 1 cm above the moved panel (never sinks in), measured independently.
+  const TriangleBvh body_tree(V, s.mesh.F, [&] {
+    std::vector<int> faces;
+    for (int f = 0; f < s.mesh.F.rows(); ++f)
+      if (s.mesh.F(f, 0) < s.body_vertices) faces.push_back(f);
+    return faces;
+  }());
+  for (int v = s.plate_first; v < s.plate_first + s.plate_count; ++v) {
+    const auto hit = body_tree.closest_point(V, V.row(v).transpose());
+    ASSERT_TRUE(hit);
+    EXPECT_NEAR(hit->distance, 0.01, 2e-3) << "plate vertex " << v;
+    EXPECT_GT(V(v, 2), 0.05) << "plate vertex " << v << " did not follow the pull";
+  }
+  // Not torn: plate edges keep their lengths within a few percent.
+  for (int f = 0; f < s.mesh.F.rows(); ++f) {
+    if (s.mesh.F(f, 0) < s.plate_first || s.mesh.F(f, 0) >= s.badge_first) continue;
+    for (int c = 0; c < 3; ++c) {
+      const int a = s.mesh.F(f, c), b = s.mesh.F(f, (c + 1) % 3);
+      const double before = (s.mesh.V.row(a) - s.mesh.V.row(b)).norm();
+      const double after = (V.row(a) - V.row(b)).norm();
+      EXPECT_NEAR(after / before, 1.0, 0.05);
+    }
+  }
+  // Out of reach: bit-identical.
+  for (int v = s.badge_first; v < s.badge_first + s.badge_count; ++v) EXPECT_EQ(V.row(v), s.mesh.V.row(v));
+}
+
+TEST(AttachedParts, PartOverAnUnmovedTriangleKeepsItsExactValues) {
+  const Scene s = make_scene();
+  std::vector<int> handle;
+  for (int v = 0; v < s.body_vertices; ++v)
+    if (std::hypot(s.mesh.V(v, 0) - 0.9, s.mesh.V(v, 1) - 0.9) < 0.08) handle.push_back(v);
+  const RegionOfInterest roi = build_roi(s.mesh, handle, {}, 0.3);
+  const AttachedParts parts(s.mesh, roi, {.reach = 0.02});
+  ASSERT_EQ(parts.parts().size(), 1u);  // the badge now; the plate is out of reach
+  EXPECT_EQ(parts.parts()[0].vertices.front(), s.badge_first);
+  Eigen::MatrixXd V = s.mesh.V;  // nothing moved
+  parts.apply(V);
+  EXPECT_EQ(V, s.mesh.V);
+}
+
+TEST(AttachedParts, MismatchedRegionIsRefused) {
+  const Scene s = make_scene();
+  RegionOfInterest roi;
+  roi.role.resize(3);
+  EXPECT_THROW(AttachedParts(s.mesh, roi), std::invalid_argument);
+}
+
+TEST(TriangleBvh, ClosestPointAndRayHitAgreeWithBruteForce) {
+  const Mesh m = testing::grid(30, 30, 0.0, 1.0, 0.0, 1.0,
+                               [](double x, double y) { return 0.2 * std::sin(6 * x) * std::cos(5 * y); });
+  const TriangleBvh tree(m.V, m.F);
+  for (int k = 0; k < 200; ++k) {
+    const Eigen::Vector3d p(0.013 * k - 0.3, std::fmod(0.37 * k, 1.4) - 0.2, std::fmod(0.11 * k, 0.8) - 0.4);
+    double brute = std::numeric_limits<double>::infinity();
+    for (int f = 0; f < m.F.rows(); ++f) {
+      const Eigen::Vector3d q = closest_point_on_triangle(p, m.V.row(m.F(f, 0)), m.V.row(m.F(f, 1)), m.V.row(m.F(f, 2)));
+      brute = std::min(brute, (q - p).norm());
+    }
+    const auto hit = tree.closest_point(m.V, p);
+    ASSERT_TRUE(hit);
+    EXPECT_NEAR(hit->distance, brute, 1e-12);
+    // A ray straight down from above hits the surface at (x, y) when inside the square.
+    const Eigen::Vector3d origin(std::fmod(0.071 * k, 1.0), std::fmod(0.029 * k, 1.0), 5.0);
+    const auto ray = tree.ray_hit(m.V, origin, Eigen::Vector3d(0, 0, -1));
+    ASSERT_TRUE(ray);
+    EXPECT_NEAR(ray->point.x(), origin.x(), 1e-12);
+    EXPECT_NEAR(ray->point.y(), origin.y(), 1e-12);
+    EXPECT_LT(std::abs(ray->point.z()), 0.21);
+  }
+  EXPECT_FALSE(tree.ray_hit(m.V, Eigen::Vector3d(2, 2, 5), Eigen::Vector3d(0, 0, -1)));
+  EXPECT_FALSE(tree.closest_point(m.V, Eigen::Vector3d(0.5, 0.5, 3.0), 1.0));
+  // Refit after a move: the hit follows.
+  Eigen::MatrixXd moved = m.V;
+  moved.col(2).array() += 1.0;
+  TriangleBvh refitted = tree;
+  refitted.refit(moved);
+  const auto up = refitted.ray_hit(moved, Eigen::Vector3d(0.5, 0.5, 5.0), Eigen::Vector3d(0, 0, -1));
+  ASSERT_TRUE(up);
+  EXPECT_GT(up->point.z(), 0.75);
+}
+
+}  // namespace
+}  // namespace pushpull::deform
