@@ -5,6 +5,7 @@
 
 #include "pushpull/assets/model.hpp"
 #include "pushpull/assets/write.hpp"
+#include "pushpull/deform/attached_parts.hpp"
 #include "pushpull/deform/deformer.hpp"
 #include "pushpull/deform/mesh_io.hpp"
 #include "pushpull/deform/metrics.hpp"
@@ -52,6 +53,8 @@ struct DeformCommandOptions {
   int rings = 2;
   int sections = 5;
   double dead_band = 1e-3;
+  bool attached_parts = true;
+  double attach_reach = 0.0;  // <= 0: automatic
   std::string out;
   std::string metrics;
 };
@@ -241,6 +244,19 @@ void run_deform(const DeformCommandOptions& o) {
   } catch (const std::invalid_argument& error) {
     throw CommandError(o.mesh + ": " + error.what());
   }
+  // Parts on the solved surface (lamps, plates, trims) follow it; the metrics below stay those of the region.
+  if (o.attached_parts) {
+    const deform::AttachedParts parts(*mesh, roi, {.reach = o.attach_reach});
+    Eigen::MatrixXd before = record.result.V;
+    parts.apply(record.result.V);
+    for (const deform::AttachedPart& part : parts.parts()) {
+      double moved = 0.0;
+      for (int v : part.vertices) moved = std::max(moved, (record.result.V.row(v) - before.row(v)).norm());
+      record.attached.push_back({part.component, static_cast<long>(part.vertices.size()), part.vertices.front(),
+                                 part.rest_gap, moved});
+    }
+    record.attach_reach = parts.reach();
+  }
   std::vector<int> omega;
   omega.reserve(roi.size());
   omega.insert(omega.end(), roi.handle.begin(), roi.handle.end());
@@ -285,6 +301,17 @@ void run_deform(const DeformCommandOptions& o) {
   std::printf(
       "  max displacement %g; RMS along d %g, orthogonal to d %g; Gaussian-curvature sign flips %.2f%%\n",
       m.displacement.max, m.along_d.rms, m.orthogonal.rms, 100.0 * m.sign_flip_fraction);
+  if (!record.attached.empty()) {
+    long moved = 0, vertices = 0;
+    double largest = 0.0;
+    for (const AttachedPartRecord& part : record.attached) {
+      moved += part.max_displacement > 0.0;
+      vertices += part.vertex_count;
+      largest = std::max(largest, part.max_displacement);
+    }
+    std::printf("  attached parts: %zu within %g of the region (%ld vertices); %ld moved with the surface, up to %g\n",
+                record.attached.size(), record.attach_reach, vertices, moved, largest);
+  }
   for (const std::string& warning : r.warnings) std::printf("  warning: %s\n", warning.c_str());
   std::printf("  wrote %s and %s\n", o.out.c_str(), o.metrics.c_str());
 }
@@ -338,6 +365,13 @@ void add_deform_command(CLI::App& root) {
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--sections", o->sections, "Number of section planes (perpendicular to d) in the metrics")
       ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_flag("!--no-attached-parts", o->attached_parts,
+               "Leave separate parts (lamps, plates, trims) where they are instead of letting the ones near the "
+               "region follow the deformed surface");
+  cmd->add_option("--attach-reach", o->attach_reach,
+                  "Parts within this distance of the region follow the surface (model units; default: 3% of "
+                  "the region's bounding-box diagonal)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--dead-band", o->dead_band,
                   "Curvature below this fraction of the largest |K| counts as zero (flat) in sign statistics")

@@ -85,6 +85,13 @@ std::string metrics_json(const DeformRunRecord& record) {
         {"offset", section.offset}, {"before", curves(section.before)}, {"after", curves(section.after)}});
   }
   doc["sections"] = std::move(sections);
+  json parts = json::array();
+  for (const AttachedPartRecord& part : record.attached) {
+    parts.push_back({{"component", part.component}, {"vertices", part.vertex_count},
+                     {"first_vertex", part.first_vertex}, {"rest_gap", part.rest_gap},
+                     {"max_displacement", part.max_displacement}});
+  }
+  doc["attached_parts"] = {{"reach", record.attach_reach}, {"parts", parts}};
   doc["warnings"] = result.warnings;
   return doc.dump(2) + "\n";
 }

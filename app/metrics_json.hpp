@@ -11,7 +11,9 @@
 //   curvature {evaluated_vertices, threshold, dead_band_fraction, sign_flips, sign_reversals,
 //              positive_before, negative_before, positive_after, negative_after, area: "mixed Voronoi",
 //              boundary: "excluded"},
-//   sections [{offset, before: [{closed, points [[x,y,z]..]}], after: [...]}], warnings [..].
+//   sections [{offset, before: [{closed, points [[x,y,z]..]}], after: [...]}],
+//   attached_parts {reach, parts: [{component, vertices, first_vertex, rest_gap, max_displacement}]},
+//   warnings [..].
 // Thread-safety: free functions without state.
 #pragma once
 
@@ -19,11 +21,21 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "pushpull/deform/deformer.hpp"
 #include "pushpull/deform/metrics.hpp"
 
 namespace pushpull::app {
+
+// A separate part (component) that followed the solved surface.
+struct AttachedPartRecord {
+  int component = -1;
+  long vertex_count = 0;
+  int first_vertex = -1;
+  double rest_gap = 0.0;          // distance to the region at rest
+  double max_displacement = 0.0;  // largest move of its vertices
+};
 
 struct DeformRunRecord {
   std::string input;                            // model file read
@@ -36,6 +48,8 @@ struct DeformRunRecord {
   deform::DeformResult result;
   deform::DeformationMetrics metrics;
   double dead_band_fraction = 0.0;
+  std::vector<AttachedPartRecord> attached;  // parts that follow the surface (empty when turned off)
+  double attach_reach = 0.0;                 // the distance that decided which parts follow
 };
 
 // The JSON text (pretty-printed, trailing newline).

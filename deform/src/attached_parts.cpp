@@ -2,11 +2,13 @@
 #include "pushpull/deform/attached_parts.hpp"
 
 #include <Eigen/Geometry>
+#include <Eigen/SVD>
 #include <algorithm>
 #include <numeric>
 #include <stdexcept>
 #include <string>
 
+#include "mesh_graph.hpp"
 #include "pushpull/deform/triangle_bvh.hpp"
 
 namespace pushpull::deform {
@@ -41,13 +43,22 @@ std::vector<int> components(const Mesh& mesh) {
   return label;
 }
 
-// Orthonormal frame of triangle (a, b, c): columns edge direction, in-plane normal to it, face normal.
-Eigen::Matrix3d face_frame(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
-  const Eigen::Vector3d e1 = (b - a).normalized();
-  const Eigen::Vector3d n = (b - a).cross(c - a).normalized();
-  Eigen::Matrix3d frame;
-  frame << e1, n.cross(e1), n;
-  return frame;
+// The rotation that best maps the rest patch onto the moved one (Kabsch: polar factor of the covariance of
+// centred positions, det +1). A patch of a triangle's corners and their neighbours spans an area even when
+// the triangle is a sliver, whose own normal would flip on a tiny move.
+Eigen::Matrix3d patch_rotation(const Eigen::MatrixXd& rest, const Eigen::MatrixXd& moved, const int* begin,
+                               const int* end) {
+  Eigen::Vector3d c0 = Eigen::Vector3d::Zero(), c1 = Eigen::Vector3d::Zero();
+  for (const int* v = begin; v != end; ++v) c0 += rest.row(*v).transpose(), c1 += moved.row(*v).transpose();
+  const double n = static_cast<double>(end - begin);
+  c0 /= n, c1 /= n;
+  Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
+  for (const int* v = begin; v != end; ++v)
+    H += (moved.row(*v).transpose() - c1) * (rest.row(*v).transpose() - c0).transpose();
+  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(H, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::Matrix3d U = svd.matrixU();
+  if ((U * svd.matrixV().transpose()).determinant() < 0.0) U.col(2) = -U.col(2);
+  return U * svd.matrixV().transpose();
 }
 
 Eigen::Vector3d barycentric(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
@@ -112,6 +123,9 @@ AttachedParts::AttachedParts(const Mesh& rest, const RegionOfInterest& roi, cons
   if (parts_.empty()) return;
 
   const TriangleBvh carrier_tree(rest.V, rest.F, carrier_faces);
+  const detail::VertexGraph graph = detail::build_vertex_graph(nv, rest.F, carrier_faces);
+  std::vector<int> slot_of_face(static_cast<std::size_t>(rest.F.rows()), -1);
+  patch_start_.push_back(0);
   for (int v = 0; v < nv; ++v) {
     const int part = part_index[static_cast<std::size_t>(label[static_cast<std::size_t>(v)])];
     if (part < 0) continue;
@@ -120,10 +134,24 @@ AttachedParts::AttachedParts(const Mesh& rest, const RegionOfInterest& roi, cons
     const auto hit = carrier_tree.closest_point(rest.V, p);
     const int f = hit->face;
     const Eigen::Vector3d a = rest.V.row(rest.F(f, 0)), b = rest.V.row(rest.F(f, 1)), c = rest.V.row(rest.F(f, 2));
+    int& slot = slot_of_face[static_cast<std::size_t>(f)];
+    if (slot < 0) {  // the face's patch: its corners and their neighbours on the carrier
+      slot = static_cast<int>(patch_start_.size()) - 1;
+      std::vector<int> patch;
+      for (int k = 0; k < 3; ++k) {
+        patch.push_back(rest.F(f, k));
+        patch.insert(patch.end(), graph.begin(rest.F(f, k)), graph.end(rest.F(f, k)));
+      }
+      std::sort(patch.begin(), patch.end());
+      patch.erase(std::unique(patch.begin(), patch.end()), patch.end());
+      patch_index_.insert(patch_index_.end(), patch.begin(), patch.end());
+      patch_start_.push_back(static_cast<int>(patch_index_.size()));
+    }
     bound_vertex_.push_back(v);
     carrier_face_.push_back(f);
+    carrier_slot_.push_back(slot);
     bary_.push_back(barycentric(hit->point, a, b, c));
-    offset_.push_back(face_frame(a, b, c).transpose() * (p - hit->point));
+    offset_.push_back(p - hit->point);
   }
 }
 
@@ -132,17 +160,23 @@ void AttachedParts::apply(Eigen::MatrixXd& V) const {
     throw std::invalid_argument("attached parts: positions must be " + std::to_string(rest_V_.rows()) +
                                 " by 3");
   }
+  // One rotation per carrier patch that moved (identity for the others).
+  const std::size_t slots = patch_start_.size() - 1;
+  std::vector<Eigen::Matrix3d> rotation(slots, Eigen::Matrix3d::Identity());
+  std::vector<char> moved(slots, 0);
+  for (std::size_t slot = 0; slot < slots; ++slot) {
+    const int* begin = patch_index_.data() + patch_start_[slot];
+    const int* end = patch_index_.data() + patch_start_[slot + 1];
+    for (const int* v = begin; v != end && !moved[slot]; ++v) moved[slot] = V.row(*v) != rest_V_.row(*v);
+    if (moved[slot]) rotation[slot] = patch_rotation(rest_V_, V, begin, end);
+  }
   for (std::size_t k = 0; k < bound_vertex_.size(); ++k) {
+    const std::size_t slot = static_cast<std::size_t>(carrier_slot_[k]);
+    if (!moved[slot]) continue;  // nothing under it moved: exact values stay
     const int f = carrier_face_[k];
-    const int ia = F_(f, 0), ib = F_(f, 1), ic = F_(f, 2);
-    if (V.row(ia) == rest_V_.row(ia) && V.row(ib) == rest_V_.row(ib) && V.row(ic) == rest_V_.row(ic)) continue;
-    const Eigen::Vector3d a = V.row(ia), b = V.row(ib), c = V.row(ic);
-    const Eigen::Vector3d q = bary_[k].x() * a + bary_[k].y() * b + bary_[k].z() * c;
-    const double longest2 = std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
-    const bool flat = !((b - a).cross(c - a).norm() > 1e-14 * longest2);  // collapsed: no frame, translate
-    const Eigen::Vector3d ra = rest_V_.row(ia), rb = rest_V_.row(ib), rc = rest_V_.row(ic);
-    const Eigen::Matrix3d frame = flat ? face_frame(ra, rb, rc) : face_frame(a, b, c);
-    V.row(bound_vertex_[k]) = (q + frame * offset_[k]).transpose();
+    const Eigen::Vector3d q = bary_[k].x() * V.row(F_(f, 0)).transpose() + bary_[k].y() * V.row(F_(f, 1)).transpose() +
+                              bary_[k].z() * V.row(F_(f, 2)).transpose();
+    V.row(bound_vertex_[k]) = (q + rotation[slot] * offset_[k]).transpose();
   }
 }
 

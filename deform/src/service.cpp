@@ -45,7 +45,8 @@ bool same_options(const DeformOptions& a, const DeformOptions& b) {
 // Same Deformer setup: handle, region and options (d may differ).
 bool same_setup(const Request& a, const Request& b) {
   return a.drag == b.drag && same_handle(a, b) && a.region.max_distance == b.region.max_distance &&
-         a.region.fixed == b.region.fixed && same_options(a.options, b.options);
+         a.region.fixed == b.region.fixed && a.region.attach_parts == b.region.attach_parts &&
+         a.region.attach_reach == b.region.attach_reach && same_options(a.options, b.options);
 }
 
 double largest_displacement(const Eigen::MatrixXd& V, const Eigen::MatrixXd& rest) {
@@ -91,7 +92,16 @@ struct Service::Impl {
     std::uint64_t state_id = 0;
     std::unique_ptr<Deformer> deformer;
     std::shared_ptr<const RegionOfInterest> region;
+    std::optional<AttachedParts> parts;                   // when the request attaches parts
     std::shared_ptr<const Eigen::MatrixXd> last_iterate;  // warm start for the next request of the drag
+
+    // The solver's positions with the attached parts moved along (a new matrix when there are parts).
+    std::shared_ptr<const Eigen::MatrixXd> with_parts(std::shared_ptr<const Eigen::MatrixXd> V) const {
+      if (!parts || parts->parts().empty()) return V;
+      auto moved = std::make_shared<Eigen::MatrixXd>(*V);
+      parts->apply(*moved);
+      return moved;
+    }
   };
   struct State {  // one committed state of the history
     std::uint64_t id = 0;
@@ -178,6 +188,7 @@ struct Service::Impl {
     a.request = request;
     a.state_id = current().id;
     a.region = std::make_shared<const RegionOfInterest>(roi);
+    if (request.region.attach_parts) a.parts.emplace(mesh, roi, AttachOptions{request.region.attach_reach});
     a.deformer = std::make_unique<Deformer>(current().entry.state, std::move(roi), options);
     active = std::move(a);
     setup_ms = ms_between(start, Clock::now());
@@ -190,15 +201,16 @@ struct Service::Impl {
     s.request = p.sequence;
     s.revision = current().id;
     s.rest = current().entry.state;
-    s.positions = std::make_shared<const Eigen::MatrixXd>(r.V);
+    s.positions = a.with_parts(std::make_shared<const Eigen::MatrixXd>(r.V));
     s.region = a.region;
+    s.attached_parts = a.parts ? a.parts->parts().size() : 0;
     s.method = p.request.options.method;
     s.d = p.request.d;
     s.iteration = r.iterations;
     s.converged = r.converged;
     s.final = true;
     s.energy = r.energy_trace.empty() ? r.initial_energy : r.energy_trace.back();
-    s.max_displacement = largest_displacement(r.V, s.rest->V);
+    s.max_displacement = largest_displacement(*s.positions, s.rest->V);
     s.factorize_ms = r.timing.factorize;
     s.solve_ms = r.timing.solve;
     s.latency_ms = ms_between(p.submitted, Clock::now());
@@ -229,13 +241,14 @@ struct Service::Impl {
       s.request = p.sequence;
       s.revision = current().id;
       s.rest = current().entry.state;
-      s.positions = report.V;
+      s.positions = a.with_parts(report.V);
       s.region = a.region;
+      s.attached_parts = a.parts ? a.parts->parts().size() : 0;
       s.method = p.request.options.method;
       s.d = p.request.d;
       s.iteration = report.iteration;
       s.energy = report.energy;
-      s.max_displacement = largest_displacement(*report.V, rest);
+      s.max_displacement = largest_displacement(*s.positions, rest);
       s.setup_ms = setup_ms;
       s.solve_ms = ms_between(solve_start, Clock::now());
       s.latency_ms = ms_between(p.submitted, Clock::now());
@@ -248,7 +261,6 @@ struct Service::Impl {
     a.last_iterate = std::make_shared<const Eigen::MatrixXd>(r.V);
     Snapshot s = result_snapshot(p, a, r, Snapshot::Kind::Preview);
     s.setup_ms = setup_ms;
-    s.positions = a.last_iterate;
     publish(std::move(s));
   }
 
@@ -269,13 +281,14 @@ struct Service::Impl {
     s.setup_ms = setup_ms;
     s.latency_ms = ms_between(issued, Clock::now());
     auto next = std::make_shared<Mesh>();
-    next->V = r.V;
+    next->V = *s.positions;  // with the attached parts
     next->F = current().entry.state->F;
     State state;
+    state.entry.hash = position_hash(next->V);
     state.entry.state = std::move(next);
     state.entry.request = p.request;
     state.entry.request->options.progress = nullptr;
-    state.entry.hash = position_hash(r.V);
+
     {
       std::lock_guard lock(history_mutex);
       state.id = next_state_id++;

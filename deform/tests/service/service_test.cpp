@@ -396,3 +396,44 @@ TEST(Service, DestructorStopsTheSolveWithinOneIteration) {
 
 }  // namespace
 }  // namespace pushpull::deform
+
+namespace pushpull::deform {
+namespace {
+
+// A plate 1 cm above the pulled panel rides along in previews and commits (and stays when turned off).
+TEST(Service, AttachedPartsFollowInPreviewsAndCommits) {
+  const Mesh body = testing::grid(30, 30, -1.0, 1.0, -1.0, 1.0);
+  const Mesh plate = testing::grid(2, 2, -0.1, 0.1, -0.05, 0.05, [](double, double) { return 0.01; });
+  Mesh m;
+  m.V.resize(body.V.rows() + plate.V.rows(), 3);
+  m.V << body.V, plate.V;
+  m.F.resize(body.F.rows() + plate.F.rows(), 3);
+  m.F << body.F, (plate.F.array() + static_cast<int>(body.V.rows())).matrix();
+  const auto mesh = std::make_shared<const Mesh>(m);
+  const int plate_vertex = static_cast<int>(body.V.rows());
+  Request r;
+  r.handle = SurfaceHandle{closest_surface_point(m, Eigen::Vector3d(0.0, 0.0, -0.01)), 0.15};
+  r.region.max_distance = 0.6;
+  r.d = Eigen::Vector3d(0.0, 0.0, 0.1);
+  Service service(mesh);
+  service.submit(r);
+  auto s = service.wait_idle();
+  ASSERT_EQ(s->kind, Snapshot::Kind::Preview) << s->error;
+  EXPECT_EQ(s->attached_parts, 1u);
+  EXPECT_GT((*s->positions)(plate_vertex, 2), 0.08);
+  service.commit();
+  s = service.wait_idle();
+  ASSERT_EQ(s->kind, Snapshot::Kind::Committed);
+  EXPECT_GT(s->rest->V(plate_vertex, 2), 0.08);
+
+  r.drag = 2;
+  r.region.attach_parts = false;
+  r.d = Eigen::Vector3d(0.0, 0.0, -0.1);
+  service.submit(r);
+  s = service.wait_idle();
+  EXPECT_EQ(s->attached_parts, 0u);
+  EXPECT_EQ((*s->positions)(plate_vertex, 2), s->rest->V(plate_vertex, 2));
+}
+
+}  // namespace
+}  // namespace pushpull::deform

@@ -11,12 +11,14 @@
 //   ever split between moving and staying.
 // - How (chosen over a rigid motion per part): each vertex binds to its closest point on the carrier surface
 //   (all triangles of the solved components, moving or not) as that triangle, its barycentric coordinates
-//   and the vertex's offset in the triangle's frame (edge, in-plane normal, face normal), as Blender's
-//   Surface Deform modifier binds a mesh to a target. After the solve the offset is re-expressed in the
-//   moved triangle's frame. So a part keeps its height above the panel under it everywhere (it never sinks
-//   in, which a rigid fit cannot promise on a panel that bends under a long trim), bends as little as the
+//   and its offset from that point, as Blender's Surface Deform modifier binds a mesh to a target. After the
+//   solve the bound point moves with the triangle and the offset turns with the surface around it: the
+//   best rotation (Kabsch) of the patch made of the triangle's corners and their neighbours, which stays
+//   well defined on the sliver triangles of tessellated CAD where a triangle's own normal flips on a tiny
+//   move. So a part keeps its height above the panel under it everywhere (it never sinks in, which one
+//   rigid motion per part cannot promise on a panel that bends under a long trim), bends as little as the
 //   panel does, and a part straddling the region's border stays attached to both sides without a tear.
-//   Vertices bound to triangles whose corners did not move are left bit-identical.
+//   Vertices whose carrier patch did not move are left bit-identical.
 //
 // Units: model units (reach too). Frame: model space. Shapes: positions #V by 3.
 // Ownership: a value type holding the binding. Thread-safety: const members may run concurrently.
@@ -60,8 +62,10 @@ class AttachedParts {
  private:
   std::vector<int> bound_vertex_;     // mesh vertex
   std::vector<int> carrier_face_;     // row of F it is bound to
+  std::vector<int> carrier_slot_;     // its patch (index into patch_start_)
   std::vector<Eigen::Vector3d> bary_;    // barycentric coordinates of the bound point
-  std::vector<Eigen::Vector3d> offset_;  // vertex - bound point in the face frame (edge, in-plane, normal)
+  std::vector<Eigen::Vector3d> offset_;  // vertex - bound point at rest (model space)
+  std::vector<int> patch_start_, patch_index_;  // per carrier face used: corners and their neighbours
   Eigen::MatrixXi F_;                    // the mesh's faces
   Eigen::MatrixXd rest_V_;               // rest corners, to tell moved triangles from unmoved ones
   std::vector<AttachedPart> parts_;

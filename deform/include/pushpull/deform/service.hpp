@@ -48,6 +48,7 @@
 #include <variant>
 #include <vector>
 
+#include "pushpull/deform/attached_parts.hpp"
 #include "pushpull/deform/deformer.hpp"
 #include "pushpull/deform/mesh.hpp"
 #include "pushpull/deform/roi.hpp"
@@ -70,6 +71,9 @@ struct RegionSpec {
   // whole component.
   double max_distance = std::numeric_limits<double>::infinity();
   std::vector<int> fixed;  // vertices the region never grows past (they stay at rest)
+  // Separate parts near the region (lamps, plates, trims) follow the deformed surface (attached_parts.hpp).
+  bool attach_parts = true;
+  double attach_reach = 0.0;  // <= 0: automatic (AttachOptions)
 };
 
 struct Request {
@@ -100,6 +104,7 @@ struct Snapshot {
   std::shared_ptr<const Eigen::MatrixXd> positions;  // #V by 3, whole mesh, never null
   std::shared_ptr<const Mesh> rest;                  // the committed state (positions of revision)
   std::shared_ptr<const RegionOfInterest> region;    // roles of the request's region (null for Rest/Error)
+  std::size_t attached_parts = 0;                    // parts following the surface in these positions
   Method method = Method::Asan;
   Eigen::Vector3d d = Eigen::Vector3d::Zero();
   int iteration = 0;
