@@ -234,6 +234,7 @@ double Deformer::Impl::prepare_weights(const Eigen::Vector3d& push_direction,
   if (!factored) {
     system.factorize(model.Q);
     factored = true;
+    ++factorizations;
   }
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }

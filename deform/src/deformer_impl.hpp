@@ -34,6 +34,7 @@ struct Deformer::Impl {
   detail::EnergyModel model;
   detail::GlobalSystem system;
   bool factored = false;
+  long factorizations = 0;  // numeric factorizations done so far (weights recomputed or first solve)
   std::optional<Eigen::Vector3d> weight_direction;  // unit d_o of the current ASAN weights
 
   // The local step runs in two fixed parts, clusters [0, split_cluster) and [split_cluster, #clusters),

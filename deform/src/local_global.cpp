@@ -51,7 +51,9 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
   DeformResult result;
   result.warnings = setup_warnings;
   result.timing.precompute = precompute_ms;
+  const long factorizations_before = factorizations;
   result.timing.factorize = prepare_weights(push_direction, result.warnings);
+  result.refactored = factorizations != factorizations_before;
   const auto solve_start = Clock::now();
 
   const int n = static_cast<int>(P.cols());

@@ -134,6 +134,9 @@ struct DeformResult {
   StopReason stop_reason = StopReason::MaxIterations;
   std::vector<double> energy_trace;  // energy after every iteration (size == iterations)
   double initial_energy = 0.0;       // energy of the initial guess
+  // This solve computed weights and a numeric factorization (the first solve; asan when the line of d_o
+  // changed); false when it reused the previous ones.
+  bool refactored = false;
   TimingMs timing;
   std::vector<std::string> warnings;  // validation, region and solver warnings
 };
