@@ -345,8 +345,8 @@ double Deformer::energy(const Eigen::MatrixXd& V) const {
 
 std::string_view stop_reason_name(StopReason reason) {
   switch (reason) {
-    case StopReason::MoveTolerance:
-      return "move-tolerance";
+    case StopReason::ErrorTolerance:
+      return "error-tolerance";
     case StopReason::EnergyTolerance:
       return "energy-tolerance";
     case StopReason::MaxIterations:
@@ -355,6 +355,14 @@ std::string_view stop_reason_name(StopReason reason) {
       return "cancelled";
   }
   return "unknown";
+}
+
+DeformOptions paper_iterations(DeformOptions base) {
+  base.max_iterations = 50;
+  base.anderson_window = 0;
+  base.tolerance = 0.0;
+  base.energy_tolerance = 0.0;
+  return base;
 }
 
 DeformResult deform(const Mesh& mesh, const RegionOfInterest& roi, const Eigen::Vector3d& d,

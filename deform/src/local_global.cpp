@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "deformer_impl.hpp"
+#include "error_estimate.hpp"
 
 namespace pushpull::deform {
 namespace {
@@ -88,6 +89,8 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
   result.initial_energy = energy;
   std::optional<detail::Anderson> anderson;
   if (options.anderson_window > 0 && n_free > 0) anderson.emplace(options.anderson_window, 3 * n_free);
+  constexpr int kRateWindow = 8;
+  detail::ContractionEstimate contraction(kRateWindow, 3 * n_free);
 
   Eigen::Matrix3Xd X_next =
       X;  // its constrained columns stay X's; the free ones are rewritten each iteration
@@ -120,6 +123,12 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
     for (int i = 0; i < n_free; ++i)
       largest_move2 = std::max(largest_move2, (G.col(i) - X.col(i)).squaredNorm());
     const double move = std::sqrt(largest_move2) / reference;
+    // Distance to the minimiser: |x - x*| <= |G(x) - x| / (1 - rho) (error_estimate.hpp).
+    contraction.add(Eigen::Map<const Eigen::VectorXd>(X.data(), 3 * n_free),
+                    Eigen::Map<const Eigen::VectorXd>(G.data(), 3 * n_free));
+    std::optional<double> error;
+    if (const std::optional<double> rate = contraction.rate()) error = move / (1.0 - *rate);
+    result.error_estimate = error;
     X.swap(X_next);
     result.energy_trace.push_back(next_energy);
     result.iterations = iteration;
@@ -127,15 +136,16 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
     energy = next_energy;
 
     if (progress) {
-      const IterationReport report{iteration, energy, move, std::make_shared<const Eigen::MatrixXd>(to_full(X))};
+      const IterationReport report{iteration, energy, move, error,
+                                   std::make_shared<const Eigen::MatrixXd>(to_full(X))};
       if (!progress(report)) {
         result.cancelled = true;
         result.stop_reason = StopReason::Cancelled;
         break;
       }
     }
-    if (options.tolerance > 0.0 && move <= options.tolerance) {
-      result.stop_reason = StopReason::MoveTolerance;
+    if (options.tolerance > 0.0 && error && *error <= options.tolerance) {
+      result.stop_reason = StopReason::ErrorTolerance;
       break;
     }
     if (options.energy_tolerance > 0.0 &&
@@ -144,9 +154,12 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
       break;
     }
   }
-  if (n_free == 0) result.stop_reason = StopReason::MoveTolerance;  // nothing to solve for
+  if (n_free == 0) {  // nothing to solve for: exact
+    result.stop_reason = StopReason::ErrorTolerance;
+    result.error_estimate = 0.0;
+  }
   result.converged =
-      result.stop_reason == StopReason::MoveTolerance || result.stop_reason == StopReason::EnergyTolerance;
+      result.stop_reason == StopReason::ErrorTolerance || result.stop_reason == StopReason::EnergyTolerance;
   result.V = to_full(X);
   result.timing.solve = ms_since(solve_start);
   result.timing.per_iteration = result.iterations > 0 ? result.timing.solve / result.iterations : 0.0;

@@ -1,0 +1,99 @@
+// stopping_bench: is the solver's "converged" honest? For every method, the default stopping rule (estimated
+// largest vertex distance to the exact minimiser <= 1e-2 |d|) is run and its estimate compared with the true
+// distance to a reference solved to 1e-9 |d|; the paper's setting (50 plain iterations) is shown beside it.
+//
+// Problems: the jittered height field of deform_bench (10K vertices, disk handle pulled 0.1 along z, border
+// fixed), a 2.5K one pulled sideways, and the hemisphere of ../shared/data (cap pulled up, base fixed).
+// A row fails the check when the true error exceeds twice the estimate ("optimistic > 2x").
+//
+// Usage: stopping_bench [--quick]   (--quick: the 2.5K height field only)
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "height_field.hpp"
+#include "pushpull/deform/deformer.hpp"
+#include "pushpull/deform/mesh_io.hpp"
+#include "pushpull/deform/roi.hpp"
+
+namespace pd = pushpull::deform;
+namespace pb = pushpull::bench;
+
+namespace {
+
+struct Problem {
+  std::string name;
+  pd::Mesh mesh;
+  pd::RegionOfInterest roi;
+  Eigen::Vector3d d;
+};
+
+Problem height_field(int n, const Eigen::Vector3d& d, const char* name) {
+  const pb::HeightFieldProblem h = pb::make_height_field(n, 0.08, d);
+  return {name, h.mesh, pd::build_roi(h.mesh, h.handle, h.fixed), d};
+}
+
+double true_error(const Eigen::MatrixXd& V, const Eigen::MatrixXd& reference, const Eigen::Vector3d& d) {
+  return (V - reference).rowwise().norm().maxCoeff() / d.norm();
+}
+
+int run(const Problem& p) {
+  int failures = 0;
+  std::printf("\n%s: %ld vertices, region %zu, |d| = %g\n", p.name.c_str(), static_cast<long>(p.mesh.V.rows()),
+              p.roi.size(), p.d.norm());
+  std::printf("%-8s | %6s %9s %9s %9s %6s | %-28s | %s\n", "method", "iters", "ms", "estimate", "true",
+              "ratio", "reference (1e-9): iters, est", "paper (50 plain): true error");
+  for (const pd::Method method : pd::kAllMethods) {
+    pd::DeformOptions options;
+    options.method = method;
+    const pd::DeformResult r = pd::deform(p.mesh, p.roi, p.d, options);
+    pd::DeformOptions tight = options;
+    tight.tolerance = 1e-9;
+    tight.max_iterations = 20000;
+    const pd::DeformResult reference = pd::deform(p.mesh, p.roi, p.d, tight);
+    const pd::DeformResult paper = pd::deform(p.mesh, p.roi, p.d, pd::paper_iterations(options));
+    const double truth = true_error(r.V, reference.V, p.d);
+    const double estimate = r.error_estimate.value_or(NAN);
+    const double ratio = truth / estimate;
+    const bool honest = r.converged && ratio <= 2.0;
+    failures += honest ? 0 : 1;
+    std::printf("%-8s | %5d%s %9.1f %9.1e %9.1e %6.2f | %6d%s %9.1e            | %8.1e%s\n",
+                std::string(pd::method_name(method)).c_str(), r.iterations, r.converged ? " " : "*",
+                r.timing.factorize + r.timing.solve, estimate, truth, ratio, reference.iterations,
+                reference.converged ? " " : "*", reference.error_estimate.value_or(NAN),
+                true_error(paper.V, reference.V, p.d), honest ? "" : "   <-- optimistic > 2x or not converged");
+  }
+  return failures;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const bool quick = argc > 1 && std::strcmp(argv[1], "--quick") == 0;
+  std::printf("stopping_bench: estimated vs true distance to the minimiser, relative to |d| (default rule: "
+              "estimate <= 1e-2)\nratio = true / estimate (<= 2 required); * = not converged\n");
+  int failures = run(height_field(50, Eigen::Vector3d(0.05, 0.0, 0.02), "height field 2.5K, sideways pull"));
+  if (!quick) {
+    failures += run(height_field(100, Eigen::Vector3d(0.0, 0.0, 0.1), "height field 10K, pull along z"));
+    const std::filesystem::path dome = std::filesystem::path(PUSHPULL_SHARED_DATA) / "meshes" / "hemisphere.off";
+    if (std::filesystem::exists(dome)) {
+      Problem p;
+      p.name = "hemisphere, cap pulled up 0.5";
+      p.mesh = pd::read_mesh(dome);
+      std::vector<int> handle, fixed;
+      for (Eigen::Index v = 0; v < p.mesh.V.rows(); ++v) {
+        if (p.mesh.V(v, 2) > 0.9) handle.push_back(static_cast<int>(v));
+        if (p.mesh.V(v, 2) < 0.02) fixed.push_back(static_cast<int>(v));
+      }
+      p.roi = pd::build_roi(p.mesh, handle, fixed);
+      p.d = Eigen::Vector3d(0.0, 0.0, 0.5);
+      failures += run(p);
+    }
+  }
+  std::printf("\n%d row(s) failed the honesty check\n", failures);
+  return 0;
+}
