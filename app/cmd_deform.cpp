@@ -272,8 +272,8 @@ void run_deform(const DeformCommandOptions& o) {
               r.iterations, r.converged ? "converged" : "not converged",
               std::string(deform::stop_reason_name(r.stop_reason)).c_str(), r.timing.per_iteration,
               r.timing.factorize, record.total_ms);
-  std::printf("  max displacement %g; RMS along d %g, orthogonal to d %g\n", m.displacement.max, m.along_d.rms,
-              m.orthogonal.rms);
+  std::printf("  max displacement %g; RMS along d %g, orthogonal to d %g\n", m.displacement.max,
+              m.along_d.rms, m.orthogonal.rms);
   std::printf(
       "  Gaussian-curvature sign reversals (+ to -, - to +) %.2f%% of %zu vertices; %zu went flat, %zu left "
       "flat (flat: |K| L^2 <= %g, L = %g)\n",

@@ -216,9 +216,9 @@ std::vector<float> to_render_vertices(const RenderModel& render, const Eigen::Ve
   return out;
 }
 
-
 std::vector<float> curvature_signs_on_render_vertices(const RenderModel& render, const Eigen::MatrixXd& V,
-                                                      const std::vector<std::int8_t>& signs, double crease_deg) {
+                                                      const std::vector<std::int8_t>& signs,
+                                                      double crease_deg) {
   const auto& indices = render.mesh.indices;
   // Render triangles whose three vertices map to deform vertices, in deform indices.
   std::vector<size_t> triangle_of_row;

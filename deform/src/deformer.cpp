@@ -234,9 +234,12 @@ double Deformer::Impl::prepare_weights(const Eigen::Vector3d& push_direction,
                       (!unit || std::abs(unit->dot(*weight_direction)) >= 1.0 - 1e-14);
     if (!same || !factored) {
       // The stretched copy is mollified with the rest region's margin (see cotangent.hpp for why).
-      model.set_weights(
-          unit ? detail::half_cotangents(detail::stretch_along(P, *unit, options.mu), faces, mollify_eps).values
-               : rest_half_cot);
+      if (unit) {
+        const Eigen::Matrix3Xd stretched = detail::stretch_along(P, *unit, options.mu);
+        model.set_weights(detail::half_cotangents(stretched, faces, mollify_eps).values);
+      } else {
+        model.set_weights(rest_half_cot);
+      }
       weight_direction = unit;
       factored = false;
     }

@@ -12,7 +12,8 @@
 namespace pushpull::deform {
 
 std::vector<bool> flat_panel_faces(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, double crease_angle) {
-  if (V.cols() != 3 || F.cols() != 3) throw std::invalid_argument("flat_panel_faces: V and F must have 3 columns");
+  if (V.cols() != 3 || F.cols() != 3)
+    throw std::invalid_argument("flat_panel_faces: V and F must have 3 columns");
   if (F.size() > 0 && (F.minCoeff() < 0 || F.maxCoeff() >= V.rows())) {
     throw std::invalid_argument("flat_panel_faces: a face index is outside [0, " + std::to_string(V.rows()) +
                                 ")");
@@ -25,7 +26,8 @@ std::vector<bool> flat_panel_faces(const Eigen::MatrixXd& V, const Eigen::Matrix
     const Eigen::Vector3d n = (b - a).cross(c - a);
     const double length = n.norm();
     has_normal[static_cast<std::size_t>(f)] = length > 0.0 && std::isfinite(length);
-    normal.col(f) = has_normal[static_cast<std::size_t>(f)] ? Eigen::Vector3d(n / length) : Eigen::Vector3d::Zero();
+    normal.col(f) =
+        has_normal[static_cast<std::size_t>(f)] ? Eigen::Vector3d(n / length) : Eigen::Vector3d::Zero();
   }
   // Edges (key, face) sorted by key: the faces around each edge are adjacent in the list.
   std::vector<std::pair<std::uint64_t, int>> edges;
@@ -59,7 +61,8 @@ std::vector<bool> flat_panel_faces(const Eigen::MatrixXd& V, const Eigen::Matrix
 }
 
 std::vector<std::int8_t> display_curvature_signs(const std::vector<std::int8_t>& vertex_signs,
-                                                 const Eigen::MatrixXi& F, const std::vector<bool>& flat_panel) {
+                                                 const Eigen::MatrixXi& F,
+                                                 const std::vector<bool>& flat_panel) {
   if (flat_panel.size() != static_cast<std::size_t>(F.rows()))
     throw std::invalid_argument("display_curvature_signs: flat_panel must have one entry per face");
   if (F.size() > 0 && (F.minCoeff() < 0 || static_cast<std::size_t>(F.maxCoeff()) >= vertex_signs.size())) {

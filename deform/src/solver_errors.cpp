@@ -11,7 +11,8 @@ std::string region_text(const RegionSize& region) {
 }
 
 constexpr const char* kArapSAdvice =
-    "arap-s weights its spokes by (cot a + cot b) / 2, which is negative across obtuse triangles, so it is not "
+    "arap-s weights its spokes by (cot a + cot b) / 2, which is negative across obtuse triangles, so it is "
+    "not "
     "positive semidefinite on every mesh; use arap-sr or asan, or a smaller region (--roi-radius)";
 
 }  // namespace
@@ -33,8 +34,8 @@ std::string negative_energy_message(Method method, const RegionSize& region, dou
                                     double initial_energy) {
   char numbers[96];
   std::snprintf(numbers, sizeof numbers, "%.6g (from %.6g at the start)", energy, initial_energy);
-  return "deformer: " + std::string(method_name(method)) + ": the energy went negative, " + numbers + ", on " +
-         region_text(region) + ", so the result is not a meaningful shape: " + kArapSAdvice;
+  return "deformer: " + std::string(method_name(method)) + ": the energy went negative, " + numbers +
+         ", on " + region_text(region) + ", so the result is not a meaningful shape: " + kArapSAdvice;
 }
 
 }  // namespace pushpull::deform::detail

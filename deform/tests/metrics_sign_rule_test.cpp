@@ -22,9 +22,8 @@ namespace {
 // A 4 m x 2 m domed "body" panel (radii ~ 3 m and ~ 2 m) plus a separate 2 mm ball (a tiny
 // part whose |K| ~ 1e6 / m^2 dominates any max).
 pd::Mesh body_and_bolt() {
-  const pd::Mesh body = pt::grid(40, 20, -2, 2, -1, 1, [](double x, double y) {
-    return 0.6 - x * x / (2 * 3.0) - y * y / (2 * 2.0);
-  });
+  const pd::Mesh body = pt::grid(
+      40, 20, -2, 2, -1, 1, [](double x, double y) { return 0.6 - x * x / (2 * 3.0) - y * y / (2 * 2.0); });
   const pd::Mesh bolt = pt::icosphere(2, 0.002);
   pd::Mesh both;
   both.V.resize(body.V.rows() + bolt.V.rows(), 3);
@@ -57,7 +56,8 @@ TEST(MetricsSignRule, SameSignsAtEveryScale) {
   const pd::GaussianCurvature k = pd::gaussian_curvature(mesh.V, mesh.F);
   const pd::GaussianCurvature kt = pd::gaussian_curvature(toy.V, toy.F);
   const auto s = pd::curvature_signs(k, pd::flat_curvature_threshold(pd::curvature_reference_length(mesh.V)));
-  const auto st = pd::curvature_signs(kt, pd::flat_curvature_threshold(pd::curvature_reference_length(toy.V)));
+  const auto st =
+      pd::curvature_signs(kt, pd::flat_curvature_threshold(pd::curvature_reference_length(toy.V)));
   EXPECT_EQ(s, st);
 }
 
@@ -66,7 +66,8 @@ TEST(MetricsSignRule, StrictReversalsAreCountedApartFromMovesIntoAndOutOfFlat) {
   // reverses; then the saddle flattens: every vertex goes into flat, none reverses.
   const auto dome = [](double x, double y) { return 0.3 * (x * x + y * y); };
   const pd::Mesh before = pt::grid(16, 16, -1, 1, -1, 1, dome);
-  const pd::Mesh saddle = pt::grid(16, 16, -1, 1, -1, 1, [](double x, double y) { return 0.3 * (x * x - y * y); });
+  const pd::Mesh saddle =
+      pt::grid(16, 16, -1, 1, -1, 1, [](double x, double y) { return 0.3 * (x * x - y * y); });
   const pd::Mesh plane = pt::grid(16, 16, -1, 1, -1, 1);
   const Eigen::Vector3d d(0, 0, 1);
   const std::size_t interior = 15u * 15u;
@@ -103,7 +104,8 @@ pd::Mesh coarse_cube() {
 TEST(MetricsSignRule, FlatPanelsAreDrawnFlatAndCurvedSurfacesAreNot) {
   const pd::Mesh cube = coarse_cube();
   const pd::GaussianCurvature k = pd::gaussian_curvature(cube.V, cube.F);
-  const auto signs = pd::curvature_signs(k, pd::flat_curvature_threshold(pd::curvature_reference_length(cube.V)));
+  const auto signs =
+      pd::curvature_signs(k, pd::flat_curvature_threshold(pd::curvature_reference_length(cube.V)));
   for (auto s : signs) ASSERT_EQ(s, 1);  // the corners are cone points
   const std::vector<bool> flat = pd::flat_panel_faces(cube.V, cube.F);
   for (bool f : flat) EXPECT_TRUE(f);
@@ -127,7 +129,8 @@ TEST(MetricsSignRule, FlatPanelsAreDrawnFlatAndCurvedSurfacesAreNot) {
   const std::vector<bool> bump_flat = pd::flat_panel_faces(bump.V, bump.F);
   int flat_faces = 0;
   for (Eigen::Index f = 0; f < bump.F.rows(); ++f) {
-    const Eigen::Vector3d c = (bump.V.row(bump.F(f, 0)) + bump.V.row(bump.F(f, 1)) + bump.V.row(bump.F(f, 2))) / 3;
+    const Eigen::Vector3d c =
+        (bump.V.row(bump.F(f, 0)) + bump.V.row(bump.F(f, 1)) + bump.V.row(bump.F(f, 2))) / 3;
     if (c.head<2>().norm() > 0.75) {
       EXPECT_TRUE(bump_flat[static_cast<std::size_t>(f)]) << "face " << f;
     }

@@ -21,9 +21,9 @@ const Eigen::Vector3d kPull(0.0, 0.0, 0.05);
 
 // Caps and needles in free cells around the centre (the handle is the centre vertex and its 4 neighbours),
 // in both diagonal orientations.
-const std::map<std::pair<int, int>, Sliver> kSlivers = {
-    {{9, 8}, Sliver::Cap},    {{6, 8}, Sliver::Cap},    {{8, 5}, Sliver::Cap},
-    {{10, 10}, Sliver::Needle}, {{5, 9}, Sliver::Needle}, {{7, 6}, Sliver::Needle}};
+const std::map<std::pair<int, int>, Sliver> kSlivers = {{{9, 8}, Sliver::Cap},    {{6, 8}, Sliver::Cap},
+                                                        {{8, 5}, Sliver::Cap},    {{10, 10}, Sliver::Needle},
+                                                        {{5, 9}, Sliver::Needle}, {{7, 6}, Sliver::Needle}};
 
 RegionOfInterest sheet_roi(const testing::SliverSheet& s) {
   std::vector<int> handle, fixed;

@@ -14,7 +14,8 @@
 namespace pushpull::deform::detail {
 namespace {
 
-// The 3 x 3 stiffness of one triangle from its three half cotangents (weight k on the edge opposite corner k).
+// The 3 x 3 stiffness of one triangle from its three half cotangents (weight k on the edge opposite corner
+// k).
 Eigen::Matrix3d element(const Eigen::VectorXd& w, int f) {
   Eigen::Matrix3d K = Eigen::Matrix3d::Zero();
   for (int k = 0; k < 3; ++k) {
@@ -56,9 +57,11 @@ TEST(WeightsMollified, NeedlesAndCapsGivePsdBoundedElements) {
       const HalfCotangents w = half_cotangents(P, kOneFace, eps);
       ASSERT_TRUE(w.values.allFinite()) << "aspect " << aspect;
       // cot a cot b + cot b cot c + cot c cot a = 1 for a valid triangle (half cotangents: 1/4).
-      const double identity = w.values(0) * w.values(1) + w.values(1) * w.values(2) + w.values(2) * w.values(0);
+      const double identity =
+          w.values(0) * w.values(1) + w.values(1) * w.values(2) + w.values(2) * w.values(0);
       EXPECT_NEAR(identity, 0.25, 1e-8 * w.values.squaredNorm()) << "aspect " << aspect;
-      const Eigen::Vector3d eig = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(element(w.values, 0)).eigenvalues();
+      const Eigen::Vector3d eig =
+          Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(element(w.values, 0)).eigenvalues();
       EXPECT_GE(eig(0), -1e-12 * eig(2)) << "aspect " << aspect;
       EXPECT_GT(eig(1), 0.0) << "aspect " << aspect;  // only translations are free
       EXPECT_LE(w.values.cwiseAbs().maxCoeff(), 2.0 / eps) << "aspect " << aspect;
@@ -71,7 +74,8 @@ TEST(WeightsMollified, StretchedHealthyTrianglesAreNotMollified) {
   // ASAN's stretch makes well-shaped triangles thin (mu = 100) but leaves their margins far above eps.
   const Eigen::Matrix3Xd P = triangle({0, 0, 0}, {0.1, 0, 0}, {0.03, 0.09, 0.02});
   const double eps = mollification_margin(P, kOneFace);
-  for (const Eigen::Vector3d& d : {Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0, 1, 0), Eigen::Vector3d(1, 1, 1)}) {
+  for (const Eigen::Vector3d& d :
+       {Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0, 1, 0), Eigen::Vector3d(1, 1, 1)}) {
     const HalfCotangents w = half_cotangents(stretch_along(P, d, 100.0), kOneFace, eps);
     EXPECT_EQ(w.added_length, 0.0);
   }
@@ -80,7 +84,7 @@ TEST(WeightsMollified, StretchedHealthyTrianglesAreNotMollified) {
 TEST(WeightsMollified, FactorizationErrorNamesMethodRegionAndRemedy) {
   // An indefinite 2 x 2 free block: GlobalSystem reports the pivot, the Deformer's message adds the rest.
   Eigen::SparseMatrix<double> Q(3, 3);
-  std::vector<Eigen::Triplet<double>> t = {{0, 0, 1.0}, {1, 1, 1.0}, {0, 1, 2.0}, {1, 0, 2.0},
+  std::vector<Eigen::Triplet<double>> t = {{0, 0, 1.0}, {1, 1, 1.0},  {0, 1, 2.0}, {1, 0, 2.0},
                                            {2, 2, 1.0}, {0, 2, -1.0}, {2, 0, -1.0}};
   Q.setFromTriplets(t.begin(), t.end());
   GlobalSystem system;

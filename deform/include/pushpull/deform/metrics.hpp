@@ -15,9 +15,9 @@
 //    finding (ARAP-s&r turns part of it saddle-shaped, ASAN keeps it convex) holds with 1e-2 (37.8% vs 0%
 //    reversals) but vanishes with 0.1 (half of ASAN's bonnet ends "flat") or 1 (the whole bonnet is flat
 //    before the pull). Float32 positions give planar panels an angle-defect noise estimated at 1e-3 .. 1e-2
-//    in these units for 1-5 cm triangles on a car, and the display rule below draws flat panels flat. Near-developable panels (doors) are where the sign is
-//    least stable; a larger --dead-band (0.1 .. 1) draws them flat at the price above.
-//    The paper's yellow/blue sign maps become +1 / -1 / 0 here.
+//    in these units for 1-5 cm triangles on a car, and the display rule below draws flat panels flat.
+//    Near-developable panels (doors) are where the sign is least stable; a larger --dead-band (0.1 .. 1)
+//    draws them flat at the price above. The paper's yellow/blue sign maps become +1 / -1 / 0 here.
 //  - Flat panels shown flat: the angle defect at a vertex where only flat panels meet (creases meeting at a
 //    corner of a coarse CAD panel) is not the curvature of those panels, yet interpolating vertex colours
 //    paints the whole panel with it. flat_panel_faces() marks the faces whose every edge is a boundary, a
@@ -148,15 +148,15 @@ struct MetricsOptions {
 
 // Everything the paper evaluates for one push/pull, over a vertex set S (the region of interest).
 struct DeformationMetrics {
-  std::size_t evaluated_vertices = 0;  // |S|
-  std::size_t curvature_vertices = 0;  // S minus mesh-boundary vertices: where signs are compared
-  double reference_length = 0.0;       // L of the sign rule: bounding-box diagonal of `before` (model units)
-  double curvature_threshold = 0.0;    // flat_band / L^2, 1/length^2: |K| at most this is flat
-  std::size_t sign_flips = 0;          // vertices whose sign changed (any of +,-,0 to another)
-  std::size_t sign_reversals = 0;      // strict reversals: + to - or - to + (the paper's sign flips)
-  std::size_t into_flat = 0;           // + or - before, flat after
-  std::size_t out_of_flat = 0;         // flat before, + or - after
-  double sign_flip_fraction = 0.0;     // sign_flips / curvature_vertices (0 when there are none)
+  std::size_t evaluated_vertices = 0;   // |S|
+  std::size_t curvature_vertices = 0;   // S minus mesh-boundary vertices: where signs are compared
+  double reference_length = 0.0;        // L of the sign rule: bounding-box diagonal of `before` (model units)
+  double curvature_threshold = 0.0;     // flat_band / L^2, 1/length^2: |K| at most this is flat
+  std::size_t sign_flips = 0;           // vertices whose sign changed (any of +,-,0 to another)
+  std::size_t sign_reversals = 0;       // strict reversals: + to - or - to + (the paper's sign flips)
+  std::size_t into_flat = 0;            // + or - before, flat after
+  std::size_t out_of_flat = 0;          // flat before, + or - after
+  double sign_flip_fraction = 0.0;      // sign_flips / curvature_vertices (0 when there are none)
   double sign_reversal_fraction = 0.0;  // sign_reversals / curvature_vertices (0 when there are none)
   std::size_t positive_before = 0, negative_before = 0, positive_after = 0, negative_after = 0;
   NormSummary displacement;       // |u| over S
