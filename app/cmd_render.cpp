@@ -166,7 +166,8 @@ void add_render_command(CLI::App& root) {
                   "Displacement shown as the top of the colour map (model units; default: the largest)");
   cmd->add_option("--dead-band", options->dead_band,
                   "Curvature sign: |K| L^2 <= dead-band counts as flat (grey), L = MODEL's bounding-box "
-                  "diagonal (the rule of deform's metrics); faces of flat panels are drawn flat");
+                  "diagonal (the rule of deform's metrics); faces of flat panels are drawn flat")
+      ->capture_default_str();
   cmd->add_option("--handle", options->handle_file,
                   "Handle vertices (index file of deform vertices), drawn red");
   cmd->add_option("--fixed", options->fixed_file, "Fixed vertices (index file), drawn blue");
