@@ -52,7 +52,7 @@ struct DeformCommandOptions {
   double lambda = 1.0;
   int rings = 2;
   int sections = 5;
-  double dead_band = 1e-3;
+  double dead_band = deform::kDefaultFlatBand;
   bool attached_parts = true;
   double attach_reach = 0.0;  // <= 0: automatic
   std::string out;
@@ -265,7 +265,7 @@ void run_deform(const DeformCommandOptions& o) {
   std::sort(omega.begin(), omega.end());
 
   deform::MetricsOptions metrics_options;
-  metrics_options.dead_band_fraction = o.dead_band;
+  metrics_options.flat_band = o.dead_band;
   metrics_options.section_offsets = section_offsets(*mesh, omega, d, o.sections);
   record.metrics = deform::evaluate_deformation(*mesh, record.result.V, d, omega, metrics_options);
 
@@ -298,9 +298,14 @@ void run_deform(const DeformCommandOptions& o) {
               r.iterations, r.converged ? "converged" : "not converged",
               std::string(deform::stop_reason_name(r.stop_reason)).c_str(), r.timing.per_iteration,
               r.timing.factorize, record.total_ms);
+  std::printf("  max displacement %g; RMS along d %g, orthogonal to d %g\n", m.displacement.max,
+              m.along_d.rms, m.orthogonal.rms);
   std::printf(
-      "  max displacement %g; RMS along d %g, orthogonal to d %g; Gaussian-curvature sign flips %.2f%%\n",
-      m.displacement.max, m.along_d.rms, m.orthogonal.rms, 100.0 * m.sign_flip_fraction);
+      "  Gaussian-curvature sign reversals (+ to -, - to +) %.2f%% of %zu vertices; %zu went flat, %zu left "
+      "flat (flat: |K| L^2 <= %g, L = %g)\n",
+      100.0 * m.sign_reversal_fraction, m.curvature_vertices, m.into_flat, m.out_of_flat, o.dead_band,
+      m.reference_length);
+  for (const std::string& warning : r.warnings) std::printf("  warning: %s\n", warning.c_str());
   if (!record.attached.empty()) {
     long moved = 0, vertices = 0;
     double largest = 0.0;
@@ -312,7 +317,6 @@ void run_deform(const DeformCommandOptions& o) {
     std::printf("  attached parts: %zu within %g of the region (%ld vertices); %ld moved with the surface, up to %g\n",
                 record.attached.size(), record.attach_reach, vertices, moved, largest);
   }
-  for (const std::string& warning : r.warnings) std::printf("  warning: %s\n", warning.c_str());
   std::printf("  wrote %s and %s\n", o.out.c_str(), o.metrics.c_str());
 }
 
@@ -374,7 +378,8 @@ void add_deform_command(CLI::App& root) {
                   "the region's bounding-box diagonal)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--dead-band", o->dead_band,
-                  "Curvature below this fraction of the largest |K| counts as zero (flat) in sign statistics")
+                  "Curvature sign: |K| L^2 <= this counts as flat (zero) in sign statistics, L = the model's "
+                  "bounding-box diagonal (the rule `render --color curvature-sign` draws)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--out", o->out, "Deformed model to write (.glb, .off, .obj, .ply)")->required();

@@ -68,23 +68,15 @@ void run_render(const RenderCommandOptions& options) {
     inputs.scalars = to_render_vertices(inputs.render, magnitude);
     inputs.scalar_max = magnitude.size() > 0 ? magnitude.maxCoeff() : 0.0;
   } else if (options.color == "curvature-sign") {
-    const deform::GaussianCurvature before = deform::gaussian_curvature(V0, F);
+    // deform's one sign rule: flat when |K| L^2 <= dead-band, L = the model's bounding-box diagonal (the
+    // same L and rule as `pushpull deform`'s metrics); flat panels drawn flat.
     const deform::GaussianCurvature after = deform::gaussian_curvature(V, F);
-    // Dead band relative to the median of |K| over MODEL's interior vertices: a maximum
-    // would be dominated by spikes at tiny pieces (ToyCar's max |K| is ~1e6 times its median).
-    std::vector<double> magnitudes;
-    for (Eigen::Index i = 0; i < before.K.size(); ++i)
-      if (!before.boundary[size_t(i)] && before.K(i) != 0.0) magnitudes.push_back(std::abs(before.K(i)));
-    double reference = 0.0;
-    if (!magnitudes.empty()) {
-      const auto nth = magnitudes.begin() + std::ptrdiff_t(0.5 * double(magnitudes.size() - 1));
-      std::nth_element(magnitudes.begin(), nth, magnitudes.end());
-      reference = *nth;
-    }
-    const std::vector<std::int8_t> signs = deform::curvature_signs(after, options.dead_band * reference);
-    Eigen::VectorXd s(Eigen::Index(signs.size()));
-    for (size_t i = 0; i < signs.size(); ++i) s(Eigen::Index(i)) = after.boundary[i] ? 0.0 : double(signs[i]);
-    inputs.scalars = to_render_vertices(inputs.render, s);
+    const double threshold =
+        deform::flat_curvature_threshold(deform::curvature_reference_length(V0), options.dead_band);
+    std::vector<std::int8_t> signs = deform::curvature_signs(after, threshold);
+    for (size_t i = 0; i < signs.size(); ++i)
+      if (after.boundary[i]) signs[i] = 0;  // the boundary's turn is not surface curvature
+    inputs.scalars = curvature_signs_on_render_vertices(inputs.render, V, signs);
   }
 
   // Overlays on deform vertices.
@@ -176,8 +168,9 @@ void add_render_command(CLI::App& root) {
   cmd->add_option("--scalar-max", options->scalar_max,
                   "Displacement shown as the top of the colour map (model units; default: the largest)");
   cmd->add_option("--dead-band", options->dead_band,
-                  "Curvature sign: |K| <= dead-band * (median of |K| over MODEL's interior vertices) "
-                  "counts as flat (grey)");
+                  "Curvature sign: |K| L^2 <= dead-band counts as flat (grey), L = MODEL's bounding-box "
+                  "diagonal (the rule of deform's metrics); faces of flat panels are drawn flat")
+      ->capture_default_str();
   cmd->add_option("--handle", options->handle_file,
                   "Handle vertices (index file of deform vertices), drawn red");
   cmd->add_option("--fixed", options->fixed_file, "Fixed vertices (index file), drawn blue");

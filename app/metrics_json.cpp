@@ -65,6 +65,7 @@ std::string metrics_json(const DeformRunRecord& record) {
                           {"total", record.total_ms}};
   doc["max_displacement"] = metrics.displacement.max;
   doc["gaussian_sign_flip_fraction"] = metrics.sign_flip_fraction;
+  doc["gaussian_sign_reversal_fraction"] = metrics.sign_reversal_fraction;
   doc["along_d_norm"] = metrics.along_d.rms;
   doc["orthogonal_norm"] = metrics.orthogonal.rms;
   doc["norm"] = "rms over the ROI vertices (see norms for max and l2)";
@@ -73,12 +74,25 @@ std::string metrics_json(const DeformRunRecord& record) {
                       {"orthogonal", norms(metrics.orthogonal)}};
   doc["mean_along_d"] = metrics.mean_along_d;
   doc["curvature"] =
-      json{{"evaluated_vertices", metrics.curvature_vertices}, {"threshold", metrics.curvature_threshold},
-           {"dead_band_fraction", record.dead_band_fraction},  {"sign_flips", metrics.sign_flips},
-           {"sign_reversals", metrics.sign_reversals},         {"positive_before", metrics.positive_before},
-           {"negative_before", metrics.negative_before},       {"positive_after", metrics.positive_after},
-           {"negative_after", metrics.negative_after},         {"area", "mixed Voronoi (Meyer et al. 2003)"},
-           {"boundary", "mesh-boundary vertices excluded"}};
+      json{{"evaluated_vertices", metrics.curvature_vertices},
+           {"threshold", metrics.curvature_threshold},
+           {"dead_band_fraction", record.dead_band_fraction},
+           {"sign_flips", metrics.sign_flips},
+           {"sign_reversals", metrics.sign_reversals},
+           {"positive_before", metrics.positive_before},
+           {"negative_before", metrics.negative_before},
+           {"positive_after", metrics.positive_after},
+           {"negative_after", metrics.negative_after},
+           {"area", "mixed Voronoi (Meyer et al. 2003)"},
+           {"boundary", "mesh-boundary vertices excluded"},
+           {"flat_band", record.dead_band_fraction},
+           {"reference_length", metrics.reference_length},
+           {"into_flat", metrics.into_flat},
+           {"out_of_flat", metrics.out_of_flat},
+           {"sign_reversal_fraction", metrics.sign_reversal_fraction},
+           {"flat_rule",
+            "|K| * reference_length^2 <= flat_band (reference_length: bounding-box diagonal of the "
+            "model); sign_flips counts every change, sign_reversals only + to - and - to +"}};
   json sections = json::array();
   for (const deform::Section& section : metrics.sections) {
     sections.push_back(json{

@@ -6,11 +6,15 @@
 //   handle_count, fixed_count, free_count, iterations, max_iterations, tolerance, energy_tolerance,
 //   anderson, converged, stop_reason, energy_trace [..], initial_energy,
 //   timing_ms {precompute, factorize, solve, per_iteration, total},
-//   max_displacement, gaussian_sign_flip_fraction, along_d_norm (RMS over the ROI), orthogonal_norm (RMS),
+//   max_displacement, gaussian_sign_flip_fraction (any sign change), gaussian_sign_reversal_fraction (+ to -
+//   and - to + only), along_d_norm (RMS over the ROI), orthogonal_norm (RMS),
 //   norms {displacement, along_d, orthogonal: {rms, max, l2}}, mean_along_d,
 //   curvature {evaluated_vertices, threshold, dead_band_fraction, sign_flips, sign_reversals,
 //              positive_before, negative_before, positive_after, negative_after, area: "mixed Voronoi",
-//              boundary: "excluded"},
+//              boundary: "excluded", flat_band, reference_length, into_flat, out_of_flat,
+//              sign_reversal_fraction, flat_rule: text}. Flat: |K| reference_length^2 <= flat_band (the
+//              deform sign rule, metrics.hpp); dead_band_fraction repeats flat_band for older readers
+//              (it no longer is a fraction of max |K|).
 //   sections [{offset, before: [{closed, points [[x,y,z]..]}], after: [...]}],
 //   attached_parts {reach, parts: [{component, vertices, first_vertex, rest_gap, max_displacement}]},
 //   warnings [..].
@@ -47,7 +51,7 @@ struct DeformRunRecord {
   double total_ms = 0.0;  // wall time of the command: load to write
   deform::DeformResult result;
   deform::DeformationMetrics metrics;
-  double dead_band_fraction = 0.0;
+  double dead_band_fraction = 0.0;  // the sign rule's flat band (--dead-band), dimensionless
   std::vector<AttachedPartRecord> attached;  // parts that follow the surface (empty when turned off)
   double attach_reach = 0.0;                 // the distance that decided which parts follow
 };

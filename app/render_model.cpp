@@ -1,5 +1,6 @@
 #include "render_model.hpp"
 
+#include "pushpull/deform/metrics.hpp"
 #include "pushpull/renderer/geometry.hpp"
 #include "pushpull/renderer/image_io.hpp"
 
@@ -8,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <numbers>
 #include <stdexcept>
 
 namespace pushpull::app {
@@ -210,6 +212,41 @@ std::vector<float> to_render_vertices(const RenderModel& render, const Eigen::Ve
   for (size_t r = 0; r < out.size(); ++r) {
     const int d = render.deform_vertex[r];
     if (d >= 0 && d < values.size()) out[r] = float(values(d));
+  }
+  return out;
+}
+
+std::vector<float> curvature_signs_on_render_vertices(const RenderModel& render, const Eigen::MatrixXd& V,
+                                                      const std::vector<std::int8_t>& signs,
+                                                      double crease_deg) {
+  const auto& indices = render.mesh.indices;
+  // Render triangles whose three vertices map to deform vertices, in deform indices.
+  std::vector<size_t> triangle_of_row;
+  std::vector<Eigen::Vector3i> rows;
+  for (size_t t = 0; t + 2 < indices.size(); t += 3) {
+    Eigen::Vector3i f;
+    bool mapped = true;
+    for (int c = 0; c < 3; ++c) {
+      const int d = render.deform_vertex[indices[t + size_t(c)]];
+      mapped = mapped && d >= 0 && d < V.rows();
+      f(c) = d;
+    }
+    if (!mapped) continue;
+    rows.push_back(f);
+    triangle_of_row.push_back(t);
+  }
+  Eigen::MatrixXi F(Eigen::Index(rows.size()), 3);
+  for (size_t k = 0; k < rows.size(); ++k) F.row(Eigen::Index(k)) = rows[k].transpose();
+  const std::vector<bool> flat = deform::flat_panel_faces(V, F, crease_deg * std::numbers::pi / 180.0);
+  std::vector<bool> shown(render.deform_vertex.size(), false);
+  for (size_t k = 0; k < rows.size(); ++k) {
+    if (flat[k]) continue;
+    for (int c = 0; c < 3; ++c) shown[indices[triangle_of_row[k] + size_t(c)]] = true;
+  }
+  std::vector<float> out(render.deform_vertex.size(), 0.0f);
+  for (size_t r = 0; r < out.size(); ++r) {
+    const int d = render.deform_vertex[r];
+    if (shown[r] && d >= 0 && size_t(d) < signs.size()) out[r] = float(signs[size_t(d)]);
   }
   return out;
 }

@@ -11,6 +11,7 @@
 
 #include <Eigen/Core>
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -39,5 +40,13 @@ std::vector<float> deformed_normals(const RenderModel& render, const std::vector
 
 // A deform-side per-vertex value (#Vd) on the render vertices (#Vr); 0 where unmapped.
 std::vector<float> to_render_vertices(const RenderModel& render, const Eigen::VectorXd& per_deform_vertex);
+
+// Curvature signs (#Vd, from deform::curvature_signs) on the render vertices (#Vr) as deform draws them
+// (deform::display_curvature_signs, per render vertex): a render vertex shows its deform vertex's sign only
+// if one of the render triangles using it is not a flat-panel face (deform::flat_panel_faces on the
+// positions V, #Vd by 3, with the render crease angle), so coarse flat panels are drawn flat; 0 elsewhere.
+std::vector<float> curvature_signs_on_render_vertices(const RenderModel& render, const Eigen::MatrixXd& V,
+                                                      const std::vector<std::int8_t>& signs,
+                                                      double crease_deg = 35.0);
 
 }  // namespace pushpull::app

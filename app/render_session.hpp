@@ -3,6 +3,7 @@
 // Thread-safety: call from one thread (the renderer asserts it).
 #pragma once
 
+#include "pushpull/deform/metrics.hpp"
 #include "render_model.hpp"
 
 #include <Eigen/Core>
@@ -27,7 +28,7 @@ struct RenderCommandOptions {
   std::vector<double> up{0.0, 1.0, 0.0};
   double fov_deg = 30.0;
   std::optional<double> scalar_max;
-  double dead_band = 0.02;
+  double dead_band = deform::kDefaultFlatBand;  // curvature sign: |K| L^2 <= this is flat
   std::string handle_file, fixed_file, roi_file;
   std::vector<double> handle_at;
   double handle_radius = 0.0;

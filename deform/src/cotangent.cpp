@@ -3,25 +3,53 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
-
-#include "pushpull/deform/mesh_validation.hpp"
+#include <utility>
 
 namespace pushpull::deform::detail {
 
-Eigen::VectorXd half_cotangents(const Eigen::Matrix3Xd& P, const Eigen::MatrixX3i& faces) {
-  Eigen::VectorXd out = Eigen::VectorXd::Zero(3 * faces.rows());
-  constexpr double kHalfMax = 0.5 * kMaxCotangent;
+double mollification_margin(const Eigen::Matrix3Xd& P, const Eigen::MatrixX3i& faces) {
+  if (faces.rows() == 0) return 0.0;
+  double total = 0.0;
   for (Eigen::Index f = 0; f < faces.rows(); ++f) {
-    const Eigen::Vector3d a = P.col(faces(f, 0)), b = P.col(faces(f, 1)), c = P.col(faces(f, 2));
-    const Eigen::Vector3d ab = b - a, bc = c - b, ca = a - c;
-    const double twice_area = ab.cross(-ca).norm();
-    const double longest2 = std::max({ab.squaredNorm(), bc.squaredNorm(), ca.squaredNorm()});
-    if (!(twice_area > 1e-14 * longest2)) continue;  // degenerate: no stiffness
-    // cot(angle at a) = (ab . ac) / |ab x ac|, and so on.
-    const double inv = 0.5 / twice_area;
-    out(3 * f + 0) = std::clamp(ab.dot(-ca) * inv, -kHalfMax, kHalfMax);
-    out(3 * f + 1) = std::clamp(bc.dot(-ab) * inv, -kHalfMax, kHalfMax);
-    out(3 * f + 2) = std::clamp(ca.dot(-bc) * inv, -kHalfMax, kHalfMax);
+    for (int k = 0; k < 3; ++k) total += (P.col(faces(f, (k + 1) % 3)) - P.col(faces(f, (k + 2) % 3))).norm();
+  }
+  return kMollifyFactor * total / (3.0 * static_cast<double>(faces.rows()));
+}
+
+HalfCotangents half_cotangents(const Eigen::Matrix3Xd& P, const Eigen::MatrixX3i& faces, double eps) {
+  const Eigen::Index nf = faces.rows();
+  // Edge length opposite each corner, and the smallest length to add so that every triangle inequality
+  // holds with margin eps (adding delta to all three lengths raises each margin l_i + l_j - l_k by delta).
+  Eigen::Matrix3Xd lengths(3, nf);
+  double delta = 0.0;
+  for (Eigen::Index f = 0; f < nf; ++f) {
+    for (int k = 0; k < 3; ++k)
+      lengths(k, f) = (P.col(faces(f, (k + 1) % 3)) - P.col(faces(f, (k + 2) % 3))).norm();
+    for (int k = 0; k < 3; ++k) {
+      const double margin = lengths((k + 1) % 3, f) + lengths((k + 2) % 3, f) - lengths(k, f);
+      delta = std::max(delta, eps - margin);
+    }
+  }
+
+  HalfCotangents out;
+  out.added_length = delta;
+  out.values = Eigen::VectorXd::Zero(3 * nf);
+  for (Eigen::Index f = 0; f < nf; ++f) {
+    const Eigen::Vector3d l = lengths.col(f).array() + delta;
+    // Kahan's Heron formula on sorted lengths a >= b >= c, stable for needles and caps.
+    double a = l(0), b = l(1), c = l(2);
+    if (a < b) std::swap(a, b);
+    if (b < c) std::swap(b, c);
+    if (a < b) std::swap(a, b);
+    const double product = (a + (b + c)) * (c - (a - b)) * (c + (a - b)) * (a + (b - c));
+    const double area = 0.25 * std::sqrt(std::max(product, 0.0));
+    if (!(area > 0.0)) continue;  // only possible with eps = 0 on a degenerate face: no stiffness
+    const double inv = 1.0 / (8.0 * area);
+    for (int k = 0; k < 3; ++k) {
+      const double li = l((k + 1) % 3), lj = l((k + 2) % 3), lk = l(k);
+      // Law of cosines: cot(angle opposite l_k) = (l_i^2 + l_j^2 - l_k^2) / (4 area); half of it.
+      out.values(3 * f + k) = ((li - lk) * (li + lk) + lj * lj) * inv;
+    }
   }
   return out;
 }

@@ -4,12 +4,14 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 #include <tuple>
 
 #include "cotangent.hpp"
 #include "deformer_impl.hpp"
 #include "mesh_graph.hpp"
+#include "solver_errors.hpp"
 
 namespace pushpull::deform {
 namespace {
@@ -167,7 +169,16 @@ void Deformer::Impl::setup() {
           global_to_local[static_cast<std::size_t>(m.F(omega_faces[k], c))];
     }
   }
-  rest_half_cot = detail::half_cotangents(P, faces);
+  mollify_eps = detail::mollification_margin(P, faces);
+  const detail::HalfCotangents rest_weights = detail::half_cotangents(P, faces, mollify_eps);
+  rest_half_cot = rest_weights.values;
+  if (rest_weights.added_length > 0.0) {
+    char added[32];
+    std::snprintf(added, sizeof added, "%.3g", rest_weights.added_length);
+    setup_warnings.push_back(std::string("deformer: the region has sliver triangles; its weights use edge "
+                                         "lengths lengthened by ") +
+                             added + " model units (intrinsic mollification) to stay positive definite");
+  }
 
   // arap-h: vertices whose every mesh face is in Omega and whose every edge has two faces (mean curvature
   // is defined there).
@@ -225,14 +236,24 @@ double Deformer::Impl::prepare_weights(const Eigen::Vector3d& push_direction,
     const bool same = unit.has_value() == weight_direction.has_value() &&
                       (!unit || *unit == *weight_direction || *unit == -*weight_direction);
     if (!same || !factored) {
-      model.set_weights(unit ? detail::half_cotangents(detail::stretch_along(P, *unit, options.mu), faces)
-                             : rest_half_cot);
+      // The stretched copy is mollified with the rest region's margin (see cotangent.hpp for why).
+      if (unit) {
+        const Eigen::Matrix3Xd stretched = detail::stretch_along(P, *unit, options.mu);
+        model.set_weights(detail::half_cotangents(stretched, faces, mollify_eps).values);
+      } else {
+        model.set_weights(rest_half_cot);
+      }
       weight_direction = unit;
       factored = false;
     }
   }
   if (!factored) {
-    system.factorize(model.Q);
+    try {
+      system.factorize(model.Q);
+    } catch (const detail::FactorizationError& e) {
+      throw std::runtime_error(detail::factorization_failure_message(
+          options.method, {static_cast<int>(P.cols()), n_free, n_handle, n_fixed}, e.what()));
+    }
     factored = true;
     ++factorizations;
   }
@@ -317,7 +338,16 @@ DeformResult Deformer::solve(const ConstraintTargets& targets, const ProgressCal
   } else {
     push = (X_c.leftCols(s.n_handle) - s.P.middleCols(s.n_free, s.n_handle)).rowwise().mean();
   }
-  return s.run(X_c, push, targets.initial_guess, progress ? progress : s.options.progress);
+  DeformResult result = s.run(X_c, push, targets.initial_guess, progress ? progress : s.options.progress);
+  // arap-s is the one method whose energy is not PSD (negative spoke weights): a negative energy proves the
+  // negative weights won, and the shape means nothing (Le Vaou et al. 2020, Fig. 3). Say so, not return it.
+  if (s.options.method == Method::ArapS && !result.cancelled && !result.energy_trace.empty() &&
+      result.energy_trace.back() < -1e-9 * std::max(result.initial_energy, 0.0)) {
+    throw std::runtime_error(detail::negative_energy_message(
+        Method::ArapS, {static_cast<int>(s.P.cols()), s.n_free, s.n_handle, s.n_fixed},
+        result.energy_trace.back(), result.initial_energy));
+  }
+  return result;
 }
 
 const RegionOfInterest& Deformer::roi() const {

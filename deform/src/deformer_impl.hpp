@@ -30,6 +30,7 @@ struct Deformer::Impl {
   Eigen::Matrix3Xd P;      // 3 by n rest positions
   Eigen::MatrixX3i faces;  // Omega's triangles in local indices
   Eigen::VectorXd rest_half_cot;
+  double mollify_eps = 0.0;  // triangle-inequality margin of the mollified weights (cotangent.hpp)
 
   detail::EnergyModel model;
   detail::GlobalSystem system;

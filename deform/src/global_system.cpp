@@ -50,17 +50,16 @@ void GlobalSystem::factorize(const Eigen::SparseMatrix<double>& Q) {
   if (n_free_ == 0) return;
   ldlt_.factorize(qff_);
   if (ldlt_.info() != Eigen::Success) {
-    throw std::runtime_error("deformer: the global matrix (" + std::to_string(n_free_) +
+    throw FactorizationError("the global matrix (" + std::to_string(n_free_) +
                              " free vertices) could not be factored: it is not positive definite");
   }
   const Eigen::VectorXd d = ldlt_.vectorD();
   const double largest = d.cwiseAbs().maxCoeff();
   for (Eigen::Index i = 0; i < d.size(); ++i) {
     if (!(d(i) > 1e-13 * largest)) {
-      throw std::runtime_error("deformer: the global matrix is singular or indefinite (pivot " +
-                               std::to_string(i) + " = " + std::to_string(d(i)) +
-                               "); a free vertex may be connected to no "
-                               "constrained vertex by positive weights");
+      throw FactorizationError("the global matrix (" + std::to_string(n_free_) +
+                               " free vertices) is singular or indefinite (pivot " + std::to_string(i) +
+                               " = " + std::to_string(d(i)) + ", largest " + std::to_string(largest) + ")");
     }
   }
   inv_d_ = d.cwiseInverse();

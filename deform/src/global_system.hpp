@@ -5,18 +5,27 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
+#include <stdexcept>
 #include <vector>
 
 #include "helper_thread.hpp"
 
 namespace pushpull::deform::detail {
 
+// Q_ff could not be factored: what() says how (the failing pivot); the Deformer adds the method, the
+// region's size and what to try (see factorization_failure_message in deformer.cpp).
+class FactorizationError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 class GlobalSystem {
  public:
   // Q: n by n symmetric (both triangles stored), local vertices [0, n_free) free, the rest constrained.
   // Extracts the blocks' patterns and runs the symbolic analysis (fill-reducing ordering, elimination tree).
   void analyze(const Eigen::SparseMatrix<double>& Q, int n_free);
-  // Copies Q's current values into the blocks and refactors. Throws std::runtime_error if Q_ff is singular.
+  // Copies Q's current values into the blocks and refactors. Throws FactorizationError if Q_ff is singular or
+  // indefinite (a pivot of its LDL^T at most 1e-13 times the largest).
   void factorize(const Eigen::SparseMatrix<double>& Q);
   // -Q_fc X_c for the constrained columns X_c (3 by n - n_free): 3 by n_free.
   [[nodiscard]] Eigen::Matrix3Xd constrained_rhs(const Eigen::Matrix3Xd& X_c) const;

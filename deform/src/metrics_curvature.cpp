@@ -100,6 +100,16 @@ GaussianCurvature gaussian_curvature(const Eigen::MatrixXd& V, const Eigen::Matr
   return result;
 }
 
+double curvature_reference_length(const Eigen::MatrixXd& V) {
+  if (V.rows() == 0) return 0.0;
+  return (V.colwise().maxCoeff() - V.colwise().minCoeff()).norm();
+}
+
+double flat_curvature_threshold(double reference_length, double flat_band) {
+  if (!(reference_length > 0.0)) return 0.0;
+  return flat_band / (reference_length * reference_length);
+}
+
 std::vector<std::int8_t> curvature_signs(const GaussianCurvature& curvature, double threshold) {
   std::vector<std::int8_t> signs(static_cast<std::size_t>(curvature.K.size()), 0);
   for (Eigen::Index i = 0; i < curvature.K.size(); ++i) {

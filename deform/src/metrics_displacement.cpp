@@ -87,12 +87,8 @@ DeformationMetrics evaluate_deformation(const Mesh& before, const Eigen::MatrixX
 
   const GaussianCurvature k_before = gaussian_curvature(before.V, before.F);
   const GaussianCurvature k_after = gaussian_curvature(V_after, before.F);
-  double max_abs_k = 0.0;
-  for (const int i : vertices) {
-    if (!k_before.boundary[static_cast<std::size_t>(i)])
-      max_abs_k = std::max(max_abs_k, std::abs(k_before.K(i)));
-  }
-  metrics.curvature_threshold = options.dead_band_fraction * max_abs_k;
+  metrics.reference_length = curvature_reference_length(before.V);
+  metrics.curvature_threshold = flat_curvature_threshold(metrics.reference_length, options.flat_band);
   const std::vector<std::int8_t> sign_before = curvature_signs(k_before, metrics.curvature_threshold);
   const std::vector<std::int8_t> sign_after = curvature_signs(k_after, metrics.curvature_threshold);
   for (const int i : vertices) {
@@ -105,11 +101,14 @@ DeformationMetrics evaluate_deformation(const Mesh& before, const Eigen::MatrixX
     metrics.negative_after += sign_after[v] < 0;
     metrics.sign_flips += sign_before[v] != sign_after[v];
     metrics.sign_reversals += sign_before[v] * sign_after[v] < 0;
+    metrics.into_flat += sign_before[v] != 0 && sign_after[v] == 0;
+    metrics.out_of_flat += sign_before[v] == 0 && sign_after[v] != 0;
   }
-  metrics.sign_flip_fraction =
-      metrics.curvature_vertices > 0
-          ? static_cast<double>(metrics.sign_flips) / static_cast<double>(metrics.curvature_vertices)
-          : 0.0;
+  if (metrics.curvature_vertices > 0) {
+    const auto n = static_cast<double>(metrics.curvature_vertices);
+    metrics.sign_flip_fraction = static_cast<double>(metrics.sign_flips) / n;
+    metrics.sign_reversal_fraction = static_cast<double>(metrics.sign_reversals) / n;
+  }
 
   const Eigen::Vector3d unit = d.normalized();
   for (const double offset : options.section_offsets) {

@@ -75,24 +75,28 @@ TEST(SolverCactusAnderson, ReachesPlainShapeInFewerIterations) {
   for (Method method : {Method::ArapSR, Method::Asan}) {
     DeformOptions options;
     options.method = method;
-    options.tolerance = 1e-4;
+    // Estimated distance to the minimiser, relative to the handle's move. Plain iterations crawl on the
+    // stiff asan problem (about 5,000 iterations to 1.25e-2 here), hence the loose tolerance.
+    options.tolerance = 2e-2;
     options.energy_tolerance = 0;
-    options.max_iterations = 2000;
+    options.max_iterations = 10000;
     options.anderson_window = 0;
     Deformer plain_deformer(c.mesh, c.roi, options);
     const DeformResult plain = plain_deformer.solve(c.targets);
     options.anderson_window = 6;
     Deformer accelerated_deformer(c.mesh, c.roi, options);
     const DeformResult accelerated = accelerated_deformer.solve(c.targets);
-    ASSERT_TRUE(plain.converged) << method_name(method);
+    ASSERT_TRUE(plain.converged) << method_name(method) << " estimate " << plain.error_estimate.value_or(-1)
+                                 << " after " << plain.iterations;
     ASSERT_TRUE(accelerated.converged) << method_name(method);
     std::printf("%s: plain %d iterations, anderson %d iterations\n", std::string(method_name(method)).c_str(),
                 plain.iterations, accelerated.iterations);
     EXPECT_LT(accelerated.iterations, plain.iterations) << method_name(method);
-    // Same shape: within a few times the stopping tolerance of the handle displacement.
     const double reference =
         (c.targets.handle_positions - c.mesh->V(c.roi.handle, Eigen::all)).rowwise().norm().maxCoeff();
-    EXPECT_LT((plain.V - accelerated.V).rowwise().norm().maxCoeff(), 0.02 * reference) << method_name(method);
+    // Same shape: each within its tolerance of the minimiser, so within twice it of each other.
+    EXPECT_LT((plain.V - accelerated.V).rowwise().norm().maxCoeff(), 2 * options.tolerance * reference)
+        << method_name(method);
     EXPECT_LE(accelerated.energy_trace.back(), plain.energy_trace.back() * 1.01);
   }
 }

@@ -31,7 +31,21 @@
 //   tau(p) = p + (mu - 1) (p . d_o) / |d_o|^2 d_o, take the half cotangents of the stretched triangles and
 //   use them as the weights of arap-sr (asan_base = ArapSR, the paper's choice) or arap-m on the real
 //   mesh. d_o defaults to the push/pull direction d; mu defaults to 100.
-// All weights come from cotangents clamped to +-kMaxCotangent; degenerate faces are skipped.
+// Weights: every half cotangent comes from intrinsically mollified edge lengths (Sharp & Crane 2020, "A
+// Laplacian for nonmanifold triangle meshes", section 4.5): the smallest length that makes every triangle of
+// the region satisfy the triangle inequality by eps = 1e-4 x the region's mean edge length is added to all
+// its edges, and each triangle's three cotangents are those of that valid triangle. Each triangle's
+// stiffness is then positive semidefinite by construction, so the global matrix is positive definite and
+// the energy never negative for arap-sr, arap-m, arap-n, sr-arap, arap-h and asan on any input (slivers,
+// needles, caps); sliver weights stay bounded (|cot| <~ longest edge / eps); well-shaped triangles change
+// by at most eps / edge length (nothing changes when no triangle needs it). Clamping each cotangent, as
+// before, broke cot a cot b + cot b cot c + cot c cot a = 1 and made the matrix indefinite on slivers.
+// asan mollifies the stretched copy with the same eps (relative to the rest mesh; cotangent.hpp says why).
+// arap-s: its global matrix is twice the cotangent Laplacian, positive definite too, but its per-vertex
+// spoke energies can have negative weights (the paper's Fig. 3), so its energy can be negative: solve
+// throws (method, region size, what to try) when it ends negative instead of returning a meaningless shape.
+// Zero-area faces (twice area <= 1e-14 longest edge^2) are left out of the region. If a factorization
+// still fails, the std::runtime_error names the method, the region's size and what to try.
 //
 // Solver: rest positions with the handle (and fixed vertices) moved to their targets as initial guess (or a
 // given one), as in the paper; each iteration = covariances, 3x3 rotations (Newton on SO(3) warm-started
@@ -178,6 +192,8 @@ class Deformer {
 
   // Push/pull: every handle vertex moves by d (model units), fixed vertices stay at rest. `progress`, when
   // set, replaces DeformOptions::progress for this solve.
+  // Throws std::runtime_error naming the method, the region's size and what to try when the global matrix
+  // cannot be factored, or when arap-s ends with a negative energy (its negative spoke weights dominate).
   [[nodiscard]] DeformResult solve(const Eigen::Vector3d& d, const ProgressCallback& progress = {});
   // General targets (e.g. a rigid transform of the handle as in the cactus benchmark, or a push/pull with a
   // warm start). Throws std::invalid_argument when shapes do not match or a value is not finite.

@@ -6,7 +6,8 @@
 //   - a face index outside [0, #V).
 // Tolerated and reported in ValidationReport (the solver never produces NaN because of them):
 //   - faces repeating a vertex index, zero-area (collinear) faces: they get zero weights (skipped);
-//   - nearly degenerate faces: their cotangents are clamped to +-kMaxCotangent;
+//   - nearly degenerate faces (slivers): the solver's weights come from mollified edge lengths, bounded and
+//     positive semidefinite per triangle (see deformer.hpp);
 //   - unreferenced vertices: they never join a grown region; in an explicit region they are pinned;
 //   - several connected components: a component of the region with no handle or fixed vertex is pinned;
 //   - non-manifold edges (more than two faces): tolerated, every face contributes its cotangents.
@@ -21,10 +22,6 @@
 #include "pushpull/deform/mesh.hpp"
 
 namespace pushpull::deform {
-
-// Cotangents are clamped to this magnitude (a 0.0006 degree angle) so that near-degenerate faces give large
-// but finite weights.
-inline constexpr double kMaxCotangent = 1e5;
 
 class MeshValidationError : public std::invalid_argument {
  public:

@@ -5,9 +5,27 @@
 //    triangle area for obtuse ones). Interior vertex: defect 2 pi - sum of incident angles. Boundary vertex
 //    (on an edge used by one face): defect pi - sum of angles (the discrete geodesic-curvature turn);
 //    it is reported but excluded from sign statistics, since it measures the boundary curve, not the surface.
-//  - Its sign, with a dead band: a vertex whose |K| is at most dead_band_fraction * max |K| (max over the
-//    evaluated vertices of the mesh *before* deformation, so before and after use one threshold) counts as
-//    zero (flat); the paper's yellow/blue sign maps become +1 / -1 / 0 here.
+//  - Its sign, one rule for every consumer (deform's metrics, `pushpull render`, the headset): a vertex is
+//    flat (sign 0) when |K| L^2 <= flat_band, with L = curvature_reference_length(V), the diagonal of the
+//    model's bounding box, and flat_band dimensionless (kDefaultFlatBand = 1e-2: flatter than a sphere of
+//    radius 10 L, i.e. sqrt(R1 R2) >= 10 L for principal radii R1, R2). K L^2 is scale-free, so a 7 cm toy
+//    car and a 4 m car read alike, and unlike a fraction of max |K| it does not depend on the sharpest tiny
+//    part (a lamp's rim made every body vertex "flat"). Why 1e-2: a car bonnet is convex but gentle; the
+//    demo's bonnet (examples/hood.off) has |K| L^2 between 1e-2 and 1 everywhere, and the paper's Fig. 12
+//    finding (ARAP-s&r turns part of it saddle-shaped, ASAN keeps it convex) holds with 1e-2 (37.8% vs 0%
+//    reversals) but vanishes with 0.1 (half of ASAN's bonnet ends "flat") or 1 (the whole bonnet is flat
+//    before the pull). Float32 positions give planar panels an angle-defect noise estimated at 1e-3 .. 1e-2
+//    in these units for 1-5 cm triangles on a car, and the display rule below draws flat panels flat.
+//    Near-developable panels (doors) are where the sign is least stable; a larger --dead-band (0.1 .. 1)
+//    draws them flat at the price above. The paper's yellow/blue sign maps become +1 / -1 / 0 here.
+//  - Flat panels shown flat: the angle defect at a vertex where only flat panels meet (creases meeting at a
+//    corner of a coarse CAD panel) is not the curvature of those panels, yet interpolating vertex colours
+//    paints the whole panel with it. flat_panel_faces() marks the faces whose every edge is a boundary, a
+//    crease (dihedral angle >= crease angle) or shared with a coplanar face (dihedral <= kCoplanarDihedral);
+//    displays draw those faces flat and a vertex with its vertex sign only where one of its faces is not a
+//    flat-panel face (display_curvature_signs). Statistics keep the vertex signs.
+//  - Sign changes are reported apart: strict reversals (+ to -, - to +) are what the paper's "sign flips"
+//    mean (surface collapse); moves into or out of flat are counted separately (into_flat, out_of_flat).
 //  - Displacement u_i = p'_i - p_i split along the unit push/pull direction d^ = d/|d|:
 //    along_i = u_i . d^ (signed scalar) and orthogonal_i = u_i - along_i d^ (vector in the plane
 //    perpendicular to d), as in the paper's Fig. 13.
@@ -24,6 +42,7 @@
 #include <Eigen/Core>
 
 #include <cstdint>
+#include <numbers>
 #include <span>
 #include <vector>
 
@@ -45,8 +64,40 @@ struct GaussianCurvature {
 // Angle defects at most this large (radians) are rounding noise: a flat vertex, whatever its area.
 inline constexpr double kFlatAngleDefect = 1e-10;
 
+// The flat band of the sign rule: |K| L^2 at most this counts as flat (dimensionless; see the header).
+inline constexpr double kDefaultFlatBand = 1e-2;
+
+// L of the sign rule: the diagonal of the bounding box of V's rows (#V by 3), model units; 0 for no vertex.
+// Use the whole model's V (not a region's) so that every view of one model classifies a vertex alike.
+[[nodiscard]] double curvature_reference_length(const Eigen::MatrixXd& V);
+
+// The |K| threshold of the sign rule, flat_band / L^2 (1/length^2); 0 when L is 0.
+[[nodiscard]] double flat_curvature_threshold(double reference_length, double flat_band = kDefaultFlatBand);
+
 // Sign of K per vertex: +1, -1, or 0 when |K_i| <= threshold or |angle_defect_i| <= kFlatAngleDefect.
+// `threshold` normally comes from flat_curvature_threshold.
 [[nodiscard]] std::vector<std::int8_t> curvature_signs(const GaussianCurvature& curvature, double threshold);
+
+// Dihedral angles (between face normals, radians) at most this large count as coplanar for flat panels:
+// above the ~1e-6 rad noise of float32 positions, below the facet angle of any tessellated curved surface
+// whose curvature the sign rule would show.
+inline constexpr double kCoplanarDihedral = 1e-3;
+// Default crease angle for flat panels: the renderer's (build_render_model splits normals at 35 degrees).
+inline constexpr double kDefaultCreaseAngle = 35.0 * std::numbers::pi / 180.0;
+
+// Per face (#F): true when the face belongs to a flat panel, i.e. each of its edges is a boundary edge, a
+// non-manifold edge, a crease (angle between the two face normals >= crease_angle, radians) or shared with
+// a face whose normal is within kCoplanarDihedral of its own. Zero-area faces count as flat panels (they
+// show nothing). Throws std::invalid_argument if F refers to a vertex outside V.
+[[nodiscard]] std::vector<bool> flat_panel_faces(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
+                                                 double crease_angle = kDefaultCreaseAngle);
+
+// The signs to draw per vertex: vertex_signs (#V), but 0 at vertices all of whose faces are flat-panel faces
+// (and at vertices of no face). A renderer whose vertices are split per panel applies the same rule per
+// render vertex over the faces that use it.
+[[nodiscard]] std::vector<std::int8_t> display_curvature_signs(const std::vector<std::int8_t>& vertex_signs,
+                                                               const Eigen::MatrixXi& F,
+                                                               const std::vector<bool>& flat_panel);
 
 struct NormSummary {
   double rms = 0.0;  // sqrt(mean of squares) over the set
@@ -90,19 +141,23 @@ struct Section {
 };
 
 struct MetricsOptions {
-  double dead_band_fraction = 1e-3;     // curvature sign dead band, relative to max |K| before
+  double flat_band = kDefaultFlatBand;  // curvature sign rule: |K| L^2 <= flat_band is flat (dimensionless)
   std::vector<double> section_offsets;  // offsets (model units) along d^ from section_origin
   Eigen::Vector3d section_origin = Eigen::Vector3d::Zero();
 };
 
 // Everything the paper evaluates for one push/pull, over a vertex set S (the region of interest).
 struct DeformationMetrics {
-  std::size_t evaluated_vertices = 0;  // |S|
-  std::size_t curvature_vertices = 0;  // S minus mesh-boundary vertices: where signs are compared
-  double curvature_threshold = 0.0;    // the dead band used, 1/length^2
-  std::size_t sign_flips = 0;          // vertices whose sign changed (any of +,-,0 to another)
-  std::size_t sign_reversals = 0;      // vertices that went + to - or - to + (no zero involved)
-  double sign_flip_fraction = 0.0;     // sign_flips / curvature_vertices (0 when there are none)
+  std::size_t evaluated_vertices = 0;   // |S|
+  std::size_t curvature_vertices = 0;   // S minus mesh-boundary vertices: where signs are compared
+  double reference_length = 0.0;        // L of the sign rule: bounding-box diagonal of `before` (model units)
+  double curvature_threshold = 0.0;     // flat_band / L^2, 1/length^2: |K| at most this is flat
+  std::size_t sign_flips = 0;           // vertices whose sign changed (any of +,-,0 to another)
+  std::size_t sign_reversals = 0;       // strict reversals: + to - or - to + (the paper's sign flips)
+  std::size_t into_flat = 0;            // + or - before, flat after
+  std::size_t out_of_flat = 0;          // flat before, + or - after
+  double sign_flip_fraction = 0.0;      // sign_flips / curvature_vertices (0 when there are none)
+  double sign_reversal_fraction = 0.0;  // sign_reversals / curvature_vertices (0 when there are none)
   std::size_t positive_before = 0, negative_before = 0, positive_after = 0, negative_after = 0;
   NormSummary displacement;       // |u| over S
   NormSummary along_d;            // |u . d^| over S
