@@ -160,6 +160,7 @@ void AttachedParts::apply(Eigen::MatrixXd& V) const {
     throw std::invalid_argument("attached parts: positions must be " + std::to_string(rest_V_.rows()) +
                                 " by 3");
   }
+  if (bound_vertex_.empty()) return;
   // One rotation per carrier patch that moved (identity for the others).
   const std::size_t slots = patch_start_.size() - 1;
   std::vector<Eigen::Matrix3d> rotation(slots, Eigen::Matrix3d::Identity());

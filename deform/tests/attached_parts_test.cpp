@@ -148,3 +148,22 @@ TEST(TriangleBvh, ClosestPointAndRayHitAgreeWithBruteForce) {
 
 }  // namespace
 }  // namespace pushpull::deform
+
+namespace pushpull::deform {
+namespace {
+
+TEST(AttachedParts, NothingToBindLeavesPositionsAlone) {
+  const Mesh m = testing::grid(6, 6, 0.0, 1.0, 0.0, 1.0);
+  const RegionOfInterest roi = build_roi(m, std::vector<int>{24}, {}, 0.3);
+  const AttachedParts parts(m, roi);
+  EXPECT_TRUE(parts.parts().empty());
+  Eigen::MatrixXd V = m.V;
+  V(24, 2) = 0.1;
+  parts.apply(V);
+  EXPECT_EQ(V(24, 2), 0.1);
+  const AttachedParts empty;
+  EXPECT_THROW(empty.apply(V), std::invalid_argument);  // made for no mesh
+}
+
+}  // namespace
+}  // namespace pushpull::deform
