@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <exception>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -50,7 +51,14 @@ int run(const Problem& p) {
   for (const pd::Method method : pd::kAllMethods) {
     pd::DeformOptions options;
     options.method = method;
-    const pd::DeformResult r = pd::deform(p.mesh, p.roi, p.d, options);
+    pd::DeformResult r;
+    try {
+      r = pd::deform(p.mesh, p.roi, p.d, options);
+    } catch (const std::exception& error) {  // arap-s may refuse: its energy is not PSD
+      std::printf("%-8s | refused: %.90s...\n", std::string(pd::method_name(method)).c_str(), error.what());
+      std::fflush(stdout);
+      continue;
+    }
     pd::DeformOptions tight = options;
     tight.tolerance = 1e-9;
     tight.max_iterations = 20000;
@@ -66,6 +74,7 @@ int run(const Problem& p) {
                 r.timing.factorize + r.timing.solve, estimate, truth, ratio, reference.iterations,
                 reference.converged ? " " : "*", reference.error_estimate.value_or(NAN),
                 true_error(paper.V, reference.V, p.d), honest ? "" : "   <-- optimistic > 2x or not converged");
+    std::fflush(stdout);
   }
   return failures;
 }

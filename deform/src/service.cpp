@@ -208,6 +208,7 @@ struct Service::Impl {
     s.d = p.request.d;
     s.iteration = r.iterations;
     s.converged = r.converged;
+    s.error_estimate = r.error_estimate;
     s.final = true;
     s.energy = r.energy_trace.empty() ? r.initial_energy : r.energy_trace.back();
     s.max_displacement = largest_displacement(*s.positions, s.rest->V);
@@ -247,6 +248,7 @@ struct Service::Impl {
       s.method = p.request.options.method;
       s.d = p.request.d;
       s.iteration = report.iteration;
+      s.error_estimate = report.error_estimate;
       s.energy = report.energy;
       s.max_displacement = largest_displacement(*s.positions, rest);
       s.setup_ms = setup_ms;

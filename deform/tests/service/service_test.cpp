@@ -87,6 +87,8 @@ TEST(Service, FirstRequestEqualsTheDeformer) {
   ASSERT_TRUE(s->region);
   EXPECT_EQ(s->region->handle, p.handle);
   EXPECT_NEAR(s->max_displacement, 0.05, 1e-12);
+  ASSERT_TRUE(s->error_estimate.has_value());
+  EXPECT_LE(*s->error_estimate, r.options.tolerance);
   // No warm start for the first request of a drag: the very same computation as a Deformer of its own.
   EXPECT_EQ(*s->positions, cold_solve(p, r));
 }
