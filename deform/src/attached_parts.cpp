@@ -123,6 +123,20 @@ AttachedParts::AttachedParts(const Mesh& rest, const RegionOfInterest& roi, cons
   if (parts_.empty()) return;
 
   const TriangleBvh carrier_tree(rest.V, rest.F, carrier_faces);
+  // How a part rides (see the header): on the surface when nearly all of its vertices lie within reach of
+  // the solved surface, else as a rigid whole when the surface under it moves coherently.
+  {
+    std::vector<long> near(parts_.size(), 0), total(parts_.size(), 0);
+    for (int v = 0; v < nv; ++v) {
+      const int part = part_index[static_cast<std::size_t>(label[static_cast<std::size_t>(v)])];
+      if (part < 0) continue;
+      ++total[static_cast<std::size_t>(part)];
+      near[static_cast<std::size_t>(part)] +=
+          carrier_tree.closest_point(rest.V, rest.V.row(v).transpose(), reach_) ? 1 : 0;
+    }
+    for (std::size_t k = 0; k < parts_.size(); ++k)
+      parts_[k].on_surface = static_cast<double>(near[k]) >= kOnSurfaceShare * static_cast<double>(total[k]);
+  }
   const detail::VertexGraph graph = detail::build_vertex_graph(nv, rest.F, carrier_faces);
   std::vector<int> slot_of_face(static_cast<std::size_t>(rest.F.rows()), -1);
   patch_start_.push_back(0);
@@ -148,6 +162,7 @@ AttachedParts::AttachedParts(const Mesh& rest, const RegionOfInterest& roi, cons
       patch_start_.push_back(static_cast<int>(patch_index_.size()));
     }
     bound_vertex_.push_back(v);
+    bound_part_.push_back(part);
     carrier_face_.push_back(f);
     carrier_slot_.push_back(slot);
     bary_.push_back(barycentric(hit->point, a, b, c));
@@ -171,13 +186,72 @@ void AttachedParts::apply(Eigen::MatrixXd& V) const {
     for (const int* v = begin; v != end && !moved[slot]; ++v) moved[slot] = V.row(*v) != rest_V_.row(*v);
     if (moved[slot]) rotation[slot] = patch_rotation(rest_V_, V, begin, end);
   }
+  // Where each bound vertex goes with the surface under it.
+  std::vector<Eigen::Vector3d> follow(bound_vertex_.size());
+  std::vector<char> part_moved(parts_.size(), 0);
   for (std::size_t k = 0; k < bound_vertex_.size(); ++k) {
     const std::size_t slot = static_cast<std::size_t>(carrier_slot_[k]);
-    if (!moved[slot]) continue;  // nothing under it moved: exact values stay
+    const Eigen::Vector3d rest_position = rest_V_.row(bound_vertex_[k]).transpose();
+    if (!moved[slot]) {  // nothing under it moved
+      follow[k] = rest_position;
+      continue;
+    }
+    part_moved[static_cast<std::size_t>(bound_part_[k])] = 1;
     const int f = carrier_face_[k];
-    const Eigen::Vector3d q = bary_[k].x() * V.row(F_(f, 0)).transpose() + bary_[k].y() * V.row(F_(f, 1)).transpose() +
+    const Eigen::Vector3d q = bary_[k].x() * V.row(F_(f, 0)).transpose() +
+                              bary_[k].y() * V.row(F_(f, 1)).transpose() +
                               bary_[k].z() * V.row(F_(f, 2)).transpose();
-    V.row(bound_vertex_[k]) = (q + rotation[slot] * offset_[k]).transpose();
+    follow[k] = q + rotation[slot] * offset_[k];
+  }
+  // Parts off the surface: the rigid motion that best fits where their vertices would go, when it fits.
+  std::vector<Eigen::Matrix3d> part_rotation(parts_.size(), Eigen::Matrix3d::Identity());
+  std::vector<Eigen::Vector3d> part_from(parts_.size(), Eigen::Vector3d::Zero()),
+      part_to(parts_.size(), Eigen::Vector3d::Zero());
+  std::vector<char> rigid_ok(parts_.size(), 0);
+  {
+    std::vector<long> count(parts_.size(), 0);
+    for (std::size_t k = 0; k < bound_vertex_.size(); ++k) {
+      const std::size_t part = static_cast<std::size_t>(bound_part_[k]);
+      part_from[part] += rest_V_.row(bound_vertex_[k]).transpose();
+      part_to[part] += follow[k];
+      ++count[part];
+    }
+    std::vector<Eigen::Matrix3d> H(parts_.size(), Eigen::Matrix3d::Zero());
+    for (std::size_t part = 0; part < parts_.size(); ++part) {
+      if (count[part] > 0) part_from[part] /= static_cast<double>(count[part]), part_to[part] /= static_cast<double>(count[part]);
+    }
+    for (std::size_t k = 0; k < bound_vertex_.size(); ++k) {
+      const std::size_t part = static_cast<std::size_t>(bound_part_[k]);
+      H[part] += (follow[k] - part_to[part]) * (rest_V_.row(bound_vertex_[k]).transpose() - part_from[part]).transpose();
+    }
+    std::vector<double> residual2(parts_.size(), 0.0), motion2(parts_.size(), 0.0);
+    for (std::size_t part = 0; part < parts_.size(); ++part) {
+      if (parts_[part].on_surface || !part_moved[part]) continue;
+      const Eigen::JacobiSVD<Eigen::Matrix3d> svd(H[part], Eigen::ComputeFullU | Eigen::ComputeFullV);
+      Eigen::Matrix3d U = svd.matrixU();
+      if ((U * svd.matrixV().transpose()).determinant() < 0.0) U.col(2) = -U.col(2);
+      part_rotation[part] = U * svd.matrixV().transpose();
+    }
+    for (std::size_t k = 0; k < bound_vertex_.size(); ++k) {
+      const std::size_t part = static_cast<std::size_t>(bound_part_[k]);
+      if (parts_[part].on_surface || !part_moved[part]) continue;
+      const Eigen::Vector3d p = rest_V_.row(bound_vertex_[k]).transpose();
+      const Eigen::Vector3d rigid = part_to[part] + part_rotation[part] * (p - part_from[part]);
+      residual2[part] += (rigid - follow[k]).squaredNorm();
+      motion2[part] += (follow[k] - p).squaredNorm();
+    }
+    for (std::size_t part = 0; part < parts_.size(); ++part)
+      rigid_ok[part] = residual2[part] <= kCoherentMotion * kCoherentMotion * motion2[part];
+  }
+  for (std::size_t k = 0; k < bound_vertex_.size(); ++k) {
+    const std::size_t part = static_cast<std::size_t>(bound_part_[k]);
+    if (!part_moved[part]) continue;  // exact values stay
+    if (parts_[part].on_surface) {
+      V.row(bound_vertex_[k]) = follow[k].transpose();
+    } else if (rigid_ok[part]) {
+      const Eigen::Vector3d p = rest_V_.row(bound_vertex_[k]).transpose();
+      V.row(bound_vertex_[k]) = (part_to[part] + part_rotation[part] * (p - part_from[part])).transpose();
+    }  // else: the surface under it does not move as one (a wheel under a pulled arch): it stays
   }
 }
 

@@ -7,18 +7,24 @@
 // therefore bound to the solved surface at rest and carried along:
 //
 // - Which parts: every component with no vertex in the region that has a vertex within `reach` of a region
-//   triangle at rest. A component is either solved (it holds region vertices) or follows whole: no part is
+//   triangle at rest. A component is either solved (it holds region vertices) or moves whole: no part is
 //   ever split between moving and staying.
-// - How (chosen over a rigid motion per part): each vertex binds to its closest point on the carrier surface
+// - How, for a part lying on the surface (at least 90% of its vertices within reach of the solved surface:
+//   a lamp lens, a plate, a trim, a window): each vertex binds to its closest point on the carrier surface
 //   (all triangles of the solved components, moving or not) as that triangle, its barycentric coordinates
 //   and its offset from that point, as Blender's Surface Deform modifier binds a mesh to a target. After the
 //   solve the bound point moves with the triangle and the offset turns with the surface around it: the
 //   best rotation (Kabsch) of the patch made of the triangle's corners and their neighbours, which stays
 //   well defined on the sliver triangles of tessellated CAD where a triangle's own normal flips on a tiny
-//   move. So a part keeps its height above the panel under it everywhere (it never sinks in, which one
-//   rigid motion per part cannot promise on a panel that bends under a long trim), bends as little as the
-//   panel does, and a part straddling the region's border stays attached to both sides without a tear.
-//   Vertices whose carrier patch did not move are left bit-identical.
+//   move. So the part keeps its height above the panel under it everywhere (it never sinks in, which one
+//   rigid motion per part cannot promise on a panel that bends under a long trim) and bends only as much as
+//   the panel does; a part straddling the region's border stays attached to both sides without a tear.
+//   This was chosen over one rigid motion per part for those reasons.
+// - How, for a part that only comes close to the surface (a wheel in its arch, a seat behind a panel): the
+//   same binding tells where its vertices would go; the part moves by the rigid motion that fits that best
+//   when the fit is good (residual within 25% of the motion: the surface under it moves as one) and
+//   otherwise stays where it is (a pulled wheel arch does not drag or bend the wheel inside it).
+// - Vertices of a part whose carrier patches did not move keep their exact values.
 //
 // Units: model units (reach too). Frame: model space. Shapes: positions #V by 3.
 // Ownership: a value type holding the binding. Thread-safety: const members may run concurrently.
@@ -42,6 +48,7 @@ struct AttachedPart {
   int component = -1;            // connected component (of the face graph, numbered by lowest vertex)
   std::vector<int> vertices;     // its vertices, sorted
   double rest_gap = 0.0;         // its smallest distance to a region triangle at rest
+  bool on_surface = false;       // follows the surface vertex by vertex (else rigidly or not at all)
 };
 
 class AttachedParts {
@@ -60,7 +67,10 @@ class AttachedParts {
   void apply(Eigen::MatrixXd& V) const;
 
  private:
+  static constexpr double kOnSurfaceShare = 0.9;  // share of vertices within reach for "on the surface"
+  static constexpr double kCoherentMotion = 0.25;  // rigid fit residual / motion (RMS) accepted
   std::vector<int> bound_vertex_;     // mesh vertex
+  std::vector<int> bound_part_;       // index into parts_
   std::vector<int> carrier_face_;     // row of F it is bound to
   std::vector<int> carrier_slot_;     // its patch (index into patch_start_)
   std::vector<Eigen::Vector3d> bary_;    // barycentric coordinates of the bound point
