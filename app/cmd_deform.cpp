@@ -1,5 +1,6 @@
 // `pushpull deform`: one push/pull on a model in batch, writing the deformed model and METRICS.json.
 #include "commands.hpp"
+#include "life_size.hpp"
 #include "metrics_json.hpp"
 #include "vertex_selection.hpp"
 
@@ -53,6 +54,7 @@ struct DeformCommandOptions {
   double dead_band = 1e-3;
   std::string out;
   std::string metrics;
+  LifeSizeOptions life_size;  // the lengths above are typed in life-size metres
 };
 
 // --- model loading and saving: the two places that know file formats ---------------------------------
@@ -122,6 +124,14 @@ void save_model(const fs::path& path, const LoadedModel& model, const Eigen::Mat
 
 // ------------------------------------------------------------------------------------------------------
 
+// The lengths typed on the command line (life-size metres, see life_size.hpp) in the model's file units.
+void convert_to_file_units(DeformCommandOptions& o, const LifeSize& life) {
+  o.handle_at = life.to_file_units(o.handle_at);
+  o.handle_radius = life.to_file_units(o.handle_radius);
+  if (o.roi_radius) o.roi_radius = life.to_file_units(*o.roi_radius);
+  o.displacement = life.to_file_units(o.displacement);
+}
+
 Eigen::Vector3d vector3(const std::vector<double>& values, const char* option) {
   const Eigen::Vector3d v(values.at(0), values.at(1), values.at(2));
   if (!v.allFinite()) throw CommandError(std::string(option) + ": values must be finite numbers");
@@ -184,7 +194,7 @@ std::vector<double> section_offsets(const deform::Mesh& mesh, const std::vector<
   return offsets;
 }
 
-void run_deform(const DeformCommandOptions& o) {
+void run_deform(DeformCommandOptions o) {
   const auto start = std::chrono::steady_clock::now();
   if (o.handle_file.empty() == o.handle_at.empty()) {
     throw CommandError("give exactly one of --handle FILE or --handle-at X Y Z (with --handle-radius)");
@@ -194,8 +204,8 @@ void run_deform(const DeformCommandOptions& o) {
   if (o.fixed_file.empty() && !o.roi_radius) {
     throw CommandError("give --fixed FILE, --roi-radius R, or both (the region needs a boundary)");
   }
-  const Eigen::Vector3d d = vector3(o.displacement, "--displacement");
-  if (d.norm() == 0.0) throw CommandError("--displacement: zero displacement (nothing to push or pull)");
+  if (vector3(o.displacement, "--displacement").norm() == 0.0)
+    throw CommandError("--displacement: zero displacement (nothing to push or pull)");
   deform::DeformOptions options = solver_options(o);
   check_output_model_path(o.out);
   for (const std::string& output : {o.out, o.metrics}) {
@@ -207,6 +217,9 @@ void run_deform(const DeformCommandOptions& o) {
 
   const LoadedModel model = load_model(o.mesh);
   const std::shared_ptr<const deform::Mesh>& mesh = model.mesh;
+  const LifeSize life(o.life_size, bounds_of(mesh->V), o.mesh);
+  convert_to_file_units(o, life);
+  const Eigen::Vector3d d = vector3(o.displacement, "--displacement");
   const std::vector<int> handle = pick_handle(o, *mesh);
   const std::vector<int> fixed =
       o.fixed_file.empty() ? std::vector<int>{} : read_index_file(o.fixed_file, mesh->vertex_count());
@@ -254,6 +267,7 @@ void run_deform(const DeformCommandOptions& o) {
   record.fixed_count = static_cast<long>(roi.fixed.size());
   record.free_count = static_cast<long>(roi.free.size());
   record.dead_band_fraction = o.dead_band;
+  record.life_size_scale = life.scale();
   record.result.warnings.insert(record.result.warnings.end(), roi.warnings.begin(), roi.warnings.end());
   record.total_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -265,16 +279,23 @@ void run_deform(const DeformCommandOptions& o) {
 
   const deform::DeformResult& r = record.result;
   const deform::DeformationMetrics& m = record.metrics;
-  std::printf("pushpull deform: %s, %s, |d| = %g, ROI %zu of %ld vertices (%zu handle, %zu fixed)\n",
-              o.mesh.c_str(), o.method.c_str(), d.norm(), omega.size(), record.vertices, roi.handle.size(),
-              roi.fixed.size());
+  std::printf("pushpull deform: %s, %s, |d| = %.1f mm, ROI %zu of %ld vertices (%zu handle, %zu fixed)\n",
+              o.mesh.c_str(), o.method.c_str(), life.to_mm(d.norm()), omega.size(), record.vertices,
+              roi.handle.size(), roi.fixed.size());
+  if (life.scale() != 1.0)
+    std::printf(
+        "  life size: %g m per file unit (lengths typed and printed at life size; files keep file units)\n",
+        life.scale());
   std::printf("  %d iterations, %s (%s); %.1f ms per iteration, %.1f ms factorize, %.1f ms total\n",
               r.iterations, r.converged ? "converged" : "not converged",
               std::string(deform::stop_reason_name(r.stop_reason)).c_str(), r.timing.per_iteration,
               r.timing.factorize, record.total_ms);
   std::printf(
-      "  max displacement %g; RMS along d %g, orthogonal to d %g; Gaussian-curvature sign flips %.2f%%\n",
-      m.displacement.max, m.along_d.rms, m.orthogonal.rms, 100.0 * m.sign_flip_fraction);
+      "  max displacement %.2f mm; RMS along d %.2f mm, orthogonal to d %.2f mm; Gaussian-curvature sign "
+      "flips "
+      "%.2f%%\n",
+      life.to_mm(m.displacement.max), life.to_mm(m.along_d.rms), life.to_mm(m.orthogonal.rms),
+      100.0 * m.sign_flip_fraction);
   for (const std::string& warning : r.warnings) std::printf("  warning: %s\n", warning.c_str());
   std::printf("  wrote %s and %s\n", o.out.c_str(), o.metrics.c_str());
 }
@@ -290,14 +311,17 @@ void add_deform_command(CLI::App& root) {
   cmd->add_option("MESH", o->mesh, "Model to deform (.gltf, .glb, .drc, .off, .obj, .ply)")->required();
   cmd->add_option("--handle", o->handle_file,
                   "File of 0-based handle vertex indices (white-space separated)");
-  cmd->add_option("--handle-at", o->handle_at, "Handle = vertices within --handle-radius of this point")
+  cmd->add_option("--handle-at", o->handle_at,
+                  "Handle = vertices within --handle-radius of this point (model frame, metres at life size)")
       ->expected(3);
-  cmd->add_option("--handle-radius", o->handle_radius, "Radius for --handle-at (model units)");
+  cmd->add_option("--handle-radius", o->handle_radius, "Radius for --handle-at (metres at life size)");
   cmd->add_option("--fixed", o->fixed_file, "File of 0-based fixed vertex indices (the region stops there)");
   cmd->add_option(
       "--roi-radius", o->roi_radius,
-      "Region = vertices within this geodesic (edge-path) distance of the handle; its border is fixed");
-  cmd->add_option("--displacement", o->displacement, "Push/pull displacement d of the handle (model units)")
+      "Region = vertices within this geodesic (edge-path) distance of the handle (metres at life size); its "
+      "border is fixed");
+  cmd->add_option("--displacement", o->displacement,
+                  "Push/pull displacement d of the handle (metres at life size)")
       ->expected(3)
       ->required();
   cmd->add_option("--method", o->method, "arap-s, arap-sr, arap-m, arap-n, sr-arap, arap-h or asan")
@@ -333,7 +357,10 @@ void add_deform_command(CLI::App& root) {
                   "Curvature below this fraction of the largest |K| counts as zero (flat) in sign statistics")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--out", o->out, "Deformed model to write (.glb, .off, .obj, .ply)")->required();
+  add_life_size_options(*cmd, o->life_size);
+  cmd->add_option("--out", o->out,
+                  "Deformed model to write (.glb, .off, .obj, .ply; in the input's file units)")
+      ->required();
   cmd->add_option("--metrics", o->metrics, "METRICS.json to write")->required();
   cmd->callback([o] { run_deform(*o); });
 }

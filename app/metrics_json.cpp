@@ -36,6 +36,7 @@ std::string metrics_json(const DeformRunRecord& record) {
   json doc;
   doc["input"] = record.input;
   doc["output"] = record.output;
+  doc["life_size_scale"] = record.life_size_scale;
   doc["method"] = std::string(deform::method_name(options.method));
   doc["asan_base"] = std::string(deform::method_name(options.asan_base));
   doc["mu"] = options.mu;

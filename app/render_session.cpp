@@ -178,8 +178,8 @@ void render_to_png(const RenderInputs& inputs, const RenderCommandOptions& o) {
     FrameSettings settings;
     settings.up = to_glm(o.up);
     settings.lighting = !o.flat;
-    const double unit_scale = inputs.is_gltf ? 1000.0 : 1.0;  // glTF metres -> mm in the legend
-    const std::string unit = inputs.is_gltf ? "mm" : "model units";
+    const double unit_scale = 1000.0 * inputs.life_size_scale;  // model units -> life-size mm
+    const std::string unit = "mm";
     const float legend_h = 0.32f, legend_w = legend_h * float(height) / float(width) * 0.55f;
     const glm::vec4 rect{0.015f, 1.0f - legend_h - 0.015f, 0.015f + legend_w, 0.985f};
     const uint32_t legend_px_h = std::max(110u, uint32_t(float(height) * legend_h));
