@@ -178,6 +178,23 @@ deform::DeformOptions solver_options(const DeformCommandOptions& o) {
   return options;
 }
 
+std::string tolerance_text(double value) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%g", value);
+  return text;
+}
+
+// Why the solver stopped, with the tolerance that stopped it and whether the user set it.
+std::string stop_text(deform::StopReason reason, const DeformCommandOptions& o,
+                      const deform::DeformOptions& options) {
+  std::string text(deform::stop_reason_name(reason));
+  if (reason == deform::StopReason::MoveTolerance)
+    text += " " + tolerance_text(options.tolerance) + " |d|";
+  else if (reason == deform::StopReason::EnergyTolerance)
+    text += " " + tolerance_text(options.energy_tolerance) + (o.energy_tolerance ? "" : ", the default");
+  return text;
+}
+
 // Section planes spread evenly across the ROI's extent along d.
 std::vector<double> section_offsets(const deform::Mesh& mesh, const std::vector<int>& roi,
                                     const Eigen::Vector3d& d, int count) {
@@ -268,7 +285,6 @@ void run_deform(DeformCommandOptions o) {
   record.free_count = static_cast<long>(roi.free.size());
   record.dead_band_fraction = o.dead_band;
   record.life_size_scale = life.scale();
-  record.result.warnings.insert(record.result.warnings.end(), roi.warnings.begin(), roi.warnings.end());
   record.total_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   try {
@@ -288,8 +304,8 @@ void run_deform(DeformCommandOptions o) {
         life.scale());
   std::printf("  %d iterations, %s (%s); %.1f ms per iteration, %.1f ms factorize, %.1f ms total\n",
               r.iterations, r.converged ? "converged" : "not converged",
-              std::string(deform::stop_reason_name(r.stop_reason)).c_str(), r.timing.per_iteration,
-              r.timing.factorize, record.total_ms);
+              stop_text(r.stop_reason, o, options).c_str(), r.timing.per_iteration, r.timing.factorize,
+              record.total_ms);
   std::printf(
       "  max displacement %.2f mm; RMS along d %.2f mm, orthogonal to d %.2f mm; Gaussian-curvature sign "
       "flips "
@@ -344,7 +360,9 @@ void add_deform_command(CLI::App& root) {
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--energy-tolerance", o->energy_tolerance,
-                  "Stop when the relative energy change is below this")
+                  "Stop when the relative energy change |E_k - E_k-1| / E_k-1 is below this (default: " +
+                      tolerance_text(deform::DeformOptions{}.energy_tolerance) +
+                      "; 0 when --tolerance is 0; 0 = off)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--anderson", o->anderson,
                   "Anderson acceleration window, 0 = plain local-global iterations (default: " +

@@ -105,12 +105,13 @@ void benchmark(Renderer& renderer, MeshId mesh, std::span<const View> views, std
   const double plain = run(false, draws);
   const double streamed = run(true, draws);
   const double streamed_normals = normals_ms;
-  // The upload alone: frames that clear both views but draw nothing, with and without the upload.
+  // The upload alone: frames that clear every view but draw nothing, with and without the upload.
   const double empty = run(false, {});
   const double empty_upload = run(true, {});
   const uint64_t bytes = renderer.last_upload_bytes();
-  std::printf("frame time, stereo, no upload:             %9.2f ms\n", plain);
-  std::printf("frame time, stereo, full upload each frame: %9.2f ms (includes CPU normals %.2f ms)\n",
+  const char* views_text = views.size() == 2 ? "stereo" : views.size() == 1 ? "1 view" : "all views";
+  std::printf("frame time, %s, no upload:             %9.2f ms\n", views_text, plain);
+  std::printf("frame time, %s, full upload each frame: %9.2f ms (includes CPU normals %.2f ms)\n", views_text,
               streamed, streamed_normals);
   std::printf(
       "upload cost isolated (empty frames):        %9.2f ms per frame (%.2f -> %.2f ms; %.2f MB of "
