@@ -13,6 +13,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 
@@ -54,6 +55,29 @@ View make_view(const RenderCommandOptions& o, const Bounds& bounds, float aspect
                     std::max(distance - 2.0f * radius, distance * 1e-3f), distance + 2.0f * radius);
   }
   return view;
+}
+
+// A camera that ends inside the model shows its inside (or nothing): say so, with where the eye is.
+// Inside = generalised winding number >= 1/2 (inside a closed part); an orbit camera (no --eye) that
+// ends inside the model's bounding box is reported too (parts of the model are behind it).
+void warn_if_inside(const View& view, const RenderInputs& inputs, const Bounds& bounds, bool orbit) {
+  const glm::vec3 eye(glm::inverse(view.view)[3]);
+  const double winding = winding_number(inputs.positions, inputs.render.mesh.indices, eye);
+  const bool in_box = glm::all(glm::greaterThan(eye, bounds.min)) && glm::all(glm::lessThan(eye, bounds.max));
+  const double s = inputs.life_size_scale;
+  if (std::abs(winding) >= 0.5)
+    std::fprintf(
+        stderr,
+        "pushpull render: warning: the camera is inside the model (eye at %.3g %.3g %.3g m, winding "
+        "number %.2f): the picture shows the model from inside; use a smaller ZOOM in --camera or move "
+        "--eye outside\n",
+        s * double(eye.x), s * double(eye.y), s * double(eye.z), winding);
+  else if (orbit && in_box)
+    std::fprintf(
+        stderr,
+        "pushpull render: warning: the orbit camera ends inside the model's bounding box (eye at %.3g %.3g "
+        "%.3g m): parts of the model are behind it; use a smaller ZOOM in --camera\n",
+        s * double(eye.x), s * double(eye.y), s * double(eye.z));
 }
 
 // Side by side: left | right.
@@ -205,6 +229,7 @@ void render_to_png(const RenderInputs& inputs, const RenderCommandOptions& o) {
 
     const float aspect = float(width) / float(height);
     const View mono = make_view(o, bounds, aspect);
+    warn_if_inside(mono, inputs, bounds, o.eye.empty());
     std::vector<View> views{mono};
     if (o.ipd) {
       const auto eyes = stereo_pair(mono, float(*o.ipd));

@@ -96,4 +96,35 @@ TEST_F(CliMessages, BenchmarkOfOneViewDoesNotSayStereo) {
   EXPECT_NE(stereo.output.find("frame time, stereo"), std::string::npos) << stereo.output;
 }
 
+TEST_F(CliMessages, OrbitCameraInsideTheModelIsWarned) {
+  // A closed cube, 2 m on a side, faces counter-clockwise seen from outside.
+  std::ofstream(path("cube.off")) << "OFF\n8 12 0\n"
+                                     "-1 -1 -1\n1 -1 -1\n1 1 -1\n-1 1 -1\n-1 -1 1\n1 -1 1\n1 1 1\n-1 1 1\n"
+                                     "3 0 2 1\n3 0 3 2\n3 4 5 6\n3 4 6 7\n3 0 1 5\n3 0 5 4\n"
+                                     "3 2 3 7\n3 2 7 6\n3 1 2 6\n3 1 6 5\n3 3 0 4\n3 3 4 7\n";
+  const CommandResult outside =
+      run_pushpull("render " + path("cube.off") + " --size 48 36 --out " + path("outside.png"));
+  ASSERT_EQ(outside.status, 0) << outside.output;
+  EXPECT_EQ(outside.output.find("inside the model"), std::string::npos) << outside.output;
+  // ZOOM 40 puts the orbit camera at 1/40 of the framing distance from the centre: inside the cube.
+  const CommandResult inside = run_pushpull("render " + path("cube.off") +
+                                            " --camera 35 20 40 --size 48 36 --out " + path("inside.png"));
+  ASSERT_EQ(inside.status, 0) << inside.output;
+  EXPECT_NE(inside.output.find("warning: the camera is inside the model"), std::string::npos)
+      << inside.output;
+  // The open convertible: zoomed in 8 times the orbit camera ends in the cabin, inside the car's bounding
+  // box.
+  const std::string car =
+      (fs::path(PUSHPULL_SHARED_DATA) / "gltf" / "AsamVehicle" / "vehicle_example.gltf").string();
+  const CommandResult cabin =
+      run_pushpull("render " + car + " --camera 35 20 8 --size 48 36 --out " + path("cabin.png"));
+  ASSERT_EQ(cabin.status, 0) << cabin.output;
+  EXPECT_NE(cabin.output.find("warning: the orbit camera ends inside the model's bounding box"),
+            std::string::npos)
+      << cabin.output;
+  const CommandResult framed = run_pushpull("render " + car + " --size 48 36 --out " + path("framed.png"));
+  ASSERT_EQ(framed.status, 0) << framed.output;
+  EXPECT_EQ(framed.output.find("warning"), std::string::npos) << framed.output;
+}
+
 }  // namespace

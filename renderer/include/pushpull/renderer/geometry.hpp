@@ -21,6 +21,13 @@ void compute_vertex_normals(std::span<const float> positions, std::span<const ui
 
 // An arrow from p0 to p1 (shaft radius `radius`, head twice as wide and 4 radii long), as a mesh
 // with one submesh of material `material`.
+// Generalised winding number of a triangle mesh at `point` (Jacobson et al. 2013: the signed solid angle
+// of every triangle seen from the point, summed, over 4 pi): about +-1 inside a closed surface, 0
+// outside, in between near holes of an open one. positions #V*3, indices #T*3 (counter-clockwise seen
+// from outside: inside is +1). O(#T).
+double winding_number(std::span<const float> positions, std::span<const uint32_t> indices,
+                      const glm::vec3& point);
+
 RenderMesh make_arrow(const glm::vec3& p0, const glm::vec3& p1, float radius, int material);
 
 // Tubes of radius `radius` along polylines (each polyline: points in order; closed if the first
