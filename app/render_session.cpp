@@ -184,10 +184,10 @@ void render_to_png(const RenderInputs& inputs, const RenderCommandOptions& o) {
     if (inputs.arrow) {
       Material arrow;
       arrow.base_colour = glm::vec4(kArrowColour, 1.0f);
-      arrow.roughness = 0.4f;
+      arrow.unlit = true;  // the same colour in light and shadow, drawn on top of the surface
       const int id = int(renderer.add_material(arrow));
       const RenderMesh arrow_mesh =
-          make_arrow(to_glm(inputs.arrow->first), to_glm(inputs.arrow->second), 0.012f * size, id);
+          make_arrow(to_glm(inputs.arrow->first), to_glm(inputs.arrow->second), 0.02f * size, id);
       if (!arrow_mesh.indices.empty())
         draws.push_back({renderer.add_mesh(arrow_mesh), glm::mat4(1.0f), false, true});
     }
