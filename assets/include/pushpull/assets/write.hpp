@@ -7,7 +7,8 @@
 // Primitive::deform_vertex (rendered back into its node's local frame), and its normal/tangent
 // rotated with the local surface rotation, so hard edges and UV seams survive. Every other vertex
 // keeps the position, normal and tangent read from the file, bit for bit (float accessors; quantized
-// or Draco-compressed attributes are written as the floats they decode to).
+// or Draco-compressed attributes are written as the floats they decode to). With WriteOptions::draco
+// every attribute is quantized again, so nothing is bit-identical then.
 // Images: as they were read (see src/image_carry.hpp): data: URIs and, when the file is written into
 // the folder the source's URIs resolve against, external URIs stay as they were; written elsewhere,
 // external images are embedded with their bytes unchanged; a missing image stays referenced by its
