@@ -150,6 +150,18 @@ TEST(AssetsBadInput, TruncatedBufferIsRefused) {
   expect_refused(dir, document, "model.gltf");
 }
 
+TEST(AssetsBadInput, CorruptBufferViewIsNotCalledTruncated) {
+  ScratchDir dir;
+  json document = triangle_gltf();
+  document["bufferViews"][0]["byteLength"] = 4000;  // the buffer (complete) has 44 bytes
+  expect_refused(dir, document, "bufferView 0 (byteOffset 0, byteLength 4000) runs past the end of buffer 0");
+  try {
+    (void)load_document(dir, document);
+  } catch (const AssetError& e) {
+    EXPECT_EQ(std::string(e.what()).find("truncated"), std::string::npos) << e.what();
+  }
+}
+
 TEST(AssetsBadInput, OversizedExternalFileIsRefused) {
   ScratchDir dir;
   testing::write_bytes(dir / "tri.bin", triangle_bin());
