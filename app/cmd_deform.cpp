@@ -306,12 +306,9 @@ void run_deform(DeformCommandOptions o) {
               r.iterations, r.converged ? "converged" : "not converged",
               stop_text(r.stop_reason, o, options).c_str(), r.timing.per_iteration, r.timing.factorize,
               record.total_ms);
-  std::printf(
-      "  max displacement %.2f mm; RMS along d %.2f mm, orthogonal to d %.2f mm; Gaussian-curvature sign "
-      "flips "
-      "%.2f%%\n",
-      life.to_mm(m.displacement.max), life.to_mm(m.along_d.rms), life.to_mm(m.orthogonal.rms),
-      100.0 * m.sign_flip_fraction);
+  std::printf("  max displacement %.2f mm; RMS along d %.2f mm, orthogonal to d %.2f mm; ",
+              life.to_mm(m.displacement.max), life.to_mm(m.along_d.rms), life.to_mm(m.orthogonal.rms));
+  std::printf("Gaussian-curvature sign flips %.2f%%\n", 100.0 * m.sign_flip_fraction);
   for (const std::string& warning : r.warnings) std::printf("  warning: %s\n", warning.c_str());
   std::printf("  wrote %s and %s\n", o.out.c_str(), o.metrics.c_str());
 }
