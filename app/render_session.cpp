@@ -12,6 +12,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -186,8 +187,11 @@ void render_to_png(const RenderInputs& inputs, const RenderCommandOptions& o) {
       arrow.base_colour = glm::vec4(kArrowColour, 1.0f);
       arrow.unlit = true;  // the same colour in light and shadow, drawn on top of the surface
       const int id = int(renderer.add_material(arrow));
+      // Thick enough to see at the model's size, thin enough to stay an arrow for a short pull.
+      const float length = float((inputs.arrow->second - inputs.arrow->first).norm());
+      const float radius = std::clamp(0.08f * length, 0.004f * size, 0.02f * size);
       const RenderMesh arrow_mesh =
-          make_arrow(to_glm(inputs.arrow->first), to_glm(inputs.arrow->second), 0.02f * size, id);
+          make_arrow(to_glm(inputs.arrow->first), to_glm(inputs.arrow->second), radius, id);
       if (!arrow_mesh.indices.empty())
         draws.push_back({renderer.add_mesh(arrow_mesh), glm::mat4(1.0f), false, true});
     }
