@@ -1,5 +1,6 @@
 // `pushpull deform`: one push/pull on a model in batch, writing the deformed model and METRICS.json.
 #include "commands.hpp"
+#include "life_size.hpp"
 #include "metrics_json.hpp"
 #include "vertex_selection.hpp"
 
@@ -41,8 +42,9 @@ struct DeformCommandOptions {
   std::vector<double> displacement;
   std::string method = "asan";
   double mu = 100.0;
-  int iterations = 50;
-  double tolerance = 1e-3;
+  int iterations = deform::DeformOptions{}.max_iterations;
+  double tolerance = deform::DeformOptions{}.tolerance;
+  bool paper_iterations = false;
   std::optional<double> energy_tolerance;
   std::optional<int> anderson;  // unset: the solver's default window
   std::optional<double> roi_radius;
@@ -57,6 +59,7 @@ struct DeformCommandOptions {
   double attach_reach = 0.0;  // <= 0: automatic
   std::string out;
   std::string metrics;
+  LifeSizeOptions life_size;  // the lengths above are typed in life-size metres
 };
 
 // --- model loading and saving: the two places that know file formats ---------------------------------
@@ -126,6 +129,15 @@ void save_model(const fs::path& path, const LoadedModel& model, const Eigen::Mat
 
 // ------------------------------------------------------------------------------------------------------
 
+// The lengths typed on the command line (life-size metres, see life_size.hpp) in the model's file units.
+void convert_to_file_units(DeformCommandOptions& o, const LifeSize& life) {
+  o.handle_at = life.to_file_units(o.handle_at);
+  o.handle_radius = life.to_file_units(o.handle_radius);
+  if (o.roi_radius) o.roi_radius = life.to_file_units(*o.roi_radius);
+  o.attach_reach = life.to_file_units(o.attach_reach);
+  o.displacement = life.to_file_units(o.displacement);
+}
+
 Eigen::Vector3d vector3(const std::vector<double>& values, const char* option) {
   const Eigen::Vector3d v(values.at(0), values.at(1), values.at(2));
   if (!v.allFinite()) throw CommandError(std::string(option) + ": values must be finite numbers");
@@ -171,14 +183,41 @@ deform::DeformOptions solver_options(const DeformCommandOptions& o) {
     if (options.stretch_direction->norm() == 0.0) throw CommandError("--stretch-direction: must not be zero");
   }
   options.max_iterations = o.iterations;
-  options.tolerance = o.tolerance;
-  // --tolerance 0 means "run exactly --iterations iterations" unless an energy tolerance is asked for.
-  options.energy_tolerance = o.energy_tolerance.value_or(o.tolerance == 0.0 ? 0.0 : options.energy_tolerance);
+  options.tolerance = o.tolerance;  // --tolerance 0 (and no --energy-tolerance): exactly --iterations
+  options.energy_tolerance = o.energy_tolerance.value_or(options.energy_tolerance);
   if (o.anderson) options.anderson_window = *o.anderson;
+  if (o.paper_iterations) options = deform::paper_iterations(options);
   options.sr_arap_alpha = o.alpha;
   options.arap_h_lambda = o.lambda;
   options.arap_n_rings = o.rings;
   return options;
+}
+
+std::string tolerance_text(double value) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%g", value);
+  return text;
+}
+
+// Why the solver stopped, with the tolerance that stopped it and whether the user set it.
+std::string stop_text(deform::StopReason reason, const DeformCommandOptions& o,
+                      const deform::DeformOptions& options) {
+  std::string text(deform::stop_reason_name(reason));
+  if (reason == deform::StopReason::ErrorTolerance)
+    text += ": estimated distance to the minimiser <= " + tolerance_text(options.tolerance) + " |d|";
+  else if (reason == deform::StopReason::EnergyTolerance)
+    text += " " + tolerance_text(options.energy_tolerance) + (o.energy_tolerance ? "" : ", the default");
+  if (o.paper_iterations) text += "; as in the paper, not converged";
+  return text;
+}
+
+// The solver's estimate of its distance to the exact minimiser, in mm at life size and relative to |d|.
+std::string error_text(const deform::DeformResult& r, const Eigen::Vector3d& d, const LifeSize& life) {
+  if (!r.error_estimate) return "not yet available";
+  char text[64];
+  std::snprintf(text, sizeof(text), "%.2f mm (%.1e |d|)", life.to_mm(*r.error_estimate * d.norm()),
+                *r.error_estimate);
+  return text;
 }
 
 // Section planes spread evenly across the ROI's extent along d.
@@ -197,7 +236,7 @@ std::vector<double> section_offsets(const deform::Mesh& mesh, const std::vector<
   return offsets;
 }
 
-void run_deform(const DeformCommandOptions& o) {
+void run_deform(DeformCommandOptions o) {
   const auto start = std::chrono::steady_clock::now();
   if (o.handle_file.empty() == o.handle_at.empty()) {
     throw CommandError("give exactly one of --handle FILE or --handle-at X Y Z (with --handle-radius)");
@@ -207,8 +246,8 @@ void run_deform(const DeformCommandOptions& o) {
   if (o.fixed_file.empty() && !o.roi_radius) {
     throw CommandError("give --fixed FILE, --roi-radius R, or both (the region needs a boundary)");
   }
-  const Eigen::Vector3d d = vector3(o.displacement, "--displacement");
-  if (d.norm() == 0.0) throw CommandError("--displacement: zero displacement (nothing to push or pull)");
+  if (vector3(o.displacement, "--displacement").norm() == 0.0)
+    throw CommandError("--displacement: zero displacement (nothing to push or pull)");
   deform::DeformOptions options = solver_options(o);
   check_output_model_path(o.out);
   for (const std::string& output : {o.out, o.metrics}) {
@@ -220,6 +259,9 @@ void run_deform(const DeformCommandOptions& o) {
 
   const LoadedModel model = load_model(o.mesh);
   const std::shared_ptr<const deform::Mesh>& mesh = model.mesh;
+  const LifeSize life(o.life_size, bounds_of(mesh->V), o.mesh);
+  convert_to_file_units(o, life);
+  const Eigen::Vector3d d = vector3(o.displacement, "--displacement");
   const std::vector<int> handle = pick_handle(o, *mesh);
   const std::vector<int> fixed =
       o.fixed_file.empty() ? std::vector<int>{} : read_index_file(o.fixed_file, mesh->vertex_count());
@@ -280,7 +322,7 @@ void run_deform(const DeformCommandOptions& o) {
   record.fixed_count = static_cast<long>(roi.fixed.size());
   record.free_count = static_cast<long>(roi.free.size());
   record.dead_band_fraction = o.dead_band;
-  record.result.warnings.insert(record.result.warnings.end(), roi.warnings.begin(), roi.warnings.end());
+  record.life_size_scale = life.scale();
   record.total_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   try {
@@ -291,15 +333,20 @@ void run_deform(const DeformCommandOptions& o) {
 
   const deform::DeformResult& r = record.result;
   const deform::DeformationMetrics& m = record.metrics;
-  std::printf("pushpull deform: %s, %s, |d| = %g, ROI %zu of %ld vertices (%zu handle, %zu fixed)\n",
-              o.mesh.c_str(), o.method.c_str(), d.norm(), omega.size(), record.vertices, roi.handle.size(),
-              roi.fixed.size());
-  std::printf("  %d iterations, %s (%s); %.1f ms per iteration, %.1f ms factorize, %.1f ms total\n",
+  std::printf("pushpull deform: %s, %s, |d| = %.1f mm, ROI %zu of %ld vertices (%zu handle, %zu fixed)\n",
+              o.mesh.c_str(), o.method.c_str(), life.to_mm(d.norm()), omega.size(), record.vertices,
+              roi.handle.size(), roi.fixed.size());
+  if (life.scale() != 1.0)
+    std::printf(
+        "  life size: %g m per file unit (lengths typed and printed at life size; files keep file units)\n",
+        life.scale());
+  std::printf("  %d iterations, %s (%s); estimated error %s; %.1f ms per iteration, %.1f ms factorize, %.1f ms "
+              "total\n",
               r.iterations, r.converged ? "converged" : "not converged",
-              std::string(deform::stop_reason_name(r.stop_reason)).c_str(), r.timing.per_iteration,
+              stop_text(r.stop_reason, o, options).c_str(), error_text(r, d, life).c_str(), r.timing.per_iteration,
               r.timing.factorize, record.total_ms);
-  std::printf("  max displacement %g; RMS along d %g, orthogonal to d %g\n", m.displacement.max,
-              m.along_d.rms, m.orthogonal.rms);
+  std::printf("  max displacement %.2f mm; RMS along d %.2f mm, orthogonal to d %.2f mm\n",
+              life.to_mm(m.displacement.max), life.to_mm(m.along_d.rms), life.to_mm(m.orthogonal.rms));
   std::printf(
       "  Gaussian-curvature sign reversals (+ to -, - to +) %.2f%% of %zu vertices; %zu went flat, %zu left "
       "flat (flat: |K| L^2 <= %g, L = %g)\n",
@@ -314,8 +361,9 @@ void run_deform(const DeformCommandOptions& o) {
       vertices += part.vertex_count;
       largest = std::max(largest, part.max_displacement);
     }
-    std::printf("  attached parts: %zu within %g of the region (%ld vertices); %ld moved with the surface, up to %g\n",
-                record.attached.size(), record.attach_reach, vertices, moved, largest);
+    std::printf("  attached parts: %zu within %.1f mm of the region (%ld vertices); %ld moved with the surface, up to "
+                "%.2f mm\n",
+                record.attached.size(), life.to_mm(record.attach_reach), vertices, moved, life.to_mm(largest));
   }
   std::printf("  wrote %s and %s\n", o.out.c_str(), o.metrics.c_str());
 }
@@ -331,14 +379,18 @@ void add_deform_command(CLI::App& root) {
   cmd->add_option("MESH", o->mesh, "Model to deform (.gltf, .glb, .drc, .off, .obj, .ply)")->required();
   cmd->add_option("--handle", o->handle_file,
                   "File of 0-based handle vertex indices (white-space separated)");
-  cmd->add_option("--handle-at", o->handle_at, "Handle = vertices within --handle-radius of the surface point closest to this one, measured along the surface")
+  cmd->add_option("--handle-at", o->handle_at,
+                  "Handle = vertices within --handle-radius, measured along the surface, of the surface point "
+                  "closest to this one (model frame, metres at life size)")
       ->expected(3);
-  cmd->add_option("--handle-radius", o->handle_radius, "Radius for --handle-at (model units)");
+  cmd->add_option("--handle-radius", o->handle_radius, "Radius for --handle-at (metres at life size)");
   cmd->add_option("--fixed", o->fixed_file, "File of 0-based fixed vertex indices (the region stops there)");
   cmd->add_option(
       "--roi-radius", o->roi_radius,
-      "Region = vertices within this geodesic (edge-path) distance of the handle; its border is fixed");
-  cmd->add_option("--displacement", o->displacement, "Push/pull displacement d of the handle (model units)")
+      "Region = vertices within this geodesic (edge-path) distance of the handle (metres at life size); its "
+      "border is fixed");
+  cmd->add_option("--displacement", o->displacement,
+                  "Push/pull displacement d of the handle (metres at life size)")
       ->expected(3)
       ->required();
   cmd->add_option("--method", o->method, "arap-s, arap-sr, arap-m, arap-n, sr-arap, arap-h or asan")
@@ -355,14 +407,18 @@ void add_deform_command(CLI::App& root) {
   cmd->add_option("--iterations", o->iterations, "Maximum local-global iterations")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
-  cmd->add_option(
-         "--tolerance", o->tolerance,
-         "Stop when the largest vertex move in an iteration is below T |d|; 0 = run exactly --iterations")
+  cmd->add_option("--tolerance", o->tolerance,
+                  "Accuracy: stop when the estimated largest vertex distance to the exact minimiser is below "
+                  "T |d| (1e-2: 1 mm on a 100 mm pull); 0 = run exactly --iterations")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--energy-tolerance", o->energy_tolerance,
-                  "Stop when the relative energy change is below this")
+                  "Also stop when the relative energy change |E_k - E_k-1| / E_k-1 is below this (default: " +
+                      tolerance_text(deform::DeformOptions{}.energy_tolerance) + "; 0 = off)")
       ->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--paper-iterations", o->paper_iterations,
+                "The paper's setting: 50 plain local-global iterations, no acceleration, no stopping rule "
+                "(as in the paper, not converged; the error estimate is still reported)");
   cmd->add_option("--anderson", o->anderson,
                   "Anderson acceleration window, 0 = plain local-global iterations (default: " +
                       std::to_string(deform::DeformOptions{}.anderson_window) + ")")
@@ -374,15 +430,18 @@ void add_deform_command(CLI::App& root) {
                "Leave separate parts (lamps, plates, trims) where they are instead of letting the ones near the "
                "region follow the deformed surface");
   cmd->add_option("--attach-reach", o->attach_reach,
-                  "Parts within this distance of the region follow the surface (model units; default: 3% of "
-                  "the region's bounding-box diagonal)")
+                  "Parts within this distance of the region follow the surface (metres at life size; default: "
+                  "3% of the region's bounding-box diagonal)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--dead-band", o->dead_band,
                   "Curvature sign: |K| L^2 <= this counts as flat (zero) in sign statistics, L = the model's "
                   "bounding-box diagonal (the rule `render --color curvature-sign` draws)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--out", o->out, "Deformed model to write (.glb, .off, .obj, .ply)")->required();
+  add_life_size_options(*cmd, o->life_size);
+  cmd->add_option("--out", o->out,
+                  "Deformed model to write (.glb, .off, .obj, .ply; in the input's file units)")
+      ->required();
   cmd->add_option("--metrics", o->metrics, "METRICS.json to write")->required();
   cmd->callback([o] { run_deform(*o); });
 }

@@ -1,5 +1,6 @@
 // pushpull info MODEL: what is in a model (size, counts, components, materials, extensions, weld).
 #include "commands.hpp"
+#include "life_size.hpp"
 
 #include <pushpull/assets/info.hpp>
 #include <pushpull/assets/model.hpp>
@@ -8,7 +9,6 @@
 
 #include <cstdio>
 #include <memory>
-#include <optional>
 #include <string>
 
 namespace pushpull::app {
@@ -17,15 +17,14 @@ namespace {
 
 struct InfoArguments {
   std::string model;
-  double scale = 1.0;
-  std::optional<double> length_m;
+  LifeSizeOptions life_size;
   double weld_tolerance = pushpull::assets::WeldOptions{}.relative_tolerance;
 };
 
 void run_info(const InfoArguments& arguments) {
   pushpull::assets::LoadOptions options;
-  options.scale = arguments.scale;
-  options.target_length_m = arguments.length_m;
+  options.scale = arguments.life_size.scale;
+  options.target_length_m = arguments.life_size.length_m;
   options.weld.relative_tolerance = arguments.weld_tolerance;
   try {
     const pushpull::assets::Model model = pushpull::assets::load_model(arguments.model, options);
@@ -43,12 +42,7 @@ void add_info_command(CLI::App& root) {
       "info",
       "Print what is in a model: size, counts, components, materials, extensions and what welding did");
   info->add_option("model", arguments->model, "Model file (.gltf, .glb, .drc, .off, .obj, .ply)")->required();
-  info->add_option("--scale", arguments->scale,
-                   "Life-size factor applied to the model (file units to metres)")
-      ->check(CLI::PositiveNumber);
-  info->add_option("--length", arguments->length_m,
-                   "Life size: scale so the longest side is this many metres")
-      ->check(CLI::PositiveNumber);
+  add_life_size_options(*info, arguments->life_size);
   info->add_option("--weld-tolerance", arguments->weld_tolerance,
                    "Weld tolerance relative to the bounding-box diagonal")
       ->check(CLI::NonNegativeNumber)

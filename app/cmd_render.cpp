@@ -1,6 +1,7 @@
 // `pushpull render`: a PNG of a model or of a deformation result, with material shading or the
 // review colour maps (displacement magnitude, sign of Gaussian curvature) and overlays.
 #include "commands.hpp"
+#include "life_size.hpp"
 #include "render_model.hpp"
 #include "render_session.hpp"
 #include "vertex_selection.hpp"
@@ -36,15 +37,28 @@ Eigen::Vector3d vec3(const std::vector<double>& v, size_t offset = 0) {
   return {v[offset], v[offset + 1], v[offset + 2]};
 }
 
-void run_render(const RenderCommandOptions& options) {
+// The lengths typed on the command line (life-size metres) in the model's file units.
+void convert_to_file_units(RenderCommandOptions& o, const LifeSize& life) {
+  o.eye = life.to_file_units(o.eye);
+  o.target = life.to_file_units(o.target);
+  o.handle_at = life.to_file_units(o.handle_at);
+  o.handle_radius = life.to_file_units(o.handle_radius);
+  o.arrow = life.to_file_units(o.arrow);
+  if (o.scalar_max) o.scalar_max = life.to_file_units(*o.scalar_max);
+  if (o.ipd) o.ipd = life.to_file_units(*o.ipd);
+}
+
+void run_render(RenderCommandOptions options) {
   const assets::Model model = load(options.model, "model");
+  const LifeSize life(options.life_size, model.bounds, options.model);
+  convert_to_file_units(options, life);
   RenderInputs inputs;
   inputs.render = build_render_model(model);
   for (const auto& w : inputs.render.warnings)
     std::fprintf(stderr, "pushpull render: warning: %s\n", w.c_str());
   if (inputs.render.mesh.indices.empty())
     throw CommandError(options.model + ": the model has no triangles to draw");
-  inputs.is_gltf = model.report.format == "glTF" || model.report.format == "GLB";
+  inputs.life_size_scale = life.scale();
 
   const Eigen::MatrixXd& V0 = model.deform_mesh.V;
   const Eigen::MatrixXi& F = model.deform_mesh.F;
@@ -94,7 +108,7 @@ void run_render(const RenderCommandOptions& options) {
     mark(read_index_file(options.handle_file, nv), &renderer::OverlayWeights::handle);
   if (!options.handle_at.empty()) {
     if (options.handle_radius <= 0.0)
-      throw CommandError("--handle-at needs --handle-radius > 0 (model units)");
+      throw CommandError("--handle-at needs --handle-radius > 0 (metres at life size)");
     // The same rule as `pushpull deform`: along the surface from the closest surface point.
     const deform::Mesh rest{V0, F};
     const deform::SurfacePoint hit = deform::closest_surface_point(rest, vec3(options.handle_at));
@@ -157,16 +171,18 @@ void add_render_command(CLI::App& root) {
          "Orbit camera: AZIMUTH ELEVATION [ZOOM] (degrees around --up from the model's front +Z towards "
          "+X; ZOOM > 1 moves closer). Default 35 20 1 frames the whole model")
       ->expected(2, 3);
-  cmd->add_option("--eye", options->eye, "Camera position X Y Z (model frame); overrides --camera")
+  cmd->add_option("--eye", options->eye,
+                  "Camera position X Y Z (model frame, metres at life size); overrides --camera")
       ->expected(3);
   cmd->add_option("--target", options->target,
-                  "Point looked at X Y Z (model frame; default: the model's centre)")
+                  "Point looked at X Y Z (model frame, metres at life size; default: the model's centre)")
       ->expected(3);
   cmd->add_option("--up", options->up, "World up X Y Z (default 0 1 0, glTF)")->expected(3);
   cmd->add_option("--fov", options->fov_deg, "Vertical field of view, degrees")
       ->check(CLI::Range(1.0, 170.0));
-  cmd->add_option("--scalar-max", options->scalar_max,
-                  "Displacement shown as the top of the colour map (model units; default: the largest)");
+  cmd->add_option(
+      "--scalar-max", options->scalar_max,
+      "Displacement shown as the top of the colour map (metres at life size; default: the largest)");
   cmd->add_option("--dead-band", options->dead_band,
                   "Curvature sign: |K| L^2 <= dead-band counts as flat (grey), L = MODEL's bounding-box "
                   "diagonal (the rule of deform's metrics); faces of flat panels are drawn flat")
@@ -175,19 +191,22 @@ void add_render_command(CLI::App& root) {
                   "Handle vertices (index file of deform vertices), drawn red");
   cmd->add_option("--fixed", options->fixed_file, "Fixed vertices (index file), drawn blue");
   cmd->add_option("--roi", options->roi_file, "Region-of-interest vertices (index file), tinted");
-  cmd->add_option("--handle-at", options->handle_at, "Handle = vertices near X Y Z (model frame)")
+  cmd->add_option("--handle-at", options->handle_at,
+                  "Handle = vertices near X Y Z (model frame, metres at life size)")
       ->expected(3);
-  cmd->add_option("--handle-radius", options->handle_radius, "Radius for --handle-at (model units)");
+  cmd->add_option("--handle-radius", options->handle_radius, "Radius for --handle-at (metres at life size)");
   cmd->add_option("--arrow", options->arrow,
-                  "Draw the push/pull arrow p0 -> p1: X0 Y0 Z0 X1 Y1 Z1 (model frame)")
+                  "Draw the push/pull arrow p0 -> p1: X0 Y0 Z0 X1 Y1 Z1 (model frame, metres at life size)")
       ->expected(6);
   cmd->add_option(
       "--sections", options->sections,
       "Draw N section curves of the (deformed) surface, planes orthogonal to the --arrow direction");
+  add_life_size_options(*cmd, options->life_size);
   cmd->add_flag("--no-legend", options->no_legend, "Leave out the colour-map legend");
   cmd->add_flag("--flat", options->flat, "Colour maps without lighting (exact colours)");
-  cmd->add_option("--stereo", options->ipd,
-                  "Render two eyes IPD apart (model units) in one frame; the PNG holds left | right");
+  cmd->add_option(
+      "--stereo", options->ipd,
+      "Render two eyes IPD apart (metres at life size, e.g. 0.064) in one frame; the PNG holds left | right");
   cmd->add_option("--samples", options->samples, "MSAA samples")->check(CLI::IsMember({1, 2, 4, 8}));
   cmd->add_flag("--validation", options->validation,
                 "Enable VK_LAYER_KHRONOS_validation; fail on any message");

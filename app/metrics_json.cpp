@@ -36,6 +36,7 @@ std::string metrics_json(const DeformRunRecord& record) {
   json doc;
   doc["input"] = record.input;
   doc["output"] = record.output;
+  doc["life_size_scale"] = record.life_size_scale;
   doc["method"] = std::string(deform::method_name(options.method));
   doc["asan_base"] = std::string(deform::method_name(options.asan_base));
   doc["mu"] = options.mu;
@@ -56,6 +57,8 @@ std::string metrics_json(const DeformRunRecord& record) {
   doc["anderson"] = options.anderson_window;
   doc["converged"] = result.converged;
   doc["stop_reason"] = std::string(deform::stop_reason_name(result.stop_reason));
+  // Estimated largest vertex distance to the exact minimiser, relative to |d| (null before it is known).
+  doc["error_estimate"] = result.error_estimate ? json(*result.error_estimate) : json(nullptr);
   doc["initial_energy"] = result.initial_energy;
   doc["energy_trace"] = result.energy_trace;
   doc["timing_ms"] = json{{"precompute", result.timing.precompute},

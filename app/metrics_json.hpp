@@ -1,10 +1,10 @@
 // The METRICS.json document written by `pushpull deform`: what was run, how the solver behaved, and the
 // paper's evaluation numbers (pushpull::deform::DeformationMetrics).
 //
-// Keys (lengths in model units, times in milliseconds):
-//   input, output, method, asan_base, mu, d [3], stretch_direction [3] | null, vertices, roi_vertices,
-//   handle_count, fixed_count, free_count, iterations, max_iterations, tolerance, energy_tolerance,
-//   anderson, converged, stop_reason, energy_trace [..], initial_energy,
+// Keys (lengths in model units, i.e. the file's units; times in milliseconds):
+//   input, output, life_size_scale (metres per model unit), method, asan_base, mu, d [3], stretch_direction
+//   [3] | null, vertices, roi_vertices, handle_count, fixed_count, free_count, iterations, max_iterations,
+//   tolerance, energy_tolerance, anderson, converged, stop_reason, energy_trace [..], initial_energy,
 //   timing_ms {precompute, factorize, solve, per_iteration, total},
 //   max_displacement, gaussian_sign_flip_fraction (any sign change), gaussian_sign_reversal_fraction (+ to -
 //   and - to + only), along_d_norm (RMS over the ROI), orthogonal_norm (RMS),
@@ -54,6 +54,7 @@ struct DeformRunRecord {
   double dead_band_fraction = 0.0;  // the sign rule's flat band (--dead-band), dimensionless
   std::vector<AttachedPartRecord> attached;  // parts that follow the surface (empty when turned off)
   double attach_reach = 0.0;                 // the distance that decided which parts follow
+  double life_size_scale = 1.0;  // metres per model unit (--scale / --length)
 };
 
 // The JSON text (pretty-printed, trailing newline).

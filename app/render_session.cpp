@@ -12,7 +12,9 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 
@@ -54,6 +56,29 @@ View make_view(const RenderCommandOptions& o, const Bounds& bounds, float aspect
                     std::max(distance - 2.0f * radius, distance * 1e-3f), distance + 2.0f * radius);
   }
   return view;
+}
+
+// A camera that ends inside the model shows its inside (or nothing): say so, with where the eye is.
+// Inside = generalised winding number >= 1/2 (inside a closed part); an orbit camera (no --eye) that
+// ends inside the model's bounding box is reported too (parts of the model are behind it).
+void warn_if_inside(const View& view, const RenderInputs& inputs, const Bounds& bounds, bool orbit) {
+  const glm::vec3 eye(glm::inverse(view.view)[3]);
+  const double winding = winding_number(inputs.positions, inputs.render.mesh.indices, eye);
+  const bool in_box = glm::all(glm::greaterThan(eye, bounds.min)) && glm::all(glm::lessThan(eye, bounds.max));
+  const double s = inputs.life_size_scale;
+  if (std::abs(winding) >= 0.5)
+    std::fprintf(
+        stderr,
+        "pushpull render: warning: the camera is inside the model (eye at %.3g %.3g %.3g m, winding "
+        "number %.2f): the picture shows the model from inside; use a smaller ZOOM in --camera or move "
+        "--eye outside\n",
+        s * double(eye.x), s * double(eye.y), s * double(eye.z), winding);
+  else if (orbit && in_box)
+    std::fprintf(
+        stderr,
+        "pushpull render: warning: the orbit camera ends inside the model's bounding box (eye at %.3g %.3g "
+        "%.3g m): parts of the model are behind it; use a smaller ZOOM in --camera\n",
+        s * double(eye.x), s * double(eye.y), s * double(eye.z));
 }
 
 // Side by side: left | right.
@@ -105,12 +130,13 @@ void benchmark(Renderer& renderer, MeshId mesh, std::span<const View> views, std
   const double plain = run(false, draws);
   const double streamed = run(true, draws);
   const double streamed_normals = normals_ms;
-  // The upload alone: frames that clear both views but draw nothing, with and without the upload.
+  // The upload alone: frames that clear every view but draw nothing, with and without the upload.
   const double empty = run(false, {});
   const double empty_upload = run(true, {});
   const uint64_t bytes = renderer.last_upload_bytes();
-  std::printf("frame time, stereo, no upload:             %9.2f ms\n", plain);
-  std::printf("frame time, stereo, full upload each frame: %9.2f ms (includes CPU normals %.2f ms)\n",
+  const char* views_text = views.size() == 2 ? "stereo" : views.size() == 1 ? "1 view" : "all views";
+  std::printf("frame time, %s, no upload:             %9.2f ms\n", views_text, plain);
+  std::printf("frame time, %s, full upload each frame: %9.2f ms (includes CPU normals %.2f ms)\n", views_text,
               streamed, streamed_normals);
   std::printf(
       "upload cost isolated (empty frames):        %9.2f ms per frame (%.2f -> %.2f ms; %.2f MB of "
@@ -159,10 +185,13 @@ void render_to_png(const RenderInputs& inputs, const RenderCommandOptions& o) {
     if (inputs.arrow) {
       Material arrow;
       arrow.base_colour = glm::vec4(kArrowColour, 1.0f);
-      arrow.roughness = 0.4f;
+      arrow.unlit = true;  // the same colour in light and shadow, drawn on top of the surface
       const int id = int(renderer.add_material(arrow));
+      // Thick enough to see at the model's size, thin enough to stay an arrow for a short pull.
+      const float length = float((inputs.arrow->second - inputs.arrow->first).norm());
+      const float radius = std::clamp(0.08f * length, 0.004f * size, 0.02f * size);
       const RenderMesh arrow_mesh =
-          make_arrow(to_glm(inputs.arrow->first), to_glm(inputs.arrow->second), 0.012f * size, id);
+          make_arrow(to_glm(inputs.arrow->first), to_glm(inputs.arrow->second), radius, id);
       if (!arrow_mesh.indices.empty())
         draws.push_back({renderer.add_mesh(arrow_mesh), glm::mat4(1.0f), false, true});
     }
@@ -178,8 +207,8 @@ void render_to_png(const RenderInputs& inputs, const RenderCommandOptions& o) {
     FrameSettings settings;
     settings.up = to_glm(o.up);
     settings.lighting = !o.flat;
-    const double unit_scale = inputs.is_gltf ? 1000.0 : 1.0;  // glTF metres -> mm in the legend
-    const std::string unit = inputs.is_gltf ? "mm" : "model units";
+    const double unit_scale = 1000.0 * inputs.life_size_scale;  // model units -> life-size mm
+    const std::string unit = "mm";
     const float legend_h = 0.32f, legend_w = legend_h * float(height) / float(width) * 0.55f;
     const glm::vec4 rect{0.015f, 1.0f - legend_h - 0.015f, 0.015f + legend_w, 0.985f};
     const uint32_t legend_px_h = std::max(110u, uint32_t(float(height) * legend_h));
@@ -204,6 +233,7 @@ void render_to_png(const RenderInputs& inputs, const RenderCommandOptions& o) {
 
     const float aspect = float(width) / float(height);
     const View mono = make_view(o, bounds, aspect);
+    warn_if_inside(mono, inputs, bounds, o.eye.empty());
     std::vector<View> views{mono};
     if (o.ipd) {
       const auto eyes = stereo_pair(mono, float(*o.ipd));

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "pushpull/deform/metrics.hpp"
+#include "life_size.hpp"
 #include "render_model.hpp"
 
 #include <Eigen/Core>
@@ -16,6 +17,8 @@
 
 namespace pushpull::app {
 
+// Lengths and points (eye, target, handle_at, handle_radius, arrow, scalar_max, ipd) are typed in
+// life-size metres (life_size.hpp); run_render converts them to file units before render_to_png.
 struct RenderCommandOptions {
   std::string model;
   std::string deformed;
@@ -40,6 +43,7 @@ struct RenderCommandOptions {
   int samples = 4;
   bool validation = false;
   int benchmark_frames = 0;
+  LifeSizeOptions life_size;
 };
 
 // Everything on render vertices (#Vr), model frame.
@@ -53,7 +57,7 @@ struct RenderInputs {
   std::optional<std::pair<Eigen::Vector3d, Eigen::Vector3d>> arrow;  // p0, p1
   std::vector<std::vector<glm::vec3>> sections;
   bool deformed = false;
-  bool is_gltf = false;  // metres: legends in mm
+  double life_size_scale = 1.0;  // metres per model unit: legends in life-size mm
 };
 
 // Renders and writes options.out; throws CommandError naming the file on failure.

@@ -3,6 +3,7 @@
 
 #include "command_runner.hpp"
 
+#include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -83,6 +84,44 @@ TEST(AssetsCli, DeformToyCarWritesAValidGlb) {
   EXPECT_EQ(report.status, 0) << report.output;
   const CliRun info = run("info '" + out.string() + "'");
   EXPECT_EQ(info.status, 0) << info.output;
+}
+
+}  // namespace
+
+namespace {
+
+// The number written just before `what` in `text` (e.g. "6 degenerate"), -1 when absent.
+long number_before(const std::string& text, const std::string& what) {
+  const std::size_t at = text.find(what);
+  if (at == std::string::npos || at < 2) return -1;
+  std::size_t start = at - 1;  // the space before `what`
+  while (start > 0 && std::isdigit(static_cast<unsigned char>(text[start - 1]))) --start;
+  if (start == at - 1) return -1;
+  return std::stol(text.substr(start, at - 1 - start));
+}
+
+// One definition of a degenerate triangle: `info` and `deform` count the same faces of the welded car.
+TEST(AssetsCli, InfoAndDeformCountTheSameDegenerateTriangles) {
+  Scratch dir;
+  {
+    std::ofstream handle(dir / "handle.txt");
+    handle << "0\n";
+  }
+  std::string model = "'";  // quoted for the shell (appended: GCC 12 warns on "'" + std::string)
+  model += data("AsamVehicle/vehicle_example.gltf").string();
+  model += "'";
+  const CliRun info = run("info " + model);
+  ASSERT_EQ(info.status, 0) << info.output;
+  const CliRun deform = run("deform " + model + " --handle " + (dir / "handle.txt").string() +
+                            " --roi-radius 0.3 --displacement 0 0.01 0 --out " + (dir / "o.glb").string() +
+                            " --metrics " + (dir / "m.json").string());
+  ASSERT_EQ(deform.status, 0) << deform.output;
+  const long in_info = number_before(info.output, "degenerate triangles");
+  const long in_deform = number_before(deform.output, "degenerate faces");
+  EXPECT_EQ(in_info, 6) << info.output;  // six zero-area slivers on the body
+  EXPECT_EQ(in_info, in_deform) << info.output << "\n" << deform.output;
+  // What the weld collapsed (and dropped) is reported apart from them.
+  EXPECT_EQ(number_before(info.output, "triangles collapsed by the weld"), 12) << info.output;
 }
 
 }  // namespace

@@ -126,6 +126,29 @@ TEST(RenderCli, GltfWithMaterialsCurvatureAndStereo) {
   EXPECT_EQ(load_png(stereo).width, 200);  // left | right
 }
 
+// The p0 -> p1 arrow is drawn on top of the surface: an arrow inside the dome, behind its wall as seen
+// from the camera, still shows in the picture (and the same picture without it has no arrow colour).
+TEST(RenderCli, ArrowInsideTheSurfaceStaysVisible) {
+  const std::string dome = std::string(PUSHPULL_SHARED_DATA) + "/meshes/hemisphere.off";
+  auto arrow_pixels = [](const Png& png) {
+    int n = 0;
+    for (int y = 0; y < png.height; ++y)
+      for (int x = 0; x < png.width; ++x) {
+        const auto c = png.at(x, y);
+        n += (c[0] > 200 && c[1] < 90 && c[2] > 170) ? 1 : 0;  // the magenta of kArrowColour
+      }
+    return n;
+  };
+  const fs::path with = temp_dir() / "arrow_inside.png", without = temp_dir() / "no_arrow.png";
+  Result r =
+      run("render " + dome + " --up 0 0 1 --arrow 0 0 0.9 0 0 0.2 --size 320 240 --out " + with.string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  r = run("render " + dome + " --up 0 0 1 --size 320 240 --out " + without.string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(arrow_pixels(load_png(without)), 0);
+  EXPECT_GT(arrow_pixels(load_png(with)), 20);
+}
+
 TEST(RenderCli, ErrorsNameTheFileAndTheProblem) {
   Result r = run("render /nonexistent/model.off --out /tmp/x.png");
   EXPECT_EQ(r.status, 1);

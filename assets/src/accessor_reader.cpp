@@ -79,8 +79,10 @@ std::pair<const unsigned char*, std::size_t> AccessorReader::view_bytes(int acce
     fail(accessor, "buffer " + std::to_string(view.buffer) + " does not exist");
   const auto& data = gltf.buffers[static_cast<std::size_t>(view.buffer)].data;
   if (view.byteOffset > data.size() || view.byteLength > data.size() - view.byteOffset)
-    fail(accessor, "bufferView " + std::to_string(view_index) + " runs past its buffer (" +
-                       std::to_string(data.size()) + " bytes; truncated?)");
+    fail(accessor, "bufferView " + std::to_string(view_index) + " (byteOffset " +
+                       std::to_string(view.byteOffset) + ", byteLength " + std::to_string(view.byteLength) +
+                       ") runs past the end of buffer " + std::to_string(view.buffer) + " (" +
+                       std::to_string(data.size()) + " bytes): corrupt bufferView lengths");
   std::uint64_t stride = element_size;
   if (allow_stride && view.byteStride != 0) {
     if (view.byteStride < element_size || view.byteStride > 252)

@@ -3,6 +3,7 @@
 #include "pushpull/assets/error.hpp"
 
 #include <cstring>
+#include <optional>
 
 namespace pushpull::assets::detail {
 
@@ -27,19 +28,45 @@ bool looks_like_glb(std::span<const std::uint8_t> bytes) {
   return bytes.size() >= 4 && read_u32(bytes, 0) == kMagic;
 }
 
+// Where the chunks as declared by their own length fields end (JSON, then an optional BIN chunk), read
+// only from bytes that exist; lets a too-short file (truncated) be told from a corrupt length field.
+// nullopt when the file ends before the BIN chunk's header could be read.
+std::optional<std::uint64_t> declared_end(std::span<const std::uint8_t> bytes, std::uint64_t json_length) {
+  const std::uint64_t json_end = 20 + json_length;
+  const std::uint64_t bin_header = (json_end + 3) & ~std::uint64_t{3};
+  if (bin_header >= bytes.size()) return json_end;  // nothing after the JSON chunk
+  if (bin_header + 8 > bytes.size()) return std::nullopt;
+  if (read_u32(bytes, bin_header + 4) != kChunkBin) return json_end;
+  return bin_header + 8 + read_u32(bytes, bin_header);
+}
+
 GlbChunks parse_glb(std::span<const std::uint8_t> bytes, const std::string& name) {
   auto fail = [&](const std::string& what) { throw AssetError(name + ": invalid GLB: " + what); };
-  if (bytes.size() < 20) fail("truncated header (" + std::to_string(bytes.size()) + " bytes)");
+  if (bytes.size() < 20)
+    fail("truncated header (" + std::to_string(bytes.size()) + " bytes, a GLB header has 20)");
   if (read_u32(bytes, 0) != kMagic) fail("bad magic");
   if (read_u32(bytes, 4) != 2)
     fail("version " + std::to_string(read_u32(bytes, 4)) + " (only 2 is supported)");
   const std::uint64_t total = read_u32(bytes, 8);
-  if (total > bytes.size())
-    fail("header says " + std::to_string(total) + " bytes, the file has " + std::to_string(bytes.size()) +
-         " (truncated)");
+  const std::uint64_t size = bytes.size();
   const std::uint64_t json_length = read_u32(bytes, 12);
+  if (total > size) {
+    const std::optional<std::uint64_t> chunks_end = declared_end(bytes, json_length);
+    if (chunks_end && *chunks_end <= size && ((*chunks_end + 3) & ~std::uint64_t{3}) >= size)
+      fail("corrupt header: its length field says " + std::to_string(total) + " bytes, but the file has " +
+           std::to_string(size) +
+           " and its chunks end there (a corrupt length field, or a file cut exactly after a chunk)");
+    if (!chunks_end || *chunks_end > size)
+      fail("truncated: the header says " + std::to_string(total) + " bytes, the file ends after " +
+           std::to_string(size) + ", inside a chunk");
+    fail("corrupt length fields: the header says " + std::to_string(total) +
+         " bytes, the chunks end at byte " + std::to_string(*chunks_end) + ", the file has " +
+         std::to_string(size));
+  }
   if (read_u32(bytes, 16) != kChunkJson) fail("first chunk is not JSON");
-  if (20 + json_length > total) fail("JSON chunk runs past the end of the file");
+  if (20 + json_length > total)
+    fail("corrupt JSON chunk header: its length field says " + std::to_string(json_length) + " bytes, only " +
+         std::to_string(total - 20) + " follow it");
   GlbChunks chunks;
   chunks.json = std::string_view(reinterpret_cast<const char*>(bytes.data()) + 20, json_length);
   std::uint64_t offset = 20 + json_length;
@@ -48,7 +75,9 @@ GlbChunks parse_glb(std::span<const std::uint8_t> bytes, const std::string& name
     const std::uint64_t bin_length = read_u32(bytes, offset);
     const std::uint32_t type = read_u32(bytes, offset + 4);
     if (type == kChunkBin) {
-      if (offset + 8 + bin_length > total) fail("BIN chunk runs past the end of the file (truncated)");
+      if (offset + 8 + bin_length > total)
+        fail("corrupt BIN chunk header: its length field says " + std::to_string(bin_length) +
+             " bytes, only " + std::to_string(total - offset - 8) + " follow it");
       chunks.bin = bytes.subspan(offset + 8, bin_length);
     }
   }

@@ -1,10 +1,12 @@
-// write_glb / encode_glb: rebuilds buffers, accessors and meshes from the render side (positions
-// through the weld map, rotated normals), carries everything else of the source document through.
+// write_glb / encode_glb: rebuilds buffers, accessors and meshes from the render side (moved vertices
+// through the weld map with rotated normals and tangents; unmoved vertices copied bit for bit),
+// carries everything else of the source document through (images: image_carry.hpp).
 #include "pushpull/assets/write.hpp"
 
 #include "atomic_file.hpp"
 #include "draco_encode.hpp"
 #include "glb_container.hpp"
+#include "image_carry.hpp"
 #include "source_document.hpp"
 #include "surface_normals.hpp"
 
@@ -28,14 +30,6 @@ constexpr int kElementArrayBuffer = 34963;
 constexpr int kFloat = 5126;
 constexpr int kUnsignedShort = 5123;
 constexpr int kUnsignedInt = 5125;
-
-// A 1x1 opaque white PNG, written in place of a missing or unrecognised image so the file stays valid.
-const std::vector<std::uint8_t> kPlaceholderPng = {
-    0x89, 0x50, 0x4E, 0x47, 0x0D, 0x0A, 0x1A, 0x0A, 0x00, 0x00, 0x00, 0x0D, 0x49, 0x48,
-    0x44, 0x52, 0x00, 0x00, 0x00, 0x01, 0x00, 0x00, 0x00, 0x01, 0x08, 0x02, 0x00, 0x00,
-    0x00, 0x90, 0x77, 0x53, 0xDE, 0x00, 0x00, 0x00, 0x0C, 0x49, 0x44, 0x41, 0x54, 0x08,
-    0xD7, 0x63, 0xF8, 0xFF, 0xFF, 0x3F, 0x00, 0x05, 0xFE, 0x02, 0xFE, 0xDC, 0xCC, 0x59,
-    0xE7, 0x00, 0x00, 0x00, 0x00, 0x49, 0x45, 0x4E, 0x44, 0xAE, 0x42, 0x60, 0x82};
 
 class GlbBuilder {
  public:
@@ -116,7 +110,9 @@ struct Rebuilt {
   RowMatrixXf<4> tangents;
 };
 
-Rebuilt rebuild(const Primitive& primitive, const Eigen::MatrixXd& deformed_V,
+// Render vertices whose deform vertex did not move (deformed position exactly equal to the rest
+// position) keep the values read from the file, bit for bit; only moved vertices are rebuilt.
+Rebuilt rebuild(const Primitive& primitive, const Eigen::MatrixXd& rest_V, const Eigen::MatrixXd& deformed_V,
                 const Eigen::MatrixXd& normals_before, const Eigen::MatrixXd& normals_after,
                 std::vector<std::string>& warnings) {
   if (primitive.deform_vertex.size() != static_cast<std::size_t>(primitive.positions.rows()))
@@ -137,9 +133,11 @@ Rebuilt rebuild(const Primitive& primitive, const Eigen::MatrixXd& deformed_V,
   }
   const Eigen::Matrix3d L_inverse = L.inverse();
   const Eigen::Matrix3d normal_matrix = L_inverse.transpose();
+  std::vector<bool> moved(static_cast<std::size_t>(out.positions.rows()), false);
   for (Eigen::Index v = 0; v < out.positions.rows(); ++v) {
     const int d = primitive.deform_vertex[static_cast<std::size_t>(v)];
-    if (d < 0) continue;
+    if (d < 0 || deformed_V.row(d) == rest_V.row(d)) continue;
+    moved[static_cast<std::size_t>(v)] = true;
     const Eigen::Vector3d world = deformed_V.row(d).transpose();
     out.positions.row(v) = (L_inverse * (world - t)).transpose().cast<float>();
     const Eigen::Matrix3d R =
@@ -162,6 +160,7 @@ Rebuilt rebuild(const Primitive& primitive, const Eigen::MatrixXd& deformed_V,
     }
   }
   for (Eigen::Index v = 0; v < out.normals.rows(); ++v) {
+    if (!moved[static_cast<std::size_t>(v)]) continue;
     const float n = out.normals.row(v).norm();
     if (std::isfinite(n) && n > 1e-6f)
       out.normals.row(v) /= n;
@@ -169,6 +168,7 @@ Rebuilt rebuild(const Primitive& primitive, const Eigen::MatrixXd& deformed_V,
       out.normals.row(v) << 0.0f, 0.0f, 1.0f;
   }
   for (Eigen::Index v = 0; v < out.tangents.rows(); ++v) {
+    if (!moved[static_cast<std::size_t>(v)]) continue;
     const float n = out.tangents.row(v).head<3>().norm();
     if (std::isfinite(n) && n > 1e-6f)
       out.tangents.row(v).head<3>() /= n;
@@ -250,28 +250,15 @@ std::vector<std::uint8_t> encode_glb(const Model& model, const Eigen::MatrixXd& 
   if (!document.contains("scene")) document["scene"] = 0;
 
   GlbBuilder glb;
-  // Images first (embedded), in their original order so texture indices stay valid.
-  if (!model.images.empty()) {
-    json images =
-        document.contains("images") && document["images"].is_array() ? document["images"] : json::array();
-    images.get_ref<json::array_t&>().resize(model.images.size(), json::object());
-    for (std::size_t i = 0; i < model.images.size(); ++i) {
-      const Image& image = model.images[i];
-      // PNG/JPEG (core), WebP and KTX2 (EXT_texture_webp, KHR_texture_basisu) pass through as they are.
-      const bool usable =
-          !image.encoded.empty() && (image.mime_type == "image/png" || image.mime_type == "image/jpeg" ||
-                                     image.mime_type == "image/webp" || image.mime_type == "image/ktx2");
-      if (!usable)
-        warnings.push_back("image " + std::to_string(i) + " '" + image.name +
-                           "' replaced by a 1x1 white PNG");
-      const auto& bytes = usable ? image.encoded : kPlaceholderPng;
-      json& entry = images[i];
-      entry.erase("uri");
-      entry["bufferView"] = glb.add_view(bytes.data(), bytes.size(), 0);
-      entry["mimeType"] = usable ? image.mime_type : "image/png";
-    }
-    document["images"] = images;
-  }
+  // Images first, in their original order so texture indices stay valid.
+  json images = detail::carry_images(
+      model, options.output_dir,
+      [&glb](const std::vector<std::uint8_t>& bytes) { return glb.add_view(bytes.data(), bytes.size(), 0); },
+      warnings);
+  if (images.empty())
+    document.erase("images");
+  else
+    document["images"] = std::move(images);
 
   // One mesh per node (instances deform independently); primitives without a node get a new node.
   json meshes = json::array();
@@ -291,7 +278,8 @@ std::vector<std::uint8_t> encode_glb(const Model& model, const Eigen::MatrixXd& 
     }
     for (std::size_t p : members) {
       const Primitive& primitive = model.primitives[p];
-      const Rebuilt rebuilt = rebuild(primitive, deformed_V, normals_before, normals_after, warnings);
+      const Rebuilt rebuilt =
+          rebuild(primitive, model.deform_mesh.V, deformed_V, normals_before, normals_after, warnings);
       mesh["primitives"].push_back(write_primitive(glb, primitive, rebuilt, options));
     }
     meshes.push_back(std::move(mesh));
@@ -321,7 +309,10 @@ std::vector<std::uint8_t> encode_glb(const Model& model, const Eigen::MatrixXd& 
 std::vector<std::string> write_glb(const Model& model, const Eigen::MatrixXd& deformed_V,
                                    const std::filesystem::path& path, const WriteOptions& options) {
   std::vector<std::string> warnings;
-  const std::vector<std::uint8_t> bytes = encode_glb(model, deformed_V, options, &warnings);
+  WriteOptions with_folder = options;
+  if (with_folder.output_dir.empty())
+    with_folder.output_dir = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+  const std::vector<std::uint8_t> bytes = encode_glb(model, deformed_V, with_folder, &warnings);
   detail::write_file_atomically(path, bytes);
   return warnings;
 }

@@ -427,6 +427,7 @@ void load_gltf(std::span<const std::uint8_t> bytes, const std::string& name, con
   std::error_code ec;
   if (!base_dir.empty()) context.root = fs::weakly_canonical(fs::absolute(base_dir, ec), ec);
   if (ec) context.root.clear();
+  source->base_dir = context.root;
   context.max_bytes = limits.max_file_bytes;
 
   // tinygltf 2.7 (built without Draco) insists that a primitive's index accessor has a bufferView,

@@ -70,12 +70,13 @@ std::string describe_model(const Model& model) {
   out << "unsupported:  " << join(report.unsupported_extensions) << "\n";
   out << "weld:         tolerance " << number(weld.tolerance) << " (file units); " << weld.render_vertices
       << " -> " << weld.deform_vertices << " vertices; " << weld.pieces_before << " pieces -> "
-      << weld.topology.components << " components; " << weld.degenerate_triangles
-      << " degenerate triangles dropped\n";
+      << weld.topology.components << " components; " << weld.collapsed_triangles
+      << " triangles collapsed by the weld (dropped)\n";
   out << "deform mesh:  " << model.deform_mesh.V.rows() << " vertices, " << model.deform_mesh.F.rows()
       << " triangles, " << weld.topology.components << " components, " << weld.topology.boundary_loops
       << " boundary loops (" << weld.topology.boundary_edges << " boundary edges), "
-      << weld.topology.non_manifold_edges << " non-manifold edges\n";
+      << weld.topology.non_manifold_edges << " non-manifold edges, " << weld.topology.degenerate_triangles
+      << " degenerate triangles (repeated vertex or zero area: no stiffness in the solver)\n";
   out << "warnings:     " << report.warnings.size() << "\n";
   for (const std::string& warning : report.warnings) out << "  - " << warning << "\n";
   return out.str();

@@ -25,12 +25,11 @@ bool assign_attribute(Primitive& primitive, const std::string& semantic, FloatRo
   } else if (semantic == "NORMAL") {
     require_columns(values, {3}, semantic, where);
     primitive.normals = values;
+    // Kept as read (not renormalized), so a written model can give unmoved vertices their bits
+    // back; only normals that cannot be normalized at all are replaced.
     for (Eigen::Index i = 0; i < primitive.normals.rows(); ++i) {
       const float n = primitive.normals.row(i).norm();
-      if (std::isfinite(n) && n > 1e-12f)
-        primitive.normals.row(i) /= n;
-      else
-        primitive.normals.row(i) << 0.0f, 0.0f, 1.0f;
+      if (!std::isfinite(n) || n <= 1e-12f) primitive.normals.row(i) << 0.0f, 0.0f, 1.0f;
     }
   } else if (semantic == "TANGENT") {
     require_columns(values, {4}, semantic, where);

@@ -6,10 +6,15 @@
 
 #include <nlohmann/json.hpp>
 
+#include <filesystem>
+
 namespace pushpull::assets {
 
 struct SourceDocument {
   nlohmann::json json;
+  // The folder the document's relative URIs resolve against (canonical), empty when it had none
+  // (a model read from memory without a base folder).
+  std::filesystem::path base_dir;
 };
 
 }  // namespace pushpull::assets

@@ -1,5 +1,7 @@
 #include "pushpull/assets/weld.hpp"
 
+#include <pushpull/deform/mesh_validation.hpp>
+
 #include <Eigen/Geometry>
 
 #include <algorithm>
@@ -78,6 +80,9 @@ Topology analyze_topology(const deform::Mesh& mesh) {
   }
   for (std::size_t v = 0; v < n; ++v)
     if (on_boundary[v] && boundary.find(v) == v) ++topology.boundary_loops;
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
+    if (deform::is_degenerate_triangle(mesh.V, mesh.F(f, 0), mesh.F(f, 1), mesh.F(f, 2)))
+      ++topology.degenerate_triangles;
   return topology;
 }
 
@@ -172,7 +177,7 @@ WeldStats weld_primitives(std::vector<Primitive>& primitives, const WeldOptions&
                            primitive.deform_vertex[i[2]]};
       if (mirrored) std::swap(f[1], f[2]);
       if (f[0] == f[1] || f[1] == f[2] || f[0] == f[2]) {
-        ++stats.degenerate_triangles;
+        ++stats.collapsed_triangles;
         continue;
       }
       faces.push_back(f);

@@ -150,6 +150,18 @@ TEST(AssetsBadInput, TruncatedBufferIsRefused) {
   expect_refused(dir, document, "model.gltf");
 }
 
+TEST(AssetsBadInput, CorruptBufferViewIsNotCalledTruncated) {
+  ScratchDir dir;
+  json document = triangle_gltf();
+  document["bufferViews"][0]["byteLength"] = 4000;  // the buffer (complete) has 44 bytes
+  expect_refused(dir, document, "bufferView 0 (byteOffset 0, byteLength 4000) runs past the end of buffer 0");
+  try {
+    (void)load_document(dir, document);
+  } catch (const AssetError& e) {
+    EXPECT_EQ(std::string(e.what()).find("truncated"), std::string::npos) << e.what();
+  }
+}
+
 TEST(AssetsBadInput, OversizedExternalFileIsRefused) {
   ScratchDir dir;
   testing::write_bytes(dir / "tri.bin", triangle_bin());
@@ -215,6 +227,51 @@ TEST(AssetsBadInput, TruncatedGlbIsRefused) {
                          std::vector<std::uint8_t>(glb.begin(), glb.begin() + static_cast<long>(keep)));
     EXPECT_THROW((void)load_model(dir / "cut.glb"), AssetError) << keep;
   }
+}
+
+// The message of a refused GLB, "" when it loads.
+std::string glb_refusal(const std::vector<std::uint8_t>& bytes) {
+  try {
+    (void)load_model_from_memory(bytes, "damaged.glb", {});
+  } catch (const AssetError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+void put_u32(std::vector<std::uint8_t>& bytes, std::size_t offset, std::uint32_t value) {
+  for (int i = 0; i < 4; ++i)
+    bytes[offset + static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(value >> (8 * i));
+}
+
+TEST(AssetsBadInput, DamagedGlbNamesTheActualProblem) {
+  const std::vector<std::uint8_t> glb =
+      testing::read_bytes(testing::gltf_data() / "CesiumMilkTruck/glTF-Binary/CesiumMilkTruck.glb");
+  ASSERT_GT(glb.size(), 1000u);
+  const std::uint32_t json_length =
+      static_cast<std::uint32_t>(glb[12]) | static_cast<std::uint32_t>(glb[13]) << 8 |
+      static_cast<std::uint32_t>(glb[14]) << 16 | static_cast<std::uint32_t>(glb[15]) << 24;
+  const std::size_t bin_header = (20 + json_length + 3) & ~std::size_t{3};
+
+  // A cut file is truncated.
+  const std::string cut =
+      glb_refusal(std::vector<std::uint8_t>(glb.begin(), glb.begin() + static_cast<long>(glb.size() / 2)));
+  EXPECT_NE(cut.find("truncated"), std::string::npos) << cut;
+
+  // A complete file whose header length field is corrupt is not "truncated".
+  std::vector<std::uint8_t> header = glb;
+  put_u32(header, 8, static_cast<std::uint32_t>(glb.size() + 1000));
+  const std::string bad_header = glb_refusal(header);
+  EXPECT_EQ(bad_header.find("truncated"), std::string::npos) << bad_header;
+  EXPECT_NE(bad_header.find("corrupt header"), std::string::npos) << bad_header;
+  EXPECT_NE(bad_header.find("damaged.glb"), std::string::npos) << bad_header;
+
+  // A complete file whose BIN chunk length field is corrupt is not "truncated" either.
+  std::vector<std::uint8_t> chunk = glb;
+  put_u32(chunk, bin_header, 100'000'000u);
+  const std::string bad_chunk = glb_refusal(chunk);
+  EXPECT_EQ(bad_chunk.find("truncated"), std::string::npos) << bad_chunk;
+  EXPECT_NE(bad_chunk.find("corrupt BIN chunk header"), std::string::npos) << bad_chunk;
 }
 
 TEST(AssetsBadInput, CorruptedDracoIsRefused) {

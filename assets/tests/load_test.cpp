@@ -46,7 +46,7 @@ TEST(AssetsLoad, ToyCarWelds2197PiecesInto50ComponentsWithMaterials) {
   const Model model = load_model(gltf_data() / "ToyCar/glTF/ToyCar.gltf");
   EXPECT_EQ(model.report.weld.pieces_before, 2197u);
   EXPECT_EQ(model.report.weld.topology.components, 50u);
-  EXPECT_EQ(model.report.weld.degenerate_triangles, 0u);
+  EXPECT_EQ(model.report.weld.collapsed_triangles, 0u);
   EXPECT_EQ(model.report.weld.topology.non_manifold_edges, 0u);
   EXPECT_NEAR(model.bounds.sizes().maxCoeff(), 0.07, 0.02);  // about 7 cm
   EXPECT_FALSE(model.materials.empty());

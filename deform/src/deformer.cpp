@@ -110,10 +110,7 @@ void Deformer::Impl::setup() {
   std::vector<int> omega_faces;
   for (int f = 0; f < m.F.rows(); ++f) {
     const int a = m.F(f, 0), b = m.F(f, 1), c = m.F(f, 2);
-    if (a == b || b == c || c == a) continue;
-    const Eigen::Vector3d pa = m.V.row(a), pb = m.V.row(b), pc = m.V.row(c);
-    const double longest2 = std::max({(pb - pa).squaredNorm(), (pc - pb).squaredNorm(), (pa - pc).squaredNorm()});
-    if (!((pb - pa).cross(pc - pa).norm() > 1e-14 * longest2)) continue;
+    if (is_degenerate_triangle(m.V, a, b, c)) continue;
     if (in_omega(a) && in_omega(b) && in_omega(c)) omega_faces.push_back(f);
   }
   // Free vertices not connected to any constrained vertex through Omega's faces are pinned at rest.

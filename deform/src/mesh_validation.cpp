@@ -34,6 +34,14 @@ int find_root(std::vector<int>& parent, int v) {
 
 }  // namespace
 
+bool is_degenerate_triangle(const Eigen::MatrixXd& V, int a, int b, int c) {
+  if (a == b || b == c || c == a) return true;
+  const Eigen::Vector3d pa = V.row(a), pb = V.row(b), pc = V.row(c);
+  const double longest2 =
+      std::max({(pb - pa).squaredNorm(), (pc - pb).squaredNorm(), (pa - pc).squaredNorm()});
+  return !((pb - pa).cross(pc - pa).norm() > kDegenerateAreaRatio * longest2);
+}
+
 ValidationReport validate_mesh(const Mesh& mesh) {
   const auto& V = mesh.V;
   const auto& F = mesh.F;
@@ -76,10 +84,7 @@ ValidationReport validate_mesh(const Mesh& mesh) {
   for (Eigen::Index f = 0; f < F.rows(); ++f) {
     const int a = F(f, 0), b = F(f, 1), c = F(f, 2);
     for (int k = 0; k < 3; ++k) referenced[static_cast<std::size_t>(F(f, k))] = 1;
-    const Eigen::Vector3d pa = V.row(a), pb = V.row(b), pc = V.row(c);
-    const double twice_area = (pb - pa).cross(pc - pa).norm();
-    const double longest = std::max({(pb - pa).norm(), (pc - pb).norm(), (pa - pc).norm()});
-    if (a == b || b == c || c == a || !(twice_area > 1e-14 * longest * longest)) {
+    if (is_degenerate_triangle(V, a, b, c)) {
       report.degenerate_faces.push_back(static_cast<int>(f));
       if (a == b || b == c || c == a) continue;  // not a triangle: no edges, no connectivity
     }

@@ -81,6 +81,27 @@ void cap(RenderMesh& m, const glm::vec3& centre, const glm::vec3& normal, uint32
 
 }  // namespace
 
+double winding_number(std::span<const float> positions, std::span<const uint32_t> indices,
+                      const glm::vec3& point) {
+  const glm::dvec3 p(point);
+  double total = 0.0;
+  for (size_t t = 0; t + 2 < indices.size(); t += 3) {
+    glm::dvec3 v[3];
+    for (int k = 0; k < 3; ++k) {
+      const size_t i = size_t(indices[t + size_t(k)]) * 3;
+      if (i + 2 >= positions.size()) return 0.0;  // malformed: no meaningful answer
+      v[k] = glm::dvec3(positions[i], positions[i + 1], positions[i + 2]) - p;
+    }
+    // Van Oosterom and Strackee: tan(omega / 2) = a . (b x c) / (|a||b||c| + (a.b)|c| + (b.c)|a| + (c.a)|b|).
+    const double la = glm::length(v[0]), lb = glm::length(v[1]), lc = glm::length(v[2]);
+    const double numerator = glm::dot(v[0], glm::cross(v[1], v[2]));
+    const double denominator =
+        la * lb * lc + glm::dot(v[0], v[1]) * lc + glm::dot(v[1], v[2]) * la + glm::dot(v[2], v[0]) * lb;
+    total += 2.0 * std::atan2(numerator, denominator);
+  }
+  return total / (4.0 * glm::pi<double>());
+}
+
 RenderMesh make_arrow(const glm::vec3& p0, const glm::vec3& p1, float radius, int material) {
   RenderMesh m;
   const int sides = 24;

@@ -65,25 +65,67 @@ const glm::vec4 kText{0.95f, 0.95f, 0.95f, 1.0f};
 
 }  // namespace
 
+std::vector<double> round_ticks(double max_value) {
+  if (!(max_value > 0.0) || !std::isfinite(max_value)) return {};
+  // The smallest round step that gives at most five intervals below max_value.
+  const double magnitude = std::pow(10.0, std::floor(std::log10(max_value / 5.0)));
+  double step = 10.0 * magnitude;
+  for (const double m : {1.0, 2.0, 2.5, 5.0, 10.0})
+    if (max_value / (m * magnitude) <= 5.0 + 1e-9) {
+      step = m * magnitude;
+      break;
+    }
+  std::vector<double> ticks;
+  for (int k = 0; k * step <= max_value * (1.0 + 1e-9); ++k) ticks.push_back(k * step);
+  return ticks;
+}
+
 TextureRGBA8 make_displacement_legend(float max_value, const std::string& title, uint32_t width,
                                       uint32_t height) {
   Canvas canvas(width, height, kPanel);
   const float scale = std::max(1.0f, std::floor(float(height) / 110.0f));
   const float line = 10.0f * scale;
-  canvas.text(line * 0.6f, line * 0.5f, title.c_str(), scale, kText);
+  // Title: as large as the tick labels when it fits, smaller when not, wrapped at spaces as a last resort.
+  const float room = float(width) - line * 1.2f;
+  float title_scale = scale;
+  while (title_scale > 1.0f && Canvas::text_width(title.c_str(), title_scale) > room) title_scale -= 1.0f;
+  std::vector<std::string> title_lines{title};
+  if (Canvas::text_width(title.c_str(), title_scale) > room) {
+    title_lines.clear();
+    std::string current, word;
+    for (std::size_t i = 0; i <= title.size(); ++i) {
+      if (i < title.size() && title[i] != ' ') {
+        word += title[i];
+        continue;
+      }
+      const std::string joined = current.empty() ? word : current + " " + word;
+      if (!current.empty() && Canvas::text_width(joined.c_str(), title_scale) > room) {
+        title_lines.push_back(current);
+        current = word;
+      } else {
+        current = joined;
+      }
+      word.clear();
+    }
+    if (!current.empty()) title_lines.push_back(current);
+  }
+  const float title_line = 10.0f * title_scale;
+  for (std::size_t i = 0; i < title_lines.size(); ++i)
+    canvas.text(line * 0.6f, line * 0.5f + title_line * float(i), title_lines[i].c_str(), title_scale, kText);
   const int bar_x0 = int(line * 0.8f), bar_x1 = bar_x0 + int(line * 1.6f);
-  const int bar_y0 = int(line * 2.2f), bar_y1 = int(height) - int(line * 1.0f);
+  const int bar_y0 = int(line * 0.5f + title_line * float(title_lines.size()) + line * 0.7f);
+  const int bar_y1 = int(height) - int(line * 1.0f);
   for (int y = bar_y0; y < bar_y1; ++y) {
     const float t = 1.0f - float(y - bar_y0) / float(std::max(1, bar_y1 - bar_y0 - 1));
     canvas.fill(bar_x0, y, bar_x1, y + 1, glm::vec4(displacement_colour(t), 1.0f));
   }
-  for (int k = 0; k <= 4; ++k) {
-    const float t = float(k) / 4.0f;
-    const int y = bar_y1 - 1 - int(std::lround(t * float(bar_y1 - bar_y0 - 1)));
+  for (const double value : round_ticks(double(max_value))) {
+    const double t = value / double(max_value);
+    const int y = bar_y1 - 1 - int(std::lround(t * double(bar_y1 - bar_y0 - 1)));
     canvas.fill(bar_x1, y - int(scale / 2), bar_x1 + int(line * 0.5f), y - int(scale / 2) + int(scale),
                 kText);
     char label[32];
-    std::snprintf(label, sizeof(label), "%.3g", double(t * max_value));
+    std::snprintf(label, sizeof(label), "%g", value);
     canvas.text(float(bar_x1) + line * 0.8f, float(y) - 3.5f * scale, label, scale, kText);
   }
   return canvas.image;

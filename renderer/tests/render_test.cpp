@@ -4,7 +4,9 @@
 #include "pushpull/renderer/geometry.hpp"
 #include "test_scenes.hpp"
 
+#include <algorithm>
 #include <array>
+#include <vector>
 
 namespace pushpull::renderer {
 namespace {
@@ -303,6 +305,63 @@ TEST(Renderer, RejectsMalformedMeshes) {
   const MeshId fixed_mesh = renderer.add_mesh(make_sheet(2));
   const std::vector<float> positions(27, 0.0f);
   EXPECT_THROW(renderer.update_vertices(fixed_mesh, positions), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace pushpull::renderer
+
+namespace pushpull::renderer {
+namespace {
+
+// The default material (a model without materials, e.g. OFF/OBJ/PLY) must stand out from the
+// background everywhere on a lit sphere, its shadowed side included: every pixel of the sphere's
+// disc differs from the clear colour by at least 40, 99% of them by 50 (8-bit sRGB, Euclidean over RGB;
+// the blue-grey default it replaces matched the background exactly on the shadowed side).
+TEST(Renderer, DefaultMaterialStandsOutFromTheBackground) {
+  Context context = make_context();
+  TextureRGBA8 image;
+  {
+    Renderer renderer(context);
+    RenderMesh sphere = make_sphere(1.0f, 48, 96);
+    sphere.submeshes.push_back({0, uint32_t(sphere.indices.size()), -1});  // -1: the default material
+    const MeshId mesh = renderer.add_mesh(sphere);
+    OffscreenTarget target(context, kSize, kSize);
+    const View view = sphere_view();
+    const Draw draw{mesh, glm::mat4(1.0f)};
+    renderer.render(std::span(&view, 1), std::span(&draw, 1), FrameSettings{}, target.targets());
+    image = target.read_back();
+  }
+  write_png(testing::output_dir() / "default_material.png", image);  // for inspection
+  const glm::ivec3 background = encoded(glm::vec3(FrameSettings{}.clear_colour));
+  const glm::vec2 centre(0.5f * float(kSize));
+  // The sphere's disc: the first pixel along the row through the centre that is not the background.
+  int edge = 0;
+  while (edge < int(kSize) / 2) {
+    const auto p = pixel(image, uint32_t(edge), kSize / 2);
+    if (std::abs(int(p.r) - background.r) + std::abs(int(p.g) - background.g) +
+            std::abs(int(p.b) - background.b) >
+        6)
+      break;
+    ++edge;
+  }
+  const float radius = centre.x - float(edge) - 3.0f;  // inside the anti-aliased rim
+  ASSERT_GT(radius, 30.0f);
+  std::vector<float> distances;
+  for (uint32_t y = 0; y < kSize; ++y)
+    for (uint32_t x = 0; x < kSize; ++x) {
+      if (glm::length(glm::vec2(float(x) + 0.5f, float(y) + 0.5f) - centre) > radius) continue;
+      const auto p = pixel(image, x, y);
+      distances.push_back(glm::length(glm::vec3(
+          float(int(p.r) - background.r), float(int(p.g) - background.g), float(int(p.b) - background.b))));
+    }
+  std::sort(distances.begin(), distances.end());
+  const double closest = distances.front(), first_percentile = distances[distances.size() / 100];
+  std::printf(
+      "default material: disc radius %.0f px; sphere pixels differ from the background by at least %.1f "
+      "(1st percentile %.1f, median %.1f)\n",
+      double(radius), closest, first_percentile, double(distances[distances.size() / 2]));
+  EXPECT_GE(closest, 40.0);
+  EXPECT_GE(first_percentile, 50.0);
 }
 
 }  // namespace

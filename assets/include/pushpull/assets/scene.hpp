@@ -83,7 +83,8 @@ struct Primitive {
   Eigen::Matrix4d T_model_node = Eigen::Matrix4d::Identity();  // node-local -> model frame
 
   RowMatrixXf<3> positions;               // #v by 3, node-local frame
-  RowMatrixXf<3> normals;                 // #v by 3 unit vectors, or 0 rows when absent
+  RowMatrixXf<3> normals;                 // #v by 3 as read (glTF: unit length, not renormalized;
+                                          // zero or non-finite ones become +Z), or 0 rows when absent
   RowMatrixXf<4> tangents;                // #v by 4 (xyz unit, w = +-1), or 0 rows
   std::vector<RowMatrixXf<2>> texcoords;  // TEXCOORD_0.. each #v by 2
   RowMatrixXf<4> colors;                  // COLOR_0 as linear RGBA, or 0 rows

@@ -27,6 +27,9 @@ struct Topology {
   std::size_t boundary_edges = 0;      // edges with exactly one incident face
   std::size_t boundary_loops = 0;      // connected chains of boundary edges
   std::size_t non_manifold_edges = 0;  // edges with three or more incident faces
+  // Faces that are degenerate by deform::is_degenerate_triangle (repeated vertex or zero area): kept in
+  // the mesh, no stiffness in the solver; `pushpull deform` reports the same count.
+  std::size_t degenerate_triangles = 0;
 };
 
 struct WeldStats {
@@ -35,16 +38,16 @@ struct WeldStats {
   std::size_t deform_vertices = 0;  // after merging
   std::size_t render_triangles = 0;
   std::size_t deform_triangles = 0;
-  std::size_t degenerate_triangles = 0;  // collapsed by the weld (or zero-area index triples), dropped
-  std::size_t pieces_before = 0;         // connected pieces before welding (CAD patches)
-  Topology topology;                     // of the welded surface
+  std::size_t collapsed_triangles = 0;  // render triangles the weld collapsed (two corners merged), dropped
+  std::size_t pieces_before = 0;        // connected pieces before welding (CAD patches)
+  Topology topology;                    // of the welded surface
 };
 
 // Welds all triangles of `primitives` (placed by their T_model_node) into `out` (V in the model
 // frame) and fills each primitive's deform_vertex map. Deterministic: same input, same output.
 WeldStats weld_primitives(std::vector<Primitive>& primitives, const WeldOptions& options, deform::Mesh& out);
 
-// Components, boundary loops and non-manifold edges of a triangle mesh. F is #F by 3.
+// Components, boundary loops, non-manifold edges and degenerate faces of a triangle mesh. F is #F by 3.
 Topology analyze_topology(const deform::Mesh& mesh);
 
 }  // namespace pushpull::assets

@@ -19,6 +19,8 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Core>
+
 #include "pushpull/deform/mesh.hpp"
 
 namespace pushpull::deform {
@@ -37,6 +39,13 @@ struct ValidationReport {
 
   [[nodiscard]] bool clean() const { return warnings.empty(); }
 };
+
+// The one definition of a degenerate triangle, used by validation, the solver's region faces and
+// `pushpull info`: a repeated vertex index, or twice its area <= kDegenerateAreaRatio * (longest edge)^2
+// (a sliver whose height is below 1e-14 of its longest edge: no stiffness a solver can use).
+// V: #V by 3; a, b, c: indices into V (not checked).
+inline constexpr double kDegenerateAreaRatio = 1e-14;
+[[nodiscard]] bool is_degenerate_triangle(const Eigen::MatrixXd& V, int a, int b, int c);
 
 // Throws MeshValidationError for refused input; returns the report otherwise. O(#V + #F log #F).
 [[nodiscard]] ValidationReport validate_mesh(const Mesh& mesh);

@@ -16,7 +16,8 @@ glm::vec3 curvature_sign_colour(float k, float eps);
 // Review overlays.
 inline constexpr glm::vec3 kHandleColour{0.95f, 0.08f, 0.06f};
 inline constexpr glm::vec3 kFixedColour{0.10f, 0.25f, 0.95f};
-inline constexpr glm::vec3 kArrowColour{0.95f, 0.55f, 0.05f};
+// Magenta: apart from the clay default material, the colour maps (no magenta in either) and the overlays.
+inline constexpr glm::vec3 kArrowColour{0.90f, 0.02f, 0.75f};
 inline constexpr glm::vec3 kSectionColour{0.05f, 0.05f, 0.05f};
 
 // Linear <-> sRGB-encoded 0..255.

@@ -21,14 +21,27 @@ void compute_vertex_normals(std::span<const float> positions, std::span<const ui
 
 // An arrow from p0 to p1 (shaft radius `radius`, head twice as wide and 4 radii long), as a mesh
 // with one submesh of material `material`.
+// Generalised winding number of a triangle mesh at `point` (Jacobson et al. 2013: the signed solid angle
+// of every triangle seen from the point, summed, over 4 pi): about +-1 inside a closed surface, 0
+// outside, in between near holes of an open one. positions #V*3, indices #T*3 (counter-clockwise seen
+// from outside: inside is +1). O(#T).
+double winding_number(std::span<const float> positions, std::span<const uint32_t> indices,
+                      const glm::vec3& point);
+
 RenderMesh make_arrow(const glm::vec3& p0, const glm::vec3& p1, float radius, int material);
 
 // Tubes of radius `radius` along polylines (each polyline: points in order; closed if the first
 // and last point coincide), one submesh of material `material`.
 RenderMesh make_tubes(const std::vector<std::vector<glm::vec3>>& polylines, float radius, int material);
 
-// A legend for the displacement colour map: a vertical bar from 0 (bottom) to max_value (top),
-// five ticks labelled 0 .. max_value, and a title such as "|d| mm" (stb_easy_font, ASCII).
+// Round tick values for a scale from 0 to max_value: 0 and multiples of a step of 1, 2, 2.5 or 5 times a
+// power of ten, at most max_value, 3 to 6 of them (102 -> 0 25 50 75 100). Empty when max_value <= 0
+// or is not finite.
+std::vector<double> round_ticks(double max_value);
+
+// A legend for the displacement colour map: a vertical bar from 0 (bottom) to max_value (top), ticks
+// at round_ticks(max_value) placed at their value, and a title such as "|d| mm" (stb_easy_font, ASCII)
+// that is made smaller, then wrapped at spaces, to fit the width (never clipped while a word fits).
 // Sized width x height pixels, sRGB, on a translucent dark panel.
 TextureRGBA8 make_displacement_legend(float max_value, const std::string& title, uint32_t width,
                                       uint32_t height);

@@ -27,7 +27,8 @@ struct TextureRGBA8 {
 // glTF 2.0 metallic-roughness material (+ KHR_materials_clearcoat factors). Texture fields hold
 // TextureIds from Renderer::add_texture; -1 means none. Colours are linear. All textures use TEXCOORD_0.
 struct Material {
-  glm::vec4 base_colour{0.42f, 0.45f, 0.50f, 1.0f};  // default: a blue-grey design-review clay
+  // Default: a warm modelling clay (sRGB ~ #C39560), unlike the cool grey background even in shadow.
+  glm::vec4 base_colour{0.55f, 0.30f, 0.12f, 1.0f};
   float metallic = 0.0f;
   float roughness = 0.35f;
   float normal_scale = 1.0f;
@@ -40,8 +41,8 @@ struct Material {
   int occlusion_texture = -1;           // linear, R = ambient occlusion
   float occlusion_strength = 1.0f;
   int emissive_texture = -1;  // sRGB, multiplied by emissive
-  bool double_sided = true;          // informational: every surface is drawn double-sided (open CAD shells)
-  bool unlit = false;  // flat colour, no lighting (arrow heads, debug)
+  bool double_sided = true;   // informational: every surface is drawn double-sided (open CAD shells)
+  bool unlit = false;         // flat colour, no lighting (arrow heads, debug)
 };
 
 // Per-vertex review overlay weights (0 or 1; interpolated across faces so class boundaries fall at

@@ -1,0 +1,49 @@
+#include "life_size.hpp"
+
+#include "commands.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <cmath>
+
+namespace pushpull::app {
+
+void add_life_size_options(CLI::App& command, LifeSizeOptions& options) {
+  command
+      .add_option("--scale", options.scale,
+                  "Life-size factor: metres per file unit (default 1: the file is in metres, as glTF is). "
+                  "Points, radii and distances on the command line are life-size metres")
+      ->check(CLI::PositiveNumber);
+  command
+      .add_option("--length", options.length_m,
+                  "Life size: scale so the longest side of the model is this many metres (overrides --scale)")
+      ->check(CLI::PositiveNumber);
+}
+
+LifeSize::LifeSize(const LifeSizeOptions& options, const Eigen::AlignedBox3d& bounds,
+                   const std::string& model) {
+  scale_ = options.scale;
+  if (options.length_m) {
+    const double longest = bounds.isEmpty() ? 0.0 : bounds.sizes().maxCoeff();
+    if (!(longest > 0.0) || !std::isfinite(longest))
+      throw CommandError(model + ": the model has zero size; cannot scale it to --length " +
+                         std::to_string(*options.length_m) + " m");
+    scale_ = *options.length_m / longest;
+  }
+  if (!(scale_ > 0.0) || !std::isfinite(scale_)) throw CommandError("--scale must be a positive number");
+}
+
+std::vector<double> LifeSize::to_file_units(const std::vector<double>& metres) const {
+  std::vector<double> out;
+  out.reserve(metres.size());
+  for (double value : metres) out.push_back(value / scale_);
+  return out;
+}
+
+Eigen::AlignedBox3d bounds_of(const Eigen::MatrixXd& V) {
+  Eigen::AlignedBox3d box;
+  for (Eigen::Index v = 0; v < V.rows(); ++v) box.extend(V.row(v).transpose());
+  return box;
+}
+
+}  // namespace pushpull::app

@@ -1,0 +1,138 @@
+// What `pushpull deform` and `render` print: each warning once, the tolerance that stopped the solver
+// and its default, the benchmark's view count.
+#include "command_runner.hpp"
+#include "pushpull/deform/mesh_io.hpp"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+namespace fs = std::filesystem;
+namespace pd = pushpull::deform;
+
+namespace {
+
+using pushpull::testing::CommandResult;
+using pushpull::testing::run_pushpull;
+
+const fs::path kHemisphere = fs::path(PUSHPULL_SHARED_DATA) / "meshes" / "hemisphere.off";
+
+std::size_t count(const std::string& text, const std::string& what) {
+  std::size_t n = 0;
+  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+class CliMessages : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("pushpull_cli_messages_" + std::to_string(::getpid()) + "_" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  [[nodiscard]] std::string path(const std::string& leaf) const { return (dir_ / leaf).string(); }
+  fs::path dir_;
+};
+
+TEST_F(CliMessages, HandleNearTheFixedBorderIsWarnedOnce) {
+  // Handle: the cap z > 0.9; fixed: everything below z = 0.87, two or three rings away.
+  const pd::Mesh mesh = pd::read_mesh(kHemisphere);
+  std::ofstream handle(path("handle.txt")), fixed(path("fixed.txt"));
+  for (Eigen::Index i = 0; i < mesh.V.rows(); ++i) {
+    if (mesh.V(i, 2) > 0.9) handle << i << "\n";
+    if (mesh.V(i, 2) < 0.87) fixed << i << "\n";
+  }
+  handle.close();
+  fixed.close();
+  const CommandResult run = run_pushpull(
+      "deform " + kHemisphere.string() + " --handle " + path("handle.txt") + " --fixed " + path("fixed.txt") +
+      " --displacement 0 0 0.1 --out " + path("o.off") + " --metrics " + path("m.json"));
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_EQ(count(run.output, "handle vertices lie within"), 1u) << run.output;
+  std::ifstream in(path("m.json"));
+  const nlohmann::json metrics = nlohmann::json::parse(in);
+  std::size_t in_json = 0;
+  for (const auto& warning : metrics["warnings"])
+    in_json += count(warning.get<std::string>(), "handle vertices lie within");
+  EXPECT_EQ(in_json, 1u) << metrics["warnings"].dump(2);
+}
+
+TEST_F(CliMessages, StoppingRulesAndTheirDefaultsAreNamed) {
+  const CommandResult help = run_pushpull("deform --help");
+  ASSERT_EQ(help.status, 0) << help.output;
+  EXPECT_NE(help.output.find("estimated largest vertex distance to the exact minimiser"), std::string::npos)
+      << help.output;
+  EXPECT_NE(help.output.find("(default: 0; 0 = off)"), std::string::npos) << help.output;  // energy tolerance
+  EXPECT_NE(help.output.find("--paper-iterations"), std::string::npos) << help.output;
+  const std::string pull = "deform " + kHemisphere.string() +
+                           " --handle-at 0 0 1 --handle-radius 0.2 --roi-radius 0.8 --displacement 0 0 0.1 --out " +
+                           path("o.off") + " --metrics " + path("m.json");
+  // The default: the error estimate stops the solver, and the output says how far from the minimiser.
+  const CommandResult run = run_pushpull(pull);
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("converged (error-tolerance: estimated distance to the minimiser <= 0.01 |d|)"),
+            std::string::npos)
+      << run.output;
+  EXPECT_NE(run.output.find("estimated error "), std::string::npos) << run.output;
+  // An energy tolerance the user sets stops it first and is named.
+  const CommandResult set = run_pushpull(pull + " --tolerance 1e-9 --energy-tolerance 1e-5 --iterations 500");
+  ASSERT_EQ(set.status, 0) << set.output;
+  EXPECT_NE(set.output.find("(energy-tolerance 1e-05)"), std::string::npos) << set.output;
+  // The paper's setting says what it is.
+  const CommandResult paper = run_pushpull(pull + " --paper-iterations");
+  ASSERT_EQ(paper.status, 0) << paper.output;
+  EXPECT_NE(paper.output.find("50 iterations, not converged (max-iterations; as in the paper, not converged)"),
+            std::string::npos)
+      << paper.output;
+}
+
+TEST_F(CliMessages, BenchmarkOfOneViewDoesNotSayStereo) {
+  const CommandResult mono =
+      run_pushpull("render " + kHemisphere.string() + " --size 32 24 --benchmark 1 --out " + path("a.png"));
+  ASSERT_EQ(mono.status, 0) << mono.output;
+  EXPECT_EQ(mono.output.find("stereo"), std::string::npos) << mono.output;
+  EXPECT_NE(mono.output.find("frame time, 1 view"), std::string::npos) << mono.output;
+  const CommandResult stereo = run_pushpull(
+      "render " + kHemisphere.string() + " --size 32 24 --stereo 0.064 --benchmark 1 --out " + path("b.png"));
+  ASSERT_EQ(stereo.status, 0) << stereo.output;
+  EXPECT_NE(stereo.output.find("frame time, stereo"), std::string::npos) << stereo.output;
+}
+
+TEST_F(CliMessages, OrbitCameraInsideTheModelIsWarned) {
+  // A closed cube, 2 m on a side, faces counter-clockwise seen from outside.
+  std::ofstream(path("cube.off")) << "OFF\n8 12 0\n"
+                                     "-1 -1 -1\n1 -1 -1\n1 1 -1\n-1 1 -1\n-1 -1 1\n1 -1 1\n1 1 1\n-1 1 1\n"
+                                     "3 0 2 1\n3 0 3 2\n3 4 5 6\n3 4 6 7\n3 0 1 5\n3 0 5 4\n"
+                                     "3 2 3 7\n3 2 7 6\n3 1 2 6\n3 1 6 5\n3 3 0 4\n3 3 4 7\n";
+  const CommandResult outside =
+      run_pushpull("render " + path("cube.off") + " --size 48 36 --out " + path("outside.png"));
+  ASSERT_EQ(outside.status, 0) << outside.output;
+  EXPECT_EQ(outside.output.find("inside the model"), std::string::npos) << outside.output;
+  // ZOOM 40 puts the orbit camera at 1/40 of the framing distance from the centre: inside the cube.
+  const CommandResult inside = run_pushpull("render " + path("cube.off") +
+                                            " --camera 35 20 40 --size 48 36 --out " + path("inside.png"));
+  ASSERT_EQ(inside.status, 0) << inside.output;
+  EXPECT_NE(inside.output.find("warning: the camera is inside the model"), std::string::npos)
+      << inside.output;
+  // The open convertible: zoomed in 8 times the orbit camera ends in the cabin, inside the car's bounding
+  // box.
+  const std::string car =
+      (fs::path(PUSHPULL_SHARED_DATA) / "gltf" / "AsamVehicle" / "vehicle_example.gltf").string();
+  const CommandResult cabin =
+      run_pushpull("render " + car + " --camera 35 20 8 --size 48 36 --out " + path("cabin.png"));
+  ASSERT_EQ(cabin.status, 0) << cabin.output;
+  EXPECT_NE(cabin.output.find("warning: the orbit camera ends inside the model's bounding box"),
+            std::string::npos)
+      << cabin.output;
+  const CommandResult framed = run_pushpull("render " + car + " --size 48 36 --out " + path("framed.png"));
+  ASSERT_EQ(framed.status, 0) << framed.output;
+  EXPECT_EQ(framed.output.find("warning"), std::string::npos) << framed.output;
+}
+
+}  // namespace
