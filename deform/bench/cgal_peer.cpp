@@ -24,7 +24,7 @@ double ms_since(Clock::time_point start) {
 
 PeerRun run_cgal_spokes_and_rims(const deform::Mesh& mesh, const std::vector<int>& handle,
                                  const std::vector<int>& fixed, const Eigen::Vector3d& d,
-                                 double move_tolerance, int max_iterations) {
+                                 const Eigen::MatrixXd& reference, double target_error, int max_iterations) {
   SurfaceMesh sm;
   std::vector<VertexIndex> vertex(static_cast<std::size_t>(mesh.V.rows()));
   for (Eigen::Index i = 0; i < mesh.V.rows(); ++i) {
@@ -51,9 +51,7 @@ PeerRun run_cgal_spokes_and_rims(const deform::Mesh& mesh, const std::vector<int
   const Kernel::Vector_3 t(d.x(), d.y(), d.z());
   for (const int v : handle) deformation.translate(vertex[static_cast<std::size_t>(v)], t);
 
-  Eigen::MatrixXd previous = mesh.V;
-  for (const int v : handle) previous.row(v) += d.transpose();
-  Eigen::MatrixXd current(previous.rows(), 3);
+  Eigen::MatrixXd current(mesh.V.rows(), 3);
   double iterate_ms = 0.0;
   for (run.iterations = 1; run.iterations <= max_iterations; ++run.iterations) {
     const auto step = Clock::now();
@@ -63,9 +61,8 @@ PeerRun run_cgal_spokes_and_rims(const deform::Mesh& mesh, const std::vector<int
       const Kernel::Point_3& p = sm.point(vertex[i]);
       current.row(static_cast<Eigen::Index>(i)) << p.x(), p.y(), p.z();
     }
-    const double largest_move = (current - previous).rowwise().norm().maxCoeff();
-    previous = current;
-    if (largest_move <= move_tolerance) {
+    run.error = (current - reference).rowwise().norm().maxCoeff();
+    if (run.error <= target_error) {
       run.converged = true;
       break;
     }
