@@ -1,14 +1,18 @@
 #include "error_estimate.hpp"
 
 #include <Eigen/Eigenvalues>
-#include <Eigen/QR>
+#include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
 
 namespace pushpull::deform::detail {
 
 ContractionEstimate::ContractionEstimate(int window, Eigen::Index dimension)
-    : window_(window), dX_(dimension, window), dG_(dimension, window) {}
+    : window_(window),
+      dX_(dimension, window),
+      dG_(dimension, window),
+      xx_(Eigen::MatrixXd::Zero(window, window)),
+      xg_(Eigen::MatrixXd::Zero(window, window)) {}
 
 void ContractionEstimate::add(const Eigen::Ref<const Eigen::VectorXd>& x,
                               const Eigen::Ref<const Eigen::VectorXd>& g) {
@@ -24,16 +28,25 @@ void ContractionEstimate::add(const Eigen::Ref<const Eigen::VectorXd>& x,
   previous_x_ = x;
   previous_g_ = g;
   ++pairs_;
+  // Gram matrices dX^T dX and dX^T dG, one row and column refreshed per pair (O(window n) per call).
+  const int m = std::min(pairs_, window_);
+  for (int k = 0; k < m; ++k) {
+    xx_(column, k) = xx_(k, column) = dX_.col(column).dot(dX_.col(k));
+    xg_(column, k) = dX_.col(column).dot(dG_.col(k));
+    xg_(k, column) = dX_.col(k).dot(dG_.col(column));
+  }
   if (pairs_ < window_) return;
-  // C = argmin |dX C - dG| (column-pivoted QR: dX may be nearly rank deficient once converged).
-  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(dX_);
-  if (qr.rank() == 0) return;
-  const Eigen::MatrixXd C = qr.solve(dG_);
+  // C = argmin |dX C - dG| through the normal equations (regularised: dX may be nearly rank deficient once
+  // converged).
+  Eigen::MatrixXd normal = xx_;
+  normal.diagonal().array() += 1e-12 * std::max(normal.diagonal().maxCoeff(), 1e-300);
+  const Eigen::MatrixXd C = normal.ldlt().solve(xg_);
   if (!C.allFinite()) return;
   const Eigen::EigenSolver<Eigen::MatrixXd> eigen(C, /*computeEigenvectors=*/false);
   if (eigen.info() != Eigen::Success) return;
   double largest = 0.0;
-  for (Eigen::Index k = 0; k < eigen.eigenvalues().size(); ++k) largest = std::max(largest, std::abs(eigen.eigenvalues()(k)));
+  for (Eigen::Index k = 0; k < eigen.eigenvalues().size(); ++k)
+    largest = std::max(largest, std::abs(eigen.eigenvalues()(k)));
   if (!std::isfinite(largest)) return;
   recent_[static_cast<std::size_t>(estimates_++ % recent_.size())] = std::min(largest, kMaxRate);
   rate_ = 0.0;
