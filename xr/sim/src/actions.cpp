@@ -394,7 +394,7 @@ XrResult XRAPI_CALL sync_actions(XrSession handle, const XrActionsSyncInfo* info
           set_active = set_active || (aset == set && (asub == XR_NULL_PATH || sub == XR_NULL_PATH || asub == sub));
         ActionState next = (focused && set_active) ? evaluate(*s, *a, sub_name, now) : ActionState{};
         if (!next.active) next.x = next.y = 0.f;
-        next.changed = next.active && state.active && (next.x != state.x || next.y != state.y);
+        next.changed = next.active && (next.x != state.x || next.y != state.y);  // inactive reads as 0
         next.last_change = next.changed || (next.active && !state.active) ? now : state.last_change;
         state = next;
       }
