@@ -175,3 +175,6 @@ XrSpace Sim::reference_space(XrReferenceSpaceType type) {
 }
 
 }  // namespace sim_test
+
+#define STB_IMAGE_IMPLEMENTATION
+#include <stb/stb_image.h>
