@@ -5,6 +5,7 @@
 #include "dispatch.hpp"
 
 #include <chrono>
+#include <cmath>
 #include <thread>
 
 namespace pushpull::xrsim {
@@ -23,7 +24,9 @@ XrResult XRAPI_CALL wait_frame(XrSession handle, const XrFrameWaitInfo* info, Xr
   if (!s->running) return XR_ERROR_SESSION_NOT_RUNNING;
   XrTime display = 0;
   if (s->is_virtual_clock()) {
-    display = s->clock_origin + s->frames_waited * s->period;
+    // Frame n at exactly t0 + n / rate (rounded to the nanosecond), no drift from a rounded period.
+    display = s->clock_origin +
+              static_cast<XrTime>(std::llround(static_cast<double>(s->frames_waited) * 1e9 / s->instance->config.rate_hz));
   } else {
     const XrTime now = monotonic_now();
     XrTime vsync = s->next_real_vsync == 0 ? now : s->next_real_vsync + s->period;

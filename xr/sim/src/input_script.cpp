@@ -117,6 +117,7 @@ std::optional<XrPosef> InputScript::pose_at(const std::string& path, double t) c
 }
 
 std::optional<InputValue> InputScript::value_at(const std::string& path, double t) const {
+  t += kTimeTolerance;  // a change at t = n / rate belongs to frame n despite rounding of XrTime
   const auto it = values_.find(path);
   if (it == values_.end()) return std::nullopt;
   const auto& s = it->second;

@@ -39,6 +39,9 @@ struct ScriptEvent {
 
 class InputScript {
  public:
+  // Samples and events within this many seconds after a query time count as reached.
+  static constexpr double kTimeTolerance = 1e-6;
+
   // Parses a script; throws std::runtime_error naming `source_name`, the line and the problem.
   static InputScript parse(std::istream& in, const std::string& source_name);
   static InputScript load(const std::string& file);

@@ -31,7 +31,8 @@ void begin_exit(Session& s, XrTime now) {
 void run_script_events(Session& s, XrTime now) {
   if (!s.instance->script) return;
   const auto& events = s.instance->script->events();
-  while (s.next_script_event < events.size() && events[s.next_script_event].t <= s.script_time(now)) {
+  const double t = s.script_time(now) + InputScript::kTimeTolerance;
+  while (s.next_script_event < events.size() && events[s.next_script_event].t <= t) {
     const ScriptEvent& e = events[s.next_script_event++];
     switch (e.kind) {
       case ScriptEventKind::exit:
