@@ -3,9 +3,12 @@
 #include "dispatch.hpp"
 #include "input.hpp"
 
+#include <nlohmann/json.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <fstream>
 
 namespace pushpull::xrsim {
 
@@ -455,10 +458,23 @@ void record_haptic(Session& s, const Action& a, XrPath subaction, const XrHaptic
   const std::string sub = subaction == XR_NULL_PATH ? std::string() : *s.instance->path_string(subaction);
   const auto it = a.states.find(subaction);
   if (s.state != XR_SESSION_STATE_FOCUSED || it == a.states.end() || !it->second.active) return;
-  for (const std::string& c : a.bound)
-    if (sub.empty() || top_level_path(c) == sub)
-      s.haptics.push_back({s.input_time(), c, v ? v->duration : 0, v ? v->frequency : 0.f, v ? v->amplitude : 0.f,
-                           v == nullptr});
+  const XrTime now = s.input_time();
+  for (const std::string& c : a.bound) {
+    if (!sub.empty() && top_level_path(c) != sub) continue;
+    const HapticRecord r{now, c, v ? v->duration : 0, v ? v->frequency : 0.f, v ? v->amplitude : 0.f, v == nullptr};
+    s.haptics.push_back(r);
+    const std::string& log = s.instance->config.haptics_log;
+    if (log.empty()) continue;
+    nlohmann::json j{{"t", s.script_time(now)}, {"path", c}};
+    if (r.stop) {
+      j["stop"] = true;
+    } else {
+      j["duration_ns"] = r.duration;
+      j["frequency"] = r.frequency;
+      j["amplitude"] = r.amplitude;
+    }
+    std::ofstream(log, std::ios::app) << j.dump() << "\n";
+  }
 }
 
 XrResult XRAPI_CALL apply_haptic(XrSession handle, const XrHapticActionInfo* info, const XrHapticBaseHeader* haptic) {

@@ -39,6 +39,7 @@ Config Config::from_env() {
   c.capture_every = env_uint("PUSHPULL_XR_SIM_CAPTURE_EVERY", 0);
   c.profile = env_string("PUSHPULL_XR_SIM_PROFILE");
   c.vk_device = env_string("PUSHPULL_XR_SIM_VK_DEVICE");
+  c.haptics_log = env_string("PUSHPULL_XR_SIM_HAPTICS");
   return c;
 }
 

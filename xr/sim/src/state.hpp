@@ -41,6 +41,9 @@ constexpr XrSystemId kSystemId = 1;
 //   PUSHPULL_XR_SIM_PROFILE           interaction profile to make current (default: first suggested of
 //                                     khr/simple, oculus/touch, valve/index, htc/vive, microsoft/motion)
 //   PUSHPULL_XR_SIM_VK_DEVICE         substring of the Vulkan device name to use (default: a GPU, else lavapipe)
+//   PUSHPULL_XR_SIM_HAPTICS           JSON Lines file each haptic output is appended to
+//                                     ({"t": s, "path": ..., "duration_ns": .., "frequency": .., "amplitude": ..}
+//                                     or {"t": s, "path": ..., "stop": true}; t in script seconds)
 struct Config {
   uint32_t width = 1440;
   uint32_t height = 1600;
@@ -50,6 +53,7 @@ struct Config {
   uint32_t capture_every = 0;
   std::string profile;
   std::string vk_device;
+  std::string haptics_log;
   float ipd_m = 0.064f;
   static Config from_env();
 };

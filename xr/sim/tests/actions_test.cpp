@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <fstream>
 #include <string>
 
 using namespace sim_test;
@@ -136,6 +137,8 @@ TEST_F(ActionsTest, AttachChoosesAProfileAndLocksTheSets) {
 }
 
 TEST_F(ActionsTest, StatesFollowAutomationInputAndSubactionPaths) {
+  const std::string haptics = temp_dir("haptics") + "/haptics.jsonl";
+  setenv("PUSHPULL_XR_SIM_HAPTICS", haptics.c_str(), 1);
   Sim sim;
   sim.create_session();
   auto set_bool = sim.fn<PFN_xrSetInputDeviceStateBoolEXT>("xrSetInputDeviceStateBoolEXT");
@@ -224,6 +227,15 @@ TEST_F(ActionsTest, StatesFollowAutomationInputAndSubactionPaths) {
   vib.frequency = XR_FREQUENCY_UNSPECIFIED;
   EXPECT_EQ(xrApplyHapticFeedback(sim.session, &hi, reinterpret_cast<XrHapticBaseHeader*>(&vib)), XR_SUCCESS);
   EXPECT_EQ(xrStopHapticFeedback(sim.session, &hi), XR_SUCCESS);
+  {
+    std::ifstream in(haptics);
+    std::string first, second;
+    std::getline(in, first);
+    std::getline(in, second);
+    EXPECT_NE(first.find("\"path\":\"/user/hand/left/output/haptic\""), std::string::npos) << first;
+    EXPECT_NE(first.find("\"amplitude\":0.5"), std::string::npos) << first;
+    EXPECT_NE(second.find("\"stop\":true"), std::string::npos) << second;
+  }
   hi.action = trigger;
   EXPECT_EQ(xrApplyHapticFeedback(sim.session, &hi, reinterpret_cast<XrHapticBaseHeader*>(&vib)),
             XR_ERROR_ACTION_TYPE_MISMATCH);

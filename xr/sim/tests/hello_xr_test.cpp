@@ -36,7 +36,7 @@ struct RunResult {
 };
 
 // Runs hello_xr with stdin on a pipe kept open (it quits at the first byte or EOF on stdin).
-RunResult run_hello_xr(const std::string& log_file, std::chrono::seconds timeout) {
+RunResult run_hello_xr(const char* graphics, const std::string& log_file, std::chrono::seconds timeout) {
   int in[2];
   if (pipe(in) != 0) return {};
   const pid_t pid = fork();
@@ -46,7 +46,7 @@ RunResult run_hello_xr(const std::string& log_file, std::chrono::seconds timeout
     const int out = open(log_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     dup2(out, STDOUT_FILENO);
     dup2(out, STDERR_FILENO);
-    execl(PUSHPULL_HELLO_XR, PUSHPULL_HELLO_XR, "-g", "Vulkan2", static_cast<char*>(nullptr));
+    execl(PUSHPULL_HELLO_XR, PUSHPULL_HELLO_XR, "-g", graphics, static_cast<char*>(nullptr));
     _exit(127);
   }
   close(in[0]);
@@ -84,7 +84,7 @@ TEST(HelloXrTest, RendersCubesAndExitsOnAScriptedMenuPress) {
   setenv("PUSHPULL_XR_SIM_WIDTH", "320", 1);
   setenv("PUSHPULL_XR_SIM_HEIGHT", "360", 1);
   setenv("XR_ENABLE_API_LAYERS", "XR_APILAYER_LUNARG_core_validation", 1);
-  const RunResult r = run_hello_xr(dir + "/hello_xr.log", std::chrono::seconds(120));
+  const RunResult r = run_hello_xr("Vulkan2", dir + "/hello_xr.log", std::chrono::seconds(120));
   ASSERT_FALSE(r.timed_out) << tail(r.output);
   EXPECT_EQ(r.status, 0) << tail(r.output);
   EXPECT_NE(r.output.find("XR_SESSION_STATE_FOCUSED"), std::string::npos) << tail(r.output);
@@ -121,6 +121,22 @@ TEST(HelloXrTest, RendersCubesAndExitsOnAScriptedMenuPress) {
     EXPECT_LT(background, w * h * 97 / 100) << file << ": almost all one colour";
     EXPECT_GT(cube, 500) << file << ": no cube-coloured pixels";
   }
+}
+
+// The same app through XR_KHR_vulkan_enable (the application creates its VkInstance and VkDevice).
+TEST(HelloXrTest, VulkanEnable1AlsoRunsAndExits) {
+  use_simulated_runtime();
+  const std::string dir = temp_dir("run");
+  setenv("PUSHPULL_XR_SIM_INPUT", write_temp_file("quit.jsonl", kScript).c_str(), 1);
+  setenv("PUSHPULL_XR_SIM_WIDTH", "320", 1);
+  setenv("PUSHPULL_XR_SIM_HEIGHT", "360", 1);
+  setenv("XR_ENABLE_API_LAYERS", "XR_APILAYER_LUNARG_core_validation", 1);
+  const RunResult r = run_hello_xr("Vulkan", dir + "/hello_xr.log", std::chrono::seconds(120));
+  ASSERT_FALSE(r.timed_out) << tail(r.output);
+  EXPECT_EQ(r.status, 0) << tail(r.output);
+  EXPECT_NE(r.output.find("->XR_SESSION_STATE_EXITING"), std::string::npos) << tail(r.output);
+  for (const char* bad : {"VUID", "Error", "ERROR", "Warning"})
+    EXPECT_EQ(r.output.find(bad), std::string::npos) << bad << " in:\n" << tail(r.output);
 }
 
 }  // namespace

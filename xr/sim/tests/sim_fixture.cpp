@@ -21,7 +21,7 @@ void use_simulated_runtime() {
   if (std::filesystem::exists(lvp)) setenv("VK_ICD_FILENAMES", lvp, 1);
   for (const char* v : {"PUSHPULL_XR_SIM_INPUT", "PUSHPULL_XR_SIM_CAPTURE", "PUSHPULL_XR_SIM_CAPTURE_EVERY",
                         "PUSHPULL_XR_SIM_PROFILE", "PUSHPULL_XR_SIM_WIDTH", "PUSHPULL_XR_SIM_HEIGHT",
-                        "PUSHPULL_XR_SIM_RATE", "XR_ENABLE_API_LAYERS"})
+                        "PUSHPULL_XR_SIM_RATE", "PUSHPULL_XR_SIM_HAPTICS", "XR_ENABLE_API_LAYERS"})
     unsetenv(v);
 }
 
