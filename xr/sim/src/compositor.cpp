@@ -139,22 +139,30 @@ int capture_frame(Session& s, const XrFrameEndInfo& info, int64_t frame_index) {
   const Config& c = s.instance->config;
   const bool every = c.capture_every > 0 && frame_index % c.capture_every == 0;
   if (c.capture_dir.empty() || !(s.capture_requested || every)) return 0;
-  const XrCompositionLayerProjection* projection = nullptr;
-  for (uint32_t i = 0; i < info.layerCount && projection == nullptr; ++i)
-    if (info.layers[i]->type == XR_TYPE_COMPOSITION_LAYER_PROJECTION)
-      projection = reinterpret_cast<const XrCompositionLayerProjection*>(info.layers[i]);
-  if (projection == nullptr) return 0;  // nothing shown this frame: keep the request for the next one
+  if (info.layerCount == 0) return 0;  // nothing shown this frame: keep the request for the next one
   s.capture_requested = false;
   std::error_code ec;
   std::filesystem::create_directories(c.capture_dir, ec);
   int written = 0;
-  for (uint32_t v = 0; v < projection->viewCount; ++v) {
-    char name[64];
-    std::snprintf(name, sizeof name, "frame_%06lld_%s.png", static_cast<long long>(frame_index),
-                  v == 0 ? "left" : "right");
+  const auto write = [&](const XrSwapchainSubImage& sub, const std::string& what) {
+    char name[96];
+    std::snprintf(name, sizeof name, "frame_%06lld_%s.png", static_cast<long long>(frame_index), what.c_str());
     const std::string file = (std::filesystem::path(c.capture_dir) / name).string();
-    if (capture_view(s, projection->views[v].subImage, file)) ++written;
-    else std::fprintf(stderr, "pushpull xr sim: could not capture %s\n", file.c_str());
+    if (capture_view(s, sub, file)) ++written;
+    else std::fprintf(stderr, "pushpull xr sim: could not capture %s (8-bit RGBA/BGRA swapchains only)\n", file.c_str());
+  };
+  bool projection_written = false;
+  int quads = 0;
+  for (uint32_t i = 0; i < info.layerCount; ++i) {
+    const XrCompositionLayerBaseHeader* layer = info.layers[i];
+    if (layer->type == XR_TYPE_COMPOSITION_LAYER_PROJECTION && !projection_written) {
+      // What each eye sees: the first projection layer (the runtime does not blend layers).
+      const auto* p = reinterpret_cast<const XrCompositionLayerProjection*>(layer);
+      for (uint32_t v = 0; v < p->viewCount; ++v) write(p->views[v].subImage, v == 0 ? "left" : "right");
+      projection_written = true;
+    } else if (layer->type == XR_TYPE_COMPOSITION_LAYER_QUAD) {
+      write(reinterpret_cast<const XrCompositionLayerQuad*>(layer)->subImage, "quad" + std::to_string(quads++));
+    }
   }
   return written;
 }

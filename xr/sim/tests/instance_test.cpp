@@ -149,6 +149,25 @@ TEST_F(InstanceTest, WrongHandlesAreRejected) {
   EXPECT_EQ(xrDestroyActionSet(set), XR_ERROR_HANDLE_INVALID);  // destroyed
 }
 
+TEST_F(InstanceTest, ABadInputScriptFailsInstanceCreation) {
+  setenv("PUSHPULL_XR_SIM_INPUT",
+         write_temp_file("bad.jsonl", "{\"t\": 0.0, \"path\": \"/user/head\", \"pose\": {\"p\": [1, 2]}}\n").c_str(),
+         1);
+  XrInstanceCreateInfo ci{XR_TYPE_INSTANCE_CREATE_INFO};
+  std::snprintf(ci.applicationInfo.applicationName, XR_MAX_APPLICATION_NAME_SIZE, "t");
+  ci.applicationInfo.apiVersion = XR_CURRENT_API_VERSION;
+  XrInstance instance = XR_NULL_HANDLE;
+  EXPECT_EQ(xrCreateInstance(&ci, &instance), XR_ERROR_INITIALIZATION_FAILED);
+  // Recording headers and other records without "t" are skipped; comments too.
+  setenv("PUSHPULL_XR_SIM_INPUT",
+         write_temp_file("ok.jsonl", "{\"model\": \"car.glb\", \"version\": 1}\n# comment\n\n"
+                                     "{\"t\": 0.5, \"path\": \"/user/hand/left/input/menu/click\", \"value\": true}\n")
+             .c_str(),
+         1);
+  ASSERT_EQ(xrCreateInstance(&ci, &instance), XR_SUCCESS);
+  EXPECT_EQ(xrDestroyInstance(instance), XR_SUCCESS);
+}
+
 TEST_F(InstanceTest, SessionNeedsGraphicsRequirementsFirst) {
   Sim sim;
   XrGraphicsBindingVulkan2KHR binding{XR_TYPE_GRAPHICS_BINDING_VULKAN2_KHR};

@@ -185,11 +185,19 @@ TEST_F(SwapchainTest, CapturesWhatEachEyeShows) {
   layer.space = local;
   layer.viewCount = 2;
   layer.views = pv;
-  const XrCompositionLayerBaseHeader* layers[] = {reinterpret_cast<XrCompositionLayerBaseHeader*>(&layer)};
+  XrCompositionLayerQuad quad{XR_TYPE_COMPOSITION_LAYER_QUAD};
+  quad.space = local;
+  quad.eyeVisibility = XR_EYE_VISIBILITY_BOTH;
+  quad.subImage = pv[1].subImage;
+  quad.subImage.imageRect = {{0, 0}, {16, 8}};
+  quad.pose = {{0, 0, 0, 1}, {0, 0, -1}};
+  quad.size = {0.5f, 0.25f};
+  const XrCompositionLayerBaseHeader* layers[] = {reinterpret_cast<XrCompositionLayerBaseHeader*>(&layer),
+                                                  reinterpret_cast<XrCompositionLayerBaseHeader*>(&quad)};
   XrFrameEndInfo ei{XR_TYPE_FRAME_END_INFO};
   ei.displayTime = fs.predictedDisplayTime;
   ei.environmentBlendMode = XR_ENVIRONMENT_BLEND_MODE_OPAQUE;
-  ei.layerCount = 1;
+  ei.layerCount = 2;
   ei.layers = layers;
   // A rectangle outside the image is rejected first.
   pv[1].subImage.imageRect = {{32, 0}, {64, 48}};
@@ -198,14 +206,14 @@ TEST_F(SwapchainTest, CapturesWhatEachEyeShows) {
   ASSERT_EQ(xrEndFrame(sim.session, &ei), XR_SUCCESS);
   vkDestroyCommandPool(sim.vk_device, pool, nullptr);
 
-  const auto check = [&](const char* eye, int r, int g, int b) {
+  const auto check = [&](const char* eye, int r, int g, int b, int width = 64, int height = 48) {
     const std::string file = dir + "/frame_000000_" + eye + ".png";
     ASSERT_TRUE(std::filesystem::exists(file)) << file;
     int w = 0, h = 0, c = 0;
     unsigned char* px = stbi_load(file.c_str(), &w, &h, &c, 4);
     ASSERT_NE(px, nullptr);
-    EXPECT_EQ(w, 64);
-    EXPECT_EQ(h, 48);
+    EXPECT_EQ(w, width);
+    EXPECT_EQ(h, height);
     EXPECT_EQ(px[0], r);
     EXPECT_EQ(px[1], g);
     EXPECT_EQ(px[2], b);
@@ -213,6 +221,7 @@ TEST_F(SwapchainTest, CapturesWhatEachEyeShows) {
   };
   check("left", 255, 0, 0);
   check("right", 0, 0, 255);
+  check("quad0", 0, 0, 255, 16, 8);
 }
 
 }  // namespace
