@@ -1,6 +1,10 @@
 // Instance, system, view configurations, paths, time conversion and function lookup, through the loader.
 #include "sim_fixture.hpp"
 
+#include "../src/loader_interface.hpp"
+
+#include <dlfcn.h>
+
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -110,6 +114,67 @@ TEST_F(InstanceTest, TimespecConversionRoundTrips) {
   EXPECT_EQ(back.tv_sec, ts.tv_sec);
   EXPECT_EQ(back.tv_nsec, ts.tv_nsec);
   EXPECT_EQ(to_timespec(sim.instance, 0, &back), XR_ERROR_TIME_INVALID);
+}
+
+TEST_F(InstanceTest, EveryCoreFunctionIsThere) {
+  Sim sim;
+  const char* core[] = {
+      "xrGetInstanceProcAddr", "xrEnumerateApiLayerProperties", "xrEnumerateInstanceExtensionProperties",
+      "xrCreateInstance", "xrDestroyInstance", "xrGetInstanceProperties", "xrPollEvent", "xrResultToString",
+      "xrStructureTypeToString", "xrGetSystem", "xrGetSystemProperties", "xrEnumerateEnvironmentBlendModes",
+      "xrCreateSession", "xrDestroySession", "xrEnumerateReferenceSpaces", "xrCreateReferenceSpace",
+      "xrGetReferenceSpaceBoundsRect", "xrCreateActionSpace", "xrLocateSpace", "xrDestroySpace",
+      "xrEnumerateViewConfigurations", "xrGetViewConfigurationProperties", "xrEnumerateViewConfigurationViews",
+      "xrEnumerateSwapchainFormats", "xrCreateSwapchain", "xrDestroySwapchain", "xrEnumerateSwapchainImages",
+      "xrAcquireSwapchainImage", "xrWaitSwapchainImage", "xrReleaseSwapchainImage", "xrBeginSession",
+      "xrEndSession", "xrRequestExitSession", "xrWaitFrame", "xrBeginFrame", "xrEndFrame", "xrLocateViews",
+      "xrStringToPath", "xrPathToString", "xrCreateActionSet", "xrDestroyActionSet", "xrCreateAction",
+      "xrDestroyAction", "xrSuggestInteractionProfileBindings", "xrAttachSessionActionSets",
+      "xrGetCurrentInteractionProfile", "xrGetActionStateBoolean", "xrGetActionStateFloat",
+      "xrGetActionStateVector2f", "xrGetActionStatePose", "xrSyncActions", "xrEnumerateBoundSourcesForAction",
+      "xrGetInputSourceLocalizedName", "xrApplyHapticFeedback", "xrStopHapticFeedback"};
+  for (const char* name : core) {
+    PFN_xrVoidFunction f = nullptr;
+    EXPECT_EQ(xrGetInstanceProcAddr(sim.instance, name, &f), XR_SUCCESS) << name;
+    EXPECT_NE(f, nullptr) << name;
+  }
+  PFN_xrVoidFunction f = nullptr;
+  EXPECT_EQ(xrGetInstanceProcAddr(sim.instance, "xrNoSuchFunctionKHR", &f), XR_ERROR_FUNCTION_UNSUPPORTED);
+
+  // The same straight from the runtime, without the loader's trampolines in between: negotiate as the
+  // loader does, create an instance through the runtime's xrGetInstanceProcAddr and look every name up.
+  void* lib = dlopen(PUSHPULL_XR_SIM_LIBRARY, RTLD_NOW | RTLD_LOCAL);
+  ASSERT_NE(lib, nullptr) << dlerror();
+  using Negotiate = XrResult(XRAPI_PTR*)(const XrNegotiateLoaderInfo*, XrNegotiateRuntimeRequest*);
+  auto negotiate = reinterpret_cast<Negotiate>(dlsym(lib, "xrNegotiateLoaderRuntimeInterface"));
+  ASSERT_NE(negotiate, nullptr);
+  XrNegotiateLoaderInfo info{XR_LOADER_INTERFACE_STRUCT_LOADER_INFO, 1, sizeof(XrNegotiateLoaderInfo), 1, 1,
+                             XR_MAKE_VERSION(1, 0, 0), XR_MAKE_VERSION(1, 0x3ff, 0xfff)};
+  XrNegotiateRuntimeRequest request{XR_LOADER_INTERFACE_STRUCT_RUNTIME_REQUEST, 1, sizeof(XrNegotiateRuntimeRequest),
+                                    0, 0, nullptr};
+  XrNegotiateLoaderInfo wrong = info;
+  wrong.minInterfaceVersion = wrong.maxInterfaceVersion = 7;
+  EXPECT_EQ(negotiate(&wrong, &request), XR_ERROR_INITIALIZATION_FAILED);
+  ASSERT_EQ(negotiate(&info, &request), XR_SUCCESS);
+  EXPECT_EQ(request.runtimeInterfaceVersion, 1u);
+  ASSERT_NE(request.getInstanceProcAddr, nullptr);
+  PFN_xrVoidFunction create = nullptr;
+  ASSERT_EQ(request.getInstanceProcAddr(XR_NULL_HANDLE, "xrCreateInstance", &create), XR_SUCCESS);
+  EXPECT_EQ(request.getInstanceProcAddr(XR_NULL_HANDLE, "xrPollEvent", &f), XR_ERROR_HANDLE_INVALID);
+  XrInstanceCreateInfo ci{XR_TYPE_INSTANCE_CREATE_INFO};
+  std::snprintf(ci.applicationInfo.applicationName, XR_MAX_APPLICATION_NAME_SIZE, "direct");
+  ci.applicationInfo.apiVersion = XR_CURRENT_API_VERSION;
+  XrInstance direct = XR_NULL_HANDLE;
+  ASSERT_EQ(reinterpret_cast<PFN_xrCreateInstance>(create)(&ci, &direct), XR_SUCCESS);
+  for (const char* name : core) {
+    PFN_xrVoidFunction g = nullptr;
+    EXPECT_EQ(request.getInstanceProcAddr(direct, name, &g), XR_SUCCESS) << name;
+    EXPECT_NE(g, nullptr) << name;
+  }
+  PFN_xrVoidFunction destroy = nullptr;
+  ASSERT_EQ(request.getInstanceProcAddr(direct, "xrDestroyInstance", &destroy), XR_SUCCESS);
+  EXPECT_EQ(reinterpret_cast<PFN_xrDestroyInstance>(destroy)(direct), XR_SUCCESS);
+  dlclose(lib);
 }
 
 TEST_F(InstanceTest, ExtensionFunctionsNeedTheExtensionEnabled) {
