@@ -30,7 +30,8 @@ XrResult XRAPI_CALL wait_frame(XrSession handle, const XrFrameWaitInfo* info, Xr
   } else {
     const XrTime now = monotonic_now();
     XrTime vsync = s->next_real_vsync == 0 ? now : s->next_real_vsync + s->period;
-    if (vsync < now) vsync = now;  // the application fell behind: do not make it catch up
+    if (vsync < now)  // the application fell behind: skip to the next vsync instead of catching up
+      vsync += (now - vsync + s->period - 1) / s->period * s->period;
     s->next_real_vsync = vsync;
     s->waited_not_begun = true;  // hold the slot while sleeping unlocked
     lock.unlock();
