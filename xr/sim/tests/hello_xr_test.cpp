@@ -75,6 +75,23 @@ RunResult run_hello_xr(const char* graphics, const std::string& log_file, std::c
 
 std::string tail(const std::string& s, std::size_t n = 4000) { return s.size() > n ? s.substr(s.size() - n) : s; }
 
+// Lines where a validation layer (OpenXR core validation, Vulkan's when hello_xr enables it) or
+// hello_xr itself reports a problem. hello_xr's own note that Vulkan validation layers are not
+// installed is not one.
+std::string problems(const std::string& output) {
+  std::istringstream in(output);
+  std::string line, found;
+  while (std::getline(in, line)) {
+    if (line.find("No validation layers found") != std::string::npos) continue;
+    for (const char* bad : {"VUID", "Error", "ERROR", "Warning", "WARNING"})
+      if (line.find(bad) != std::string::npos) {
+        found += line + "\n";
+        break;
+      }
+  }
+  return found;
+}
+
 TEST(HelloXrTest, RendersCubesAndExitsOnAScriptedMenuPress) {
   use_simulated_runtime();
   const std::string dir = temp_dir("run");
@@ -91,10 +108,7 @@ TEST(HelloXrTest, RendersCubesAndExitsOnAScriptedMenuPress) {
   EXPECT_NE(r.output.find("XR_SESSION_STATE_STOPPING->XR_SESSION_STATE_IDLE"), std::string::npos);
   EXPECT_NE(r.output.find("->XR_SESSION_STATE_EXITING"), std::string::npos) << tail(r.output);
   EXPECT_NE(r.output.find("Core Validation"), std::string::npos) << "the core validation layer did not load";
-  // Nothing reported by the validation layers (OpenXR core validation, and Vulkan's when hello_xr
-  // enables it), nor by hello_xr itself.
-  for (const char* bad : {"VUID", "Error", "ERROR", "Warning"})
-    EXPECT_EQ(r.output.find(bad), std::string::npos) << bad << " in:\n" << tail(r.output);
+  EXPECT_EQ(problems(r.output), "");
 
   // The capture event at t = 0.5 s: both eyes, with hello_xr's coloured cubes on its grey background.
   std::vector<std::string> images;
@@ -135,8 +149,7 @@ TEST(HelloXrTest, VulkanEnable1AlsoRunsAndExits) {
   ASSERT_FALSE(r.timed_out) << tail(r.output);
   EXPECT_EQ(r.status, 0) << tail(r.output);
   EXPECT_NE(r.output.find("->XR_SESSION_STATE_EXITING"), std::string::npos) << tail(r.output);
-  for (const char* bad : {"VUID", "Error", "ERROR", "Warning"})
-    EXPECT_EQ(r.output.find(bad), std::string::npos) << bad << " in:\n" << tail(r.output);
+  EXPECT_EQ(problems(r.output), "");
 }
 
 }  // namespace
