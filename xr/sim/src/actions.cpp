@@ -19,8 +19,9 @@ void destroy_action_set(ActionSet* set) {
       for (Space* space : s->spaces)
         if (space->action == a) space->action = nullptr;
     for (auto& [profile, bindings] : set->instance->suggested)
-      bindings.erase(std::remove_if(bindings.begin(), bindings.end(), [&](const auto& b) { return b.first == a; }),
-                     bindings.end());
+      bindings.erase(
+          std::remove_if(bindings.begin(), bindings.end(), [&](const auto& b) { return b.first == a; }),
+          bindings.end());
     unregister_handle(a);
     delete a;
   }
@@ -51,23 +52,31 @@ bool is_top_level_user_path(const std::string& p) {
 
 ComponentKind kind_of(XrActionType t) {
   switch (t) {
-    case XR_ACTION_TYPE_BOOLEAN_INPUT: return ComponentKind::boolean;
-    case XR_ACTION_TYPE_FLOAT_INPUT: return ComponentKind::scalar;
-    case XR_ACTION_TYPE_VECTOR2F_INPUT: return ComponentKind::vector2;
-    case XR_ACTION_TYPE_POSE_INPUT: return ComponentKind::pose;
-    default: return ComponentKind::haptic;
+    case XR_ACTION_TYPE_BOOLEAN_INPUT:
+      return ComponentKind::boolean;
+    case XR_ACTION_TYPE_FLOAT_INPUT:
+      return ComponentKind::scalar;
+    case XR_ACTION_TYPE_VECTOR2F_INPUT:
+      return ComponentKind::vector2;
+    case XR_ACTION_TYPE_POSE_INPUT:
+      return ComponentKind::pose;
+    default:
+      return ComponentKind::haptic;
   }
 }
 
 bool compatible(XrActionType t, ComponentKind k) {
   switch (t) {
     case XR_ACTION_TYPE_BOOLEAN_INPUT:
-    case XR_ACTION_TYPE_FLOAT_INPUT: return k == ComponentKind::boolean || k == ComponentKind::scalar;
-    default: return k == kind_of(t);
+    case XR_ACTION_TYPE_FLOAT_INPUT:
+      return k == ComponentKind::boolean || k == ComponentKind::scalar;
+    default:
+      return k == kind_of(t);
   }
 }
 
-XrResult XRAPI_CALL create_action_set(XrInstance handle, const XrActionSetCreateInfo* info, XrActionSet* out) {
+XrResult XRAPI_CALL create_action_set(XrInstance handle, const XrActionSetCreateInfo* info,
+                                      XrActionSet* out) {
   Lock lock(big_lock());
   Instance* instance = lookup<Instance>(handle);
   if (instance == nullptr) return XR_ERROR_HANDLE_INVALID;
@@ -103,17 +112,21 @@ XrResult XRAPI_CALL create_action(XrActionSet handle, const XrActionCreateInfo* 
   Lock lock(big_lock());
   ActionSet* set = lookup<ActionSet>(handle);
   if (set == nullptr) return XR_ERROR_HANDLE_INVALID;
-  if (info == nullptr || out == nullptr || info->type != XR_TYPE_ACTION_CREATE_INFO) return XR_ERROR_VALIDATION_FAILURE;
+  if (info == nullptr || out == nullptr || info->type != XR_TYPE_ACTION_CREATE_INFO)
+    return XR_ERROR_VALIDATION_FAILURE;
   if (set->attached_to != nullptr) return XR_ERROR_ACTIONSETS_ALREADY_ATTACHED;
   if (!well_formed_name(info->actionName, XR_MAX_ACTION_NAME_SIZE)) return XR_ERROR_NAME_INVALID;
-  if (strnlen(info->localizedActionName, XR_MAX_LOCALIZED_ACTION_NAME_SIZE) == 0) return XR_ERROR_LOCALIZED_NAME_INVALID;
+  if (strnlen(info->localizedActionName, XR_MAX_LOCALIZED_ACTION_NAME_SIZE) == 0)
+    return XR_ERROR_LOCALIZED_NAME_INVALID;
   switch (info->actionType) {
     case XR_ACTION_TYPE_BOOLEAN_INPUT:
     case XR_ACTION_TYPE_FLOAT_INPUT:
     case XR_ACTION_TYPE_VECTOR2F_INPUT:
     case XR_ACTION_TYPE_POSE_INPUT:
-    case XR_ACTION_TYPE_VIBRATION_OUTPUT: break;
-    default: return XR_ERROR_VALIDATION_FAILURE;
+    case XR_ACTION_TYPE_VIBRATION_OUTPUT:
+      break;
+    default:
+      return XR_ERROR_VALIDATION_FAILURE;
   }
   if (info->countSubactionPaths > 0 && info->subactionPaths == nullptr) return XR_ERROR_VALIDATION_FAILURE;
   std::vector<XrPath> subactions;
@@ -148,8 +161,9 @@ XrResult XRAPI_CALL destroy_action(XrAction handle) {
   auto& list = action->set->actions;
   list.erase(std::remove(list.begin(), list.end(), action), list.end());
   for (auto& [profile, bindings] : action->set->instance->suggested)
-    bindings.erase(std::remove_if(bindings.begin(), bindings.end(), [&](const auto& b) { return b.first == action; }),
-                   bindings.end());
+    bindings.erase(
+        std::remove_if(bindings.begin(), bindings.end(), [&](const auto& b) { return b.first == action; }),
+        bindings.end());
   for (Session* s : action->set->instance->sessions)
     for (Space* space : s->spaces)
       if (space->action == action) space->action = nullptr;
@@ -227,8 +241,8 @@ XrResult XRAPI_CALL attach_action_sets(XrSession handle, const XrSessionActionSe
   Lock lock(big_lock());
   Session* s = nullptr;
   if (const XrResult r = get_session(handle, &s); XR_FAILED(r)) return r;
-  if (info == nullptr || info->type != XR_TYPE_SESSION_ACTION_SETS_ATTACH_INFO || info->countActionSets == 0 ||
-      info->actionSets == nullptr)
+  if (info == nullptr || info->type != XR_TYPE_SESSION_ACTION_SETS_ATTACH_INFO ||
+      info->countActionSets == 0 || info->actionSets == nullptr)
     return XR_ERROR_VALIDATION_FAILURE;
   if (!s->attached.empty()) return XR_ERROR_ACTIONSETS_ALREADY_ATTACHED;
   std::vector<ActionSet*> sets;
@@ -243,19 +257,21 @@ XrResult XRAPI_CALL attach_action_sets(XrSession handle, const XrSessionActionSe
   return XR_SUCCESS;
 }
 
-XrResult XRAPI_CALL get_current_profile(XrSession handle, XrPath top_level, XrInteractionProfileState* state) {
+XrResult XRAPI_CALL get_current_profile(XrSession handle, XrPath top_level,
+                                        XrInteractionProfileState* state) {
   Lock lock(big_lock());
   Session* s = nullptr;
   if (const XrResult r = get_session(handle, &s); XR_FAILED(r)) return r;
-  if (state == nullptr || state->type != XR_TYPE_INTERACTION_PROFILE_STATE) return XR_ERROR_VALIDATION_FAILURE;
+  if (state == nullptr || state->type != XR_TYPE_INTERACTION_PROFILE_STATE)
+    return XR_ERROR_VALIDATION_FAILURE;
   const std::string* path = s->instance->path_string(top_level);
   if (path == nullptr) return XR_ERROR_PATH_INVALID;
   if (!is_top_level_user_path(*path)) return XR_ERROR_PATH_UNSUPPORTED;
   if (s->attached.empty()) return XR_ERROR_ACTIONSET_NOT_ATTACHED;
   const bool hand = *path == "/user/hand/left" || *path == "/user/hand/right";
-  state->interactionProfile =
-      (hand && s->profile != nullptr && s->inactive_devices.count(*path) == 0) ? s->instance->intern(s->profile->path)
-                                                                               : XR_NULL_PATH;
+  state->interactionProfile = (hand && s->profile != nullptr && s->inactive_devices.count(*path) == 0)
+                                  ? s->instance->intern(s->profile->path)
+                                  : XR_NULL_PATH;
   return XR_SUCCESS;
 }
 
@@ -274,13 +290,16 @@ XrResult check_action(Session& s, XrAction handle, XrPath subaction, Action** ou
 }
 
 template <class State>
-XrResult get_state(XrSession handle, const XrActionStateGetInfo* info, State* state, XrStructureType state_type,
-                   XrActionType action_type, Action** action_out, const ActionState** out) {
+XrResult get_state(XrSession handle, const XrActionStateGetInfo* info, State* state,
+                   XrStructureType state_type, XrActionType action_type, Action** action_out,
+                   const ActionState** out) {
   Session* s = nullptr;
   if (const XrResult r = get_session(handle, &s); XR_FAILED(r)) return r;
-  if (info == nullptr || state == nullptr || info->type != XR_TYPE_ACTION_STATE_GET_INFO || state->type != state_type)
+  if (info == nullptr || state == nullptr || info->type != XR_TYPE_ACTION_STATE_GET_INFO ||
+      state->type != state_type)
     return XR_ERROR_VALIDATION_FAILURE;
-  if (const XrResult r = check_action(*s, info->action, info->subactionPath, action_out); XR_FAILED(r)) return r;
+  if (const XrResult r = check_action(*s, info->action, info->subactionPath, action_out); XR_FAILED(r))
+    return r;
   if ((*action_out)->type != action_type) return XR_ERROR_ACTION_TYPE_MISMATCH;
   static const ActionState inactive{};
   const auto it = (*action_out)->states.find(info->subactionPath);
@@ -306,7 +325,8 @@ XrResult XRAPI_CALL get_float(XrSession h, const XrActionStateGetInfo* info, XrA
   Lock lock(big_lock());
   Action* a = nullptr;
   const ActionState* st = nullptr;
-  const XrResult r = get_state(h, info, state, XR_TYPE_ACTION_STATE_FLOAT, XR_ACTION_TYPE_FLOAT_INPUT, &a, &st);
+  const XrResult r =
+      get_state(h, info, state, XR_TYPE_ACTION_STATE_FLOAT, XR_ACTION_TYPE_FLOAT_INPUT, &a, &st);
   if (XR_FAILED(r)) return r;
   state->currentState = st->x;
   state->changedSinceLastSync = st->changed ? XR_TRUE : XR_FALSE;
@@ -350,14 +370,17 @@ ActionState evaluate(const Session& s, const Action& a, const std::string& subac
     if (a.type == XR_ACTION_TYPE_POSE_INPUT || a.type == XR_ACTION_TYPE_VIBRATION_OUTPUT) continue;
     const InputValue v = input_value(s, c, time);
     switch (a.type) {
-      case XR_ACTION_TYPE_BOOLEAN_INPUT: out.x = std::max(out.x, v.x > 0.5f ? 1.f : 0.f); break;
+      case XR_ACTION_TYPE_BOOLEAN_INPUT:
+        out.x = std::max(out.x, v.x > 0.5f ? 1.f : 0.f);
+        break;
       case XR_ACTION_TYPE_FLOAT_INPUT:
         if (std::fabs(v.x) > std::fabs(out.x)) out.x = v.x;
         break;
       case XR_ACTION_TYPE_VECTOR2F_INPUT:
         if (v.x * v.x + v.y * v.y > out.x * out.x + out.y * out.y) out.x = v.x, out.y = v.y;
         break;
-      default: break;
+      default:
+        break;
     }
   }
   return out;
@@ -394,7 +417,8 @@ XrResult XRAPI_CALL sync_actions(XrSession handle, const XrActionsSyncInfo* info
         const std::string sub_name = sub == XR_NULL_PATH ? std::string() : *s->instance->path_string(sub);
         bool set_active = false;
         for (const auto& [aset, asub] : active)
-          set_active = set_active || (aset == set && (asub == XR_NULL_PATH || sub == XR_NULL_PATH || asub == sub));
+          set_active =
+              set_active || (aset == set && (asub == XR_NULL_PATH || sub == XR_NULL_PATH || asub == sub));
         ActionState next = (focused && set_active) ? evaluate(*s, *a, sub_name, now) : ActionState{};
         if (!next.active) next.x = next.y = 0.f;
         next.changed = next.active && (next.x != state.x || next.y != state.y);  // inactive reads as 0
@@ -406,8 +430,9 @@ XrResult XRAPI_CALL sync_actions(XrSession handle, const XrActionsSyncInfo* info
   return focused ? XR_SUCCESS : XR_SESSION_NOT_FOCUSED;
 }
 
-XrResult XRAPI_CALL enumerate_bound_sources(XrSession handle, const XrBoundSourcesForActionEnumerateInfo* info,
-                                           uint32_t capacity, uint32_t* count, XrPath* sources) {
+XrResult XRAPI_CALL enumerate_bound_sources(XrSession handle,
+                                            const XrBoundSourcesForActionEnumerateInfo* info,
+                                            uint32_t capacity, uint32_t* count, XrPath* sources) {
   Lock lock(big_lock());
   Session* s = nullptr;
   if (const XrResult r = get_session(handle, &s); XR_FAILED(r)) return r;
@@ -426,7 +451,8 @@ XrResult XRAPI_CALL get_localized_name(XrSession handle, const XrInputSourceLoca
   Lock lock(big_lock());
   Session* s = nullptr;
   if (const XrResult r = get_session(handle, &s); XR_FAILED(r)) return r;
-  if (info == nullptr || info->type != XR_TYPE_INPUT_SOURCE_LOCALIZED_NAME_GET_INFO || info->whichComponents == 0)
+  if (info == nullptr || info->type != XR_TYPE_INPUT_SOURCE_LOCALIZED_NAME_GET_INFO ||
+      info->whichComponents == 0)
     return XR_ERROR_VALIDATION_FAILURE;
   const std::string* source = s->instance->path_string(info->sourcePath);
   if (source == nullptr) return XR_ERROR_PATH_INVALID;
@@ -440,16 +466,19 @@ XrResult XRAPI_CALL get_localized_name(XrSession handle, const XrInputSourceLoca
     name += part;
   };
   if (info->whichComponents & XR_INPUT_SOURCE_LOCALIZED_NAME_USER_PATH_BIT) append(localized_user_path(user));
-  if ((info->whichComponents & XR_INPUT_SOURCE_LOCALIZED_NAME_INTERACTION_PROFILE_BIT) && s->profile != nullptr)
+  if ((info->whichComponents & XR_INPUT_SOURCE_LOCALIZED_NAME_INTERACTION_PROFILE_BIT) &&
+      s->profile != nullptr)
     append(s->profile->localized_name);
-  if (info->whichComponents & XR_INPUT_SOURCE_LOCALIZED_NAME_COMPONENT_BIT) append(localized_component(*source));
+  if (info->whichComponents & XR_INPUT_SOURCE_LOCALIZED_NAME_COMPONENT_BIT)
+    append(localized_component(*source));
   return two_call_string(name, capacity, count, buffer);
 }
 
 XrResult haptic_common(XrSession handle, const XrHapticActionInfo* info, Session** s_out, Action** a_out) {
   if (const XrResult r = get_session(handle, s_out); XR_FAILED(r)) return r;
   if (info == nullptr || info->type != XR_TYPE_HAPTIC_ACTION_INFO) return XR_ERROR_VALIDATION_FAILURE;
-  if (const XrResult r = check_action(**s_out, info->action, info->subactionPath, a_out); XR_FAILED(r)) return r;
+  if (const XrResult r = check_action(**s_out, info->action, info->subactionPath, a_out); XR_FAILED(r))
+    return r;
   if ((*a_out)->type != XR_ACTION_TYPE_VIBRATION_OUTPUT) return XR_ERROR_ACTION_TYPE_MISMATCH;
   return XR_SUCCESS;
 }
@@ -461,7 +490,8 @@ void record_haptic(Session& s, const Action& a, XrPath subaction, const XrHaptic
   const XrTime now = s.input_time();
   for (const std::string& c : a.bound) {
     if (!sub.empty() && top_level_path(c) != sub) continue;
-    const HapticRecord r{now, c, v ? v->duration : 0, v ? v->frequency : 0.f, v ? v->amplitude : 0.f, v == nullptr};
+    const HapticRecord r{now,         c, v ? v->duration : 0, v ? v->frequency : 0.f, v ? v->amplitude : 0.f,
+                         v == nullptr};
     s.haptics.push_back(r);
     const std::string& log = s.instance->config.haptics_log;
     if (log.empty()) continue;
@@ -477,7 +507,8 @@ void record_haptic(Session& s, const Action& a, XrPath subaction, const XrHaptic
   }
 }
 
-XrResult XRAPI_CALL apply_haptic(XrSession handle, const XrHapticActionInfo* info, const XrHapticBaseHeader* haptic) {
+XrResult XRAPI_CALL apply_haptic(XrSession handle, const XrHapticActionInfo* info,
+                                 const XrHapticBaseHeader* haptic) {
   Lock lock(big_lock());
   Session* s = nullptr;
   Action* a = nullptr;

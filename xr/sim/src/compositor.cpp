@@ -53,10 +53,12 @@ bool capture_view(const Session& s, const XrSwapchainSubImage& sub, const std::s
   VkMemoryAllocateInfo ai{};
   ai.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
   ai.allocationSize = req.size;
-  ai.memoryTypeIndex = find_memory_type(vk.physical_device, req.memoryTypeBits,
-                                        VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+  ai.memoryTypeIndex =
+      find_memory_type(vk.physical_device, req.memoryTypeBits,
+                       VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
   VkDeviceMemory memory = VK_NULL_HANDLE;
-  bool ok = ai.memoryTypeIndex != UINT32_MAX && vkAllocateMemory(vk.device, &ai, nullptr, &memory) == VK_SUCCESS &&
+  bool ok = ai.memoryTypeIndex != UINT32_MAX &&
+            vkAllocateMemory(vk.device, &ai, nullptr, &memory) == VK_SUCCESS &&
             vkBindBufferMemory(vk.device, buffer, memory, 0) == VK_SUCCESS;
   const VkImage image = sc->images[static_cast<std::size_t>(sc->last_released)];
   if (ok) {
@@ -70,8 +72,8 @@ bool capture_view(const Session& s, const XrSwapchainSubImage& sub, const std::s
       b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
       b.image = image;
       b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, sub.imageArrayIndex, 1};
-      vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0,
-                           nullptr, 1, &b);
+      vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0,
+                           nullptr, 0, nullptr, 1, &b);
       VkBufferImageCopy copy{};
       copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, sub.imageArrayIndex, 1};
       copy.imageOffset = {sub.imageRect.offset.x, sub.imageRect.offset.y, 0};
@@ -80,8 +82,8 @@ bool capture_view(const Session& s, const XrSwapchainSubImage& sub, const std::s
       std::swap(b.oldLayout, b.newLayout);
       b.srcAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
       b.dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
-      vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 0, nullptr, 0,
-                           nullptr, 1, &b);
+      vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 0,
+                           nullptr, 0, nullptr, 1, &b);
     });
     ok = r == VK_SUCCESS;
   }
@@ -146,10 +148,14 @@ int capture_frame(Session& s, const XrFrameEndInfo& info, int64_t frame_index) {
   int written = 0;
   const auto write = [&](const XrSwapchainSubImage& sub, const std::string& what) {
     char name[96];
-    std::snprintf(name, sizeof name, "frame_%06lld_%s.png", static_cast<long long>(frame_index), what.c_str());
+    std::snprintf(name, sizeof name, "frame_%06lld_%s.png", static_cast<long long>(frame_index),
+                  what.c_str());
     const std::string file = (std::filesystem::path(c.capture_dir) / name).string();
-    if (capture_view(s, sub, file)) ++written;
-    else std::fprintf(stderr, "pushpull xr sim: could not capture %s (8-bit RGBA/BGRA swapchains only)\n", file.c_str());
+    if (capture_view(s, sub, file))
+      ++written;
+    else
+      std::fprintf(stderr, "pushpull xr sim: could not capture %s (8-bit RGBA/BGRA swapchains only)\n",
+                   file.c_str());
   };
   bool projection_written = false;
   int quads = 0;
@@ -161,7 +167,8 @@ int capture_frame(Session& s, const XrFrameEndInfo& info, int64_t frame_index) {
       for (uint32_t v = 0; v < p->viewCount; ++v) write(p->views[v].subImage, v == 0 ? "left" : "right");
       projection_written = true;
     } else if (layer->type == XR_TYPE_COMPOSITION_LAYER_QUAD) {
-      write(reinterpret_cast<const XrCompositionLayerQuad*>(layer)->subImage, "quad" + std::to_string(quads++));
+      write(reinterpret_cast<const XrCompositionLayerQuad*>(layer)->subImage,
+            "quad" + std::to_string(quads++));
     }
   }
   return written;

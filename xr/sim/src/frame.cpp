@@ -19,14 +19,15 @@ XrResult XRAPI_CALL wait_frame(XrSession handle, const XrFrameWaitInfo* info, Xr
       state->type != XR_TYPE_FRAME_STATE)
     return XR_ERROR_VALIDATION_FAILURE;
   if (!s->running) return XR_ERROR_SESSION_NOT_RUNNING;
-  s->frame_cv.wait(lock, [&] { return !handle_is(s, HandleKind::session) || !s->waited_not_begun || !s->running; });
+  s->frame_cv.wait(lock,
+                   [&] { return !handle_is(s, HandleKind::session) || !s->waited_not_begun || !s->running; });
   if (!handle_is(s, HandleKind::session)) return XR_ERROR_HANDLE_INVALID;
   if (!s->running) return XR_ERROR_SESSION_NOT_RUNNING;
   XrTime display = 0;
   if (s->is_virtual_clock()) {
     // Frame n at exactly t0 + n / rate (rounded to the nanosecond), no drift from a rounded period.
-    display = s->clock_origin +
-              static_cast<XrTime>(std::llround(static_cast<double>(s->frames_waited) * 1e9 / s->instance->config.rate_hz));
+    display = s->clock_origin + static_cast<XrTime>(std::llround(static_cast<double>(s->frames_waited) * 1e9 /
+                                                                 s->instance->config.rate_hz));
   } else {
     const XrTime now = monotonic_now();
     XrTime vsync = s->next_real_vsync == 0 ? now : s->next_real_vsync + s->period;
@@ -51,8 +52,8 @@ XrResult XRAPI_CALL wait_frame(XrSession handle, const XrFrameWaitInfo* info, Xr
   run_script_events(*s, display);
   state->predictedDisplayTime = display;
   state->predictedDisplayPeriod = s->period;
-  state->shouldRender = (s->state == XR_SESSION_STATE_VISIBLE || s->state == XR_SESSION_STATE_FOCUSED) ? XR_TRUE
-                                                                                                       : XR_FALSE;
+  state->shouldRender =
+      (s->state == XR_SESSION_STATE_VISIBLE || s->state == XR_SESSION_STATE_FOCUSED) ? XR_TRUE : XR_FALSE;
   return s->loss_pending ? XR_SESSION_LOSS_PENDING : XR_SUCCESS;
 }
 

@@ -9,7 +9,8 @@ namespace pushpull::xrsim {
 std::string top_level_path(const std::string& path) {
   for (const char* u : {"/user/hand/left", "/user/hand/right", "/user/head", "/user/gamepad"}) {
     const std::string p(u);
-    if (path == p || (path.compare(0, p.size(), p) == 0 && path.size() > p.size() && path[p.size()] == '/')) return p;
+    if (path == p || (path.compare(0, p.size(), p) == 0 && path.size() > p.size() && path[p.size()] == '/'))
+      return p;
   }
   return {};
 }
@@ -55,10 +56,14 @@ InputValue input_value(const Session& s, const std::string& component, XrTime ti
 std::optional<XrPosef> space_in_stage(const Session& s, const Space& space, XrTime time) {
   if (!space.is_action_space) {
     switch (space.reference) {
-      case XR_REFERENCE_SPACE_TYPE_STAGE: return space.offset;
-      case XR_REFERENCE_SPACE_TYPE_LOCAL: return pose_mul(s.local_origin, space.offset);
-      case XR_REFERENCE_SPACE_TYPE_VIEW: return pose_mul(head_pose(s, time), space.offset);
-      default: return std::nullopt;
+      case XR_REFERENCE_SPACE_TYPE_STAGE:
+        return space.offset;
+      case XR_REFERENCE_SPACE_TYPE_LOCAL:
+        return pose_mul(s.local_origin, space.offset);
+      case XR_REFERENCE_SPACE_TYPE_VIEW:
+        return pose_mul(head_pose(s, time), space.offset);
+      default:
+        return std::nullopt;
     }
   }
   const Action* action = space.action;

@@ -26,7 +26,8 @@ XrPosef parse_pose(const nlohmann::json& j, const std::string& source, int line)
   if (j.contains("q")) {
     const auto& q = j["q"];
     if (!q.is_array() || q.size() != 4) fail(source, line, "\"q\" must be [x, y, z, w]");
-    pose.orientation = quat_normalize({q[0].get<float>(), q[1].get<float>(), q[2].get<float>(), q[3].get<float>()});
+    pose.orientation =
+        quat_normalize({q[0].get<float>(), q[1].get<float>(), q[2].get<float>(), q[3].get<float>()});
   }
   return pose;
 }
@@ -65,10 +66,14 @@ InputScript InputScript::parse(std::istream& in, const std::string& source) {
       if (j.contains("event")) {
         const std::string e = j["event"].get<std::string>();
         ScriptEventKind kind;
-        if (e == "exit") kind = ScriptEventKind::exit;
-        else if (e == "loss") kind = ScriptEventKind::loss;
-        else if (e == "capture") kind = ScriptEventKind::capture;
-        else fail(source, line, "unknown event \"" + e + "\" (exit, loss, capture)");
+        if (e == "exit")
+          kind = ScriptEventKind::exit;
+        else if (e == "loss")
+          kind = ScriptEventKind::loss;
+        else if (e == "capture")
+          kind = ScriptEventKind::capture;
+        else
+          fail(source, line, "unknown event \"" + e + "\" (exit, loss, capture)");
         script.events_.push_back({t, kind});
         continue;
       }
@@ -110,7 +115,8 @@ std::optional<XrPosef> InputScript::pose_at(const std::string& path, double t) c
   const auto& s = it->second;
   if (t <= s.front().t) return s.front().pose;
   if (t >= s.back().t) return s.back().pose;
-  const auto next = std::upper_bound(s.begin(), s.end(), t, [](double v, const PoseSample& p) { return v < p.t; });
+  const auto next =
+      std::upper_bound(s.begin(), s.end(), t, [](double v, const PoseSample& p) { return v < p.t; });
   const auto prev = next - 1;
   const double span = next->t - prev->t;
   return pose_lerp(prev->pose, next->pose, span > 0 ? (t - prev->t) / span : 1.0);
@@ -121,7 +127,8 @@ std::optional<InputValue> InputScript::value_at(const std::string& path, double 
   const auto it = values_.find(path);
   if (it == values_.end()) return std::nullopt;
   const auto& s = it->second;
-  const auto next = std::upper_bound(s.begin(), s.end(), t, [](double v, const ValueSample& p) { return v < p.t; });
+  const auto next =
+      std::upper_bound(s.begin(), s.end(), t, [](double v, const ValueSample& p) { return v < p.t; });
   if (next == s.begin()) return std::nullopt;
   return (next - 1)->value;
 }

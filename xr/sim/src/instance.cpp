@@ -24,7 +24,8 @@ constexpr ExtensionInfo kExtensions[] = {
 };
 
 XrResult XRAPI_CALL enumerate_instance_extension_properties(const char* layer_name, uint32_t capacity,
-                                                            uint32_t* count, XrExtensionProperties* properties) {
+                                                            uint32_t* count,
+                                                            XrExtensionProperties* properties) {
   if (layer_name != nullptr && layer_name[0] != 0) return XR_ERROR_API_LAYER_NOT_PRESENT;
   if (capacity != 0 && properties == nullptr) return XR_ERROR_VALIDATION_FAILURE;
   if (capacity != 0)
@@ -37,7 +38,8 @@ XrResult XRAPI_CALL enumerate_instance_extension_properties(const char* layer_na
   });
 }
 
-XrResult XRAPI_CALL enumerate_api_layer_properties(uint32_t capacity, uint32_t* count, XrApiLayerProperties*) {
+XrResult XRAPI_CALL enumerate_api_layer_properties(uint32_t capacity, uint32_t* count,
+                                                   XrApiLayerProperties*) {
   return two_call(capacity, count, 0, [](uint32_t) {});
 }
 
@@ -60,10 +62,12 @@ XrResult XRAPI_CALL create_instance(const XrInstanceCreateInfo* info, XrInstance
   auto instance = std::make_unique<Instance>();
   instance->config = Config::from_env();
   instance->application_name = info->applicationInfo.applicationName;
-  for (uint32_t i = 0; i < info->enabledExtensionCount; ++i) instance->extensions.insert(info->enabledExtensionNames[i]);
+  for (uint32_t i = 0; i < info->enabledExtensionCount; ++i)
+    instance->extensions.insert(info->enabledExtensionNames[i]);
   if (!instance->config.input_script.empty()) {
     try {
-      instance->script = std::make_shared<const InputScript>(InputScript::load(instance->config.input_script));
+      instance->script =
+          std::make_shared<const InputScript>(InputScript::load(instance->config.input_script));
     } catch (const std::exception& e) {
       std::fprintf(stderr, "pushpull xr sim: PUSHPULL_XR_SIM_INPUT: %s\n", e.what());
       return XR_ERROR_INITIALIZATION_FAILED;
@@ -90,7 +94,8 @@ XrResult XRAPI_CALL destroy_instance(XrInstance handle) {
 XrResult XRAPI_CALL get_instance_properties(XrInstance handle, XrInstanceProperties* properties) {
   Lock lock(big_lock());
   if (lookup<Instance>(handle) == nullptr) return XR_ERROR_HANDLE_INVALID;
-  if (properties == nullptr || properties->type != XR_TYPE_INSTANCE_PROPERTIES) return XR_ERROR_VALIDATION_FAILURE;
+  if (properties == nullptr || properties->type != XR_TYPE_INSTANCE_PROPERTIES)
+    return XR_ERROR_VALIDATION_FAILURE;
   properties->runtimeVersion = XR_MAKE_VERSION(0, 1, 0);
   std::snprintf(properties->runtimeName, XR_MAX_RUNTIME_NAME_SIZE, "pushpull simulated runtime");
   return XR_SUCCESS;
@@ -107,21 +112,27 @@ XrResult XRAPI_CALL poll_event(XrInstance handle, XrEventDataBuffer* buffer) {
   return XR_SUCCESS;
 }
 
-XrResult XRAPI_CALL result_to_string(XrInstance handle, XrResult value, char buffer[XR_MAX_RESULT_STRING_SIZE]) {
+XrResult XRAPI_CALL result_to_string(XrInstance handle, XrResult value,
+                                     char buffer[XR_MAX_RESULT_STRING_SIZE]) {
   Lock lock(big_lock());
   if (lookup<Instance>(handle) == nullptr) return XR_ERROR_HANDLE_INVALID;
   if (buffer == nullptr) return XR_ERROR_VALIDATION_FAILURE;
   const char* name = nullptr;
   switch (value) {
 #define PUSHPULL_XR_RESULT_CASE(n, v) \
-  case n: name = #n; break;
+  case n:                             \
+    name = #n;                        \
+    break;
     XR_LIST_ENUM_XrResult(PUSHPULL_XR_RESULT_CASE)
 #undef PUSHPULL_XR_RESULT_CASE
-    default: break;
+        default : break;
   }
-  if (name != nullptr) std::snprintf(buffer, XR_MAX_RESULT_STRING_SIZE, "%s", name);
-  else if (XR_SUCCEEDED(value)) std::snprintf(buffer, XR_MAX_RESULT_STRING_SIZE, "XR_UNKNOWN_SUCCESS_%d", value);
-  else std::snprintf(buffer, XR_MAX_RESULT_STRING_SIZE, "XR_UNKNOWN_FAILURE_%d", -value);
+  if (name != nullptr)
+    std::snprintf(buffer, XR_MAX_RESULT_STRING_SIZE, "%s", name);
+  else if (XR_SUCCEEDED(value))
+    std::snprintf(buffer, XR_MAX_RESULT_STRING_SIZE, "XR_UNKNOWN_SUCCESS_%d", value);
+  else
+    std::snprintf(buffer, XR_MAX_RESULT_STRING_SIZE, "XR_UNKNOWN_FAILURE_%d", -value);
   return XR_SUCCESS;
 }
 
@@ -133,13 +144,17 @@ XrResult XRAPI_CALL structure_type_to_string(XrInstance handle, XrStructureType 
   const char* name = nullptr;
   switch (value) {
 #define PUSHPULL_XR_TYPE_CASE(n, v) \
-  case n: name = #n; break;
+  case n:                           \
+    name = #n;                      \
+    break;
     XR_LIST_ENUM_XrStructureType(PUSHPULL_XR_TYPE_CASE)
 #undef PUSHPULL_XR_TYPE_CASE
-    default: break;
+        default : break;
   }
-  if (name != nullptr) std::snprintf(buffer, XR_MAX_STRUCTURE_NAME_SIZE, "%s", name);
-  else std::snprintf(buffer, XR_MAX_STRUCTURE_NAME_SIZE, "XR_UNKNOWN_STRUCTURE_TYPE_%d", value);
+  if (name != nullptr)
+    std::snprintf(buffer, XR_MAX_STRUCTURE_NAME_SIZE, "%s", name);
+  else
+    std::snprintf(buffer, XR_MAX_STRUCTURE_NAME_SIZE, "XR_UNKNOWN_STRUCTURE_TYPE_%d", value);
   return XR_SUCCESS;
 }
 
@@ -147,7 +162,8 @@ XrResult XRAPI_CALL get_system(XrInstance handle, const XrSystemGetInfo* info, X
   Lock lock(big_lock());
   Instance* instance = lookup<Instance>(handle);
   if (instance == nullptr) return XR_ERROR_HANDLE_INVALID;
-  if (info == nullptr || system == nullptr || info->type != XR_TYPE_SYSTEM_GET_INFO) return XR_ERROR_VALIDATION_FAILURE;
+  if (info == nullptr || system == nullptr || info->type != XR_TYPE_SYSTEM_GET_INFO)
+    return XR_ERROR_VALIDATION_FAILURE;
   if (info->formFactor == XR_FORM_FACTOR_HANDHELD_DISPLAY) return XR_ERROR_FORM_FACTOR_UNSUPPORTED;
   if (info->formFactor != XR_FORM_FACTOR_HEAD_MOUNTED_DISPLAY) return XR_ERROR_VALIDATION_FAILURE;
   instance->system_queried = true;
@@ -163,11 +179,13 @@ XrResult check_system(XrInstance handle, XrSystemId system, Instance** out) {
   return XR_SUCCESS;
 }
 
-XrResult XRAPI_CALL get_system_properties(XrInstance handle, XrSystemId system, XrSystemProperties* properties) {
+XrResult XRAPI_CALL get_system_properties(XrInstance handle, XrSystemId system,
+                                          XrSystemProperties* properties) {
   Lock lock(big_lock());
   Instance* instance = nullptr;
   if (const XrResult r = check_system(handle, system, &instance); XR_FAILED(r)) return r;
-  if (properties == nullptr || properties->type != XR_TYPE_SYSTEM_PROPERTIES) return XR_ERROR_VALIDATION_FAILURE;
+  if (properties == nullptr || properties->type != XR_TYPE_SYSTEM_PROPERTIES)
+    return XR_ERROR_VALIDATION_FAILURE;
   properties->systemId = kSystemId;
   properties->vendorId = 0x5050;  // "PP"
   std::snprintf(properties->systemName, XR_MAX_SYSTEM_NAME_SIZE, "pushpull simulated HMD");
@@ -187,12 +205,14 @@ bool valid_view_configuration(XrViewConfigurationType t) {
 
 XrResult check_view_configuration(XrViewConfigurationType t) {
   if (t == XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO) return XR_SUCCESS;
-  return valid_view_configuration(t) ? XR_ERROR_VIEW_CONFIGURATION_TYPE_UNSUPPORTED : XR_ERROR_VALIDATION_FAILURE;
+  return valid_view_configuration(t) ? XR_ERROR_VIEW_CONFIGURATION_TYPE_UNSUPPORTED
+                                     : XR_ERROR_VALIDATION_FAILURE;
 }
 
 XrResult XRAPI_CALL enumerate_environment_blend_modes(XrInstance handle, XrSystemId system,
-                                                      XrViewConfigurationType view_configuration, uint32_t capacity,
-                                                      uint32_t* count, XrEnvironmentBlendMode* modes) {
+                                                      XrViewConfigurationType view_configuration,
+                                                      uint32_t capacity, uint32_t* count,
+                                                      XrEnvironmentBlendMode* modes) {
   Lock lock(big_lock());
   if (const XrResult r = check_system(handle, system, nullptr); XR_FAILED(r)) return r;
   if (const XrResult r = check_view_configuration(view_configuration); XR_FAILED(r)) return r;
@@ -205,7 +225,8 @@ XrResult XRAPI_CALL enumerate_view_configurations(XrInstance handle, XrSystemId 
   Lock lock(big_lock());
   if (const XrResult r = check_system(handle, system, nullptr); XR_FAILED(r)) return r;
   if (capacity != 0 && types == nullptr) return XR_ERROR_VALIDATION_FAILURE;
-  return two_call(capacity, count, 1, [&](uint32_t i) { types[i] = XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO; });
+  return two_call(capacity, count, 1,
+                  [&](uint32_t i) { types[i] = XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO; });
 }
 
 XrResult XRAPI_CALL get_view_configuration_properties(XrInstance handle, XrSystemId system,
@@ -273,7 +294,8 @@ XrResult XRAPI_CALL string_to_path(XrInstance handle, const char* path_string, X
   return XR_SUCCESS;
 }
 
-XrResult XRAPI_CALL path_to_string(XrInstance handle, XrPath path, uint32_t capacity, uint32_t* count, char* buffer) {
+XrResult XRAPI_CALL path_to_string(XrInstance handle, XrPath path, uint32_t capacity, uint32_t* count,
+                                   char* buffer) {
   Lock lock(big_lock());
   Instance* instance = lookup<Instance>(handle);
   if (instance == nullptr) return XR_ERROR_HANDLE_INVALID;

@@ -24,15 +24,17 @@ const FunctionTable& table() {
   return t;
 }
 
-XrResult XRAPI_CALL get_instance_proc_addr(XrInstance instance, const char* name, PFN_xrVoidFunction* function) {
+XrResult XRAPI_CALL get_instance_proc_addr(XrInstance instance, const char* name,
+                                           PFN_xrVoidFunction* function) {
   if (function == nullptr || name == nullptr) return XR_ERROR_VALIDATION_FAILURE;
   *function = nullptr;
   const auto& entries = table().entries;
   const auto it = entries.find(name);
   if (instance == XR_NULL_HANDLE) {
     // Only these may be fetched without an instance.
-    static const char* const global[] = {"xrEnumerateInstanceExtensionProperties", "xrEnumerateApiLayerProperties",
-                                         "xrCreateInstance", "xrGetInstanceProcAddr"};
+    static const char* const global[] = {"xrEnumerateInstanceExtensionProperties",
+                                         "xrEnumerateApiLayerProperties", "xrCreateInstance",
+                                         "xrGetInstanceProcAddr"};
     for (const char* g : global)
       if (std::strcmp(g, name) == 0) {
         if (std::strcmp(name, "xrGetInstanceProcAddr") == 0) {
@@ -62,8 +64,8 @@ XrResult XRAPI_CALL get_instance_proc_addr(XrInstance instance, const char* name
 }  // namespace
 }  // namespace pushpull::xrsim
 
-extern "C" __attribute__((visibility("default"))) XrResult XRAPI_CALL
-xrNegotiateLoaderRuntimeInterface(const XrNegotiateLoaderInfo* loader_info, XrNegotiateRuntimeRequest* request) {
+extern "C" __attribute__((visibility("default"))) XrResult XRAPI_CALL xrNegotiateLoaderRuntimeInterface(
+    const XrNegotiateLoaderInfo* loader_info, XrNegotiateRuntimeRequest* request) {
   if (loader_info == nullptr || request == nullptr ||
       loader_info->structType != XR_LOADER_INTERFACE_STRUCT_LOADER_INFO ||
       loader_info->structVersion != PUSHPULL_XR_LOADER_INFO_STRUCT_VERSION ||

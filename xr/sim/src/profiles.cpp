@@ -19,7 +19,8 @@ std::vector<InteractionProfile> make_profiles() {
   std::vector<InteractionProfile> all;
   const char* L = "/user/hand/left";
   const char* R = "/user/hand/right";
-  const Spec poses[] = {{"/input/grip/pose", K::pose}, {"/input/aim/pose", K::pose}, {"/output/haptic", K::haptic}};
+  const Spec poses[] = {
+      {"/input/grip/pose", K::pose}, {"/input/aim/pose", K::pose}, {"/output/haptic", K::haptic}};
   const auto both = [&](InteractionProfile& p, std::initializer_list<Spec> specs) {
     for (const char* u : {L, R}) {
       add(p, u, specs);
@@ -27,53 +28,83 @@ std::vector<InteractionProfile> make_profiles() {
     }
   };
   {
-    InteractionProfile p{"/interaction_profiles/khr/simple_controller", "Khronos Simple Controller", {L, R}, {}};
+    InteractionProfile p{
+        "/interaction_profiles/khr/simple_controller", "Khronos Simple Controller", {L, R}, {}};
     both(p, {{"/input/select/click", K::boolean}, {"/input/menu/click", K::boolean}});
     all.push_back(p);
   }
   {
-    InteractionProfile p{"/interaction_profiles/oculus/touch_controller", "Oculus Touch Controller", {L, R}, {}};
-    both(p, {{"/input/squeeze/value", K::scalar}, {"/input/trigger/value", K::scalar},
-             {"/input/trigger/touch", K::boolean}, {"/input/thumbstick", K::vector2},
-             {"/input/thumbstick/x", K::scalar}, {"/input/thumbstick/y", K::scalar},
-             {"/input/thumbstick/click", K::boolean}, {"/input/thumbstick/touch", K::boolean},
+    InteractionProfile p{
+        "/interaction_profiles/oculus/touch_controller", "Oculus Touch Controller", {L, R}, {}};
+    both(p, {{"/input/squeeze/value", K::scalar},
+             {"/input/trigger/value", K::scalar},
+             {"/input/trigger/touch", K::boolean},
+             {"/input/thumbstick", K::vector2},
+             {"/input/thumbstick/x", K::scalar},
+             {"/input/thumbstick/y", K::scalar},
+             {"/input/thumbstick/click", K::boolean},
+             {"/input/thumbstick/touch", K::boolean},
              {"/input/thumbrest/touch", K::boolean}});
-    add(p, L, {{"/input/x/click", K::boolean}, {"/input/x/touch", K::boolean}, {"/input/y/click", K::boolean},
-               {"/input/y/touch", K::boolean}, {"/input/menu/click", K::boolean}});
-    add(p, R, {{"/input/a/click", K::boolean}, {"/input/a/touch", K::boolean}, {"/input/b/click", K::boolean},
-               {"/input/b/touch", K::boolean}, {"/input/system/click", K::boolean}});
+    add(p, L,
+        {{"/input/x/click", K::boolean},
+         {"/input/x/touch", K::boolean},
+         {"/input/y/click", K::boolean},
+         {"/input/y/touch", K::boolean},
+         {"/input/menu/click", K::boolean}});
+    add(p, R,
+        {{"/input/a/click", K::boolean},
+         {"/input/a/touch", K::boolean},
+         {"/input/b/click", K::boolean},
+         {"/input/b/touch", K::boolean},
+         {"/input/system/click", K::boolean}});
     all.push_back(p);
   }
   {
-    InteractionProfile p{"/interaction_profiles/valve/index_controller", "Valve Index Controller", {L, R}, {}};
-    both(p, {{"/input/system/click", K::boolean}, {"/input/system/touch", K::boolean},
-             {"/input/a/click", K::boolean}, {"/input/a/touch", K::boolean}, {"/input/b/click", K::boolean},
-             {"/input/b/touch", K::boolean}, {"/input/squeeze/value", K::scalar}, {"/input/squeeze/force", K::scalar},
-             {"/input/trigger/click", K::boolean}, {"/input/trigger/value", K::scalar},
-             {"/input/trigger/touch", K::boolean}, {"/input/thumbstick", K::vector2},
-             {"/input/thumbstick/x", K::scalar}, {"/input/thumbstick/y", K::scalar},
+    InteractionProfile p{
+        "/interaction_profiles/valve/index_controller", "Valve Index Controller", {L, R}, {}};
+    both(p, {{"/input/system/click", K::boolean},     {"/input/system/touch", K::boolean},
+             {"/input/a/click", K::boolean},          {"/input/a/touch", K::boolean},
+             {"/input/b/click", K::boolean},          {"/input/b/touch", K::boolean},
+             {"/input/squeeze/value", K::scalar},     {"/input/squeeze/force", K::scalar},
+             {"/input/trigger/click", K::boolean},    {"/input/trigger/value", K::scalar},
+             {"/input/trigger/touch", K::boolean},    {"/input/thumbstick", K::vector2},
+             {"/input/thumbstick/x", K::scalar},      {"/input/thumbstick/y", K::scalar},
              {"/input/thumbstick/click", K::boolean}, {"/input/thumbstick/touch", K::boolean},
-             {"/input/trackpad", K::vector2}, {"/input/trackpad/x", K::scalar}, {"/input/trackpad/y", K::scalar},
-             {"/input/trackpad/force", K::scalar}, {"/input/trackpad/touch", K::boolean}});
-    all.push_back(p);
-  }
-  {
-    InteractionProfile p{"/interaction_profiles/htc/vive_controller", "HTC Vive Controller", {L, R}, {}};
-    both(p, {{"/input/system/click", K::boolean}, {"/input/squeeze/click", K::boolean},
-             {"/input/menu/click", K::boolean}, {"/input/trigger/click", K::boolean},
-             {"/input/trigger/value", K::scalar}, {"/input/trackpad", K::vector2}, {"/input/trackpad/x", K::scalar},
-             {"/input/trackpad/y", K::scalar}, {"/input/trackpad/click", K::boolean},
+             {"/input/trackpad", K::vector2},         {"/input/trackpad/x", K::scalar},
+             {"/input/trackpad/y", K::scalar},        {"/input/trackpad/force", K::scalar},
              {"/input/trackpad/touch", K::boolean}});
     all.push_back(p);
   }
   {
-    InteractionProfile p{"/interaction_profiles/microsoft/motion_controller", "Microsoft Mixed Reality Motion Controller",
-                         {L, R}, {}};
-    both(p, {{"/input/menu/click", K::boolean}, {"/input/squeeze/click", K::boolean},
-             {"/input/trigger/value", K::scalar}, {"/input/thumbstick", K::vector2},
-             {"/input/thumbstick/x", K::scalar}, {"/input/thumbstick/y", K::scalar},
-             {"/input/thumbstick/click", K::boolean}, {"/input/trackpad", K::vector2},
-             {"/input/trackpad/x", K::scalar}, {"/input/trackpad/y", K::scalar}, {"/input/trackpad/click", K::boolean},
+    InteractionProfile p{"/interaction_profiles/htc/vive_controller", "HTC Vive Controller", {L, R}, {}};
+    both(p, {{"/input/system/click", K::boolean},
+             {"/input/squeeze/click", K::boolean},
+             {"/input/menu/click", K::boolean},
+             {"/input/trigger/click", K::boolean},
+             {"/input/trigger/value", K::scalar},
+             {"/input/trackpad", K::vector2},
+             {"/input/trackpad/x", K::scalar},
+             {"/input/trackpad/y", K::scalar},
+             {"/input/trackpad/click", K::boolean},
+             {"/input/trackpad/touch", K::boolean}});
+    all.push_back(p);
+  }
+  {
+    InteractionProfile p{"/interaction_profiles/microsoft/motion_controller",
+                         "Microsoft Mixed Reality Motion Controller",
+                         {L, R},
+                         {}};
+    both(p, {{"/input/menu/click", K::boolean},
+             {"/input/squeeze/click", K::boolean},
+             {"/input/trigger/value", K::scalar},
+             {"/input/thumbstick", K::vector2},
+             {"/input/thumbstick/x", K::scalar},
+             {"/input/thumbstick/y", K::scalar},
+             {"/input/thumbstick/click", K::boolean},
+             {"/input/trackpad", K::vector2},
+             {"/input/trackpad/x", K::scalar},
+             {"/input/trackpad/y", K::scalar},
+             {"/input/trackpad/click", K::boolean},
              {"/input/trackpad/touch", K::boolean}});
     all.push_back(p);
   }
@@ -119,11 +150,21 @@ const ProfileComponent* resolve_binding(const InteractionProfile& profile, const
   // An identifier without component: pick the component that suits the action type.
   std::vector<const char*> order;
   switch (preferred) {
-    case K::boolean: order = {"/click", "/value", "/force"}; break;
-    case K::scalar: order = {"/value", "/force", "/click"}; break;
-    case K::vector2: order = {}; break;
-    case K::pose: order = {"/pose"}; break;
-    case K::haptic: order = {}; break;
+    case K::boolean:
+      order = {"/click", "/value", "/force"};
+      break;
+    case K::scalar:
+      order = {"/value", "/force", "/click"};
+      break;
+    case K::vector2:
+      order = {};
+      break;
+    case K::pose:
+      order = {"/pose"};
+      break;
+    case K::haptic:
+      order = {};
+      break;
   }
   for (const char* suffix : order)
     if (const ProfileComponent* c = find_component(profile, path + suffix)) return c;
@@ -132,7 +173,8 @@ const ProfileComponent* resolve_binding(const InteractionProfile& profile, const
 
 std::string user_path_of(const InteractionProfile& profile, const std::string& binding_path) {
   for (const auto& u : profile.user_paths)
-    if (binding_path.compare(0, u.size(), u) == 0 && binding_path.size() > u.size() && binding_path[u.size()] == '/')
+    if (binding_path.compare(0, u.size(), u) == 0 && binding_path.size() > u.size() &&
+        binding_path[u.size()] == '/')
       return u;
   return {};
 }

@@ -44,7 +44,9 @@ void run_script_events(Session& s, XrTime now) {
           s.set_state(XR_SESSION_STATE_LOSS_PENDING, now);
         }
         break;
-      case ScriptEventKind::capture: s.capture_requested = true; break;
+      case ScriptEventKind::capture:
+        s.capture_requested = true;
+        break;
     }
   }
 }
@@ -59,16 +61,17 @@ void destroy_session(Session* s) {
   // Drop queued events that name this session.
   auto& events = s->instance->events;
   const XrSession handle = to_handle<XrSession>(s);
-  events.erase(std::remove_if(events.begin(), events.end(),
-                              [&](const XrEventDataBuffer& e) {
-                                if (e.type == XR_TYPE_EVENT_DATA_SESSION_STATE_CHANGED)
-                                  return reinterpret_cast<const XrEventDataSessionStateChanged&>(e).session == handle;
-                                if (e.type == XR_TYPE_EVENT_DATA_INTERACTION_PROFILE_CHANGED)
-                                  return reinterpret_cast<const XrEventDataInteractionProfileChanged&>(e).session ==
-                                         handle;
-                                return false;
-                              }),
-               events.end());
+  events.erase(
+      std::remove_if(events.begin(), events.end(),
+                     [&](const XrEventDataBuffer& e) {
+                       if (e.type == XR_TYPE_EVENT_DATA_SESSION_STATE_CHANGED)
+                         return reinterpret_cast<const XrEventDataSessionStateChanged&>(e).session == handle;
+                       if (e.type == XR_TYPE_EVENT_DATA_INTERACTION_PROFILE_CHANGED)
+                         return reinterpret_cast<const XrEventDataInteractionProfileChanged&>(e).session ==
+                                handle;
+                       return false;
+                     }),
+      events.end());
   unregister_handle(s);
   delete s;
 }
@@ -79,7 +82,8 @@ XrResult XRAPI_CALL create_session(XrInstance handle, const XrSessionCreateInfo*
   Lock lock(big_lock());
   Instance* instance = lookup<Instance>(handle);
   if (instance == nullptr) return XR_ERROR_HANDLE_INVALID;
-  if (info == nullptr || out == nullptr || info->type != XR_TYPE_SESSION_CREATE_INFO) return XR_ERROR_VALIDATION_FAILURE;
+  if (info == nullptr || out == nullptr || info->type != XR_TYPE_SESSION_CREATE_INFO)
+    return XR_ERROR_VALIDATION_FAILURE;
   if (info->systemId != kSystemId) return XR_ERROR_SYSTEM_INVALID;
   if (info->createFlags != 0) return XR_ERROR_VALIDATION_FAILURE;
   auto session = std::make_unique<Session>();
@@ -117,7 +121,8 @@ XrResult XRAPI_CALL begin_session(XrSession handle, const XrSessionBeginInfo* in
   if (info == nullptr || info->type != XR_TYPE_SESSION_BEGIN_INFO) return XR_ERROR_VALIDATION_FAILURE;
   const XrViewConfigurationType vc = info->primaryViewConfigurationType;
   if (vc != XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO) {
-    const bool known = vc == XR_VIEW_CONFIGURATION_TYPE_PRIMARY_MONO || vc == XR_VIEW_CONFIGURATION_TYPE_PRIMARY_QUAD_VARJO;
+    const bool known =
+        vc == XR_VIEW_CONFIGURATION_TYPE_PRIMARY_MONO || vc == XR_VIEW_CONFIGURATION_TYPE_PRIMARY_QUAD_VARJO;
     return known ? XR_ERROR_VIEW_CONFIGURATION_TYPE_UNSUPPORTED : XR_ERROR_VALIDATION_FAILURE;
   }
   if (s->loss_pending) return XR_ERROR_SESSION_LOST;
@@ -146,8 +151,10 @@ XrResult XRAPI_CALL end_session(XrSession handle) {
   s->frame_cv.notify_all();
   const XrTime now = s->input_time();
   s->set_state(XR_SESSION_STATE_IDLE, now);
-  if (s->exit_requested) s->set_state(XR_SESSION_STATE_EXITING, now);
-  else s->set_state(XR_SESSION_STATE_READY, now);
+  if (s->exit_requested)
+    s->set_state(XR_SESSION_STATE_EXITING, now);
+  else
+    s->set_state(XR_SESSION_STATE_READY, now);
   return XR_SUCCESS;
 }
 

@@ -9,14 +9,20 @@
 
 namespace pushpull::xrsim {
 
-inline XrQuaternionf quat_identity() { return {0.f, 0.f, 0.f, 1.f}; }
-inline XrPosef pose_identity() { return {quat_identity(), {0.f, 0.f, 0.f}}; }
+inline XrQuaternionf quat_identity() {
+  return {0.f, 0.f, 0.f, 1.f};
+}
+inline XrPosef pose_identity() {
+  return {quat_identity(), {0.f, 0.f, 0.f}};
+}
 
 inline XrQuaternionf quat_mul(const XrQuaternionf& a, const XrQuaternionf& b) {
   return {a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y, a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x,
           a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w, a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z};
 }
-inline XrQuaternionf quat_conj(const XrQuaternionf& q) { return {-q.x, -q.y, -q.z, q.w}; }
+inline XrQuaternionf quat_conj(const XrQuaternionf& q) {
+  return {-q.x, -q.y, -q.z, q.w};
+}
 
 inline XrVector3f quat_rotate(const XrQuaternionf& q, const XrVector3f& v) {
   const XrQuaternionf p{v.x, v.y, v.z, 0.f};
@@ -57,10 +63,12 @@ inline XrPosef pose_inverse(const XrPosef& p) {
 inline XrPosef pose_lerp(const XrPosef& a, const XrPosef& b, double s) {
   XrPosef r;
   const float f = static_cast<float>(s);
-  r.position = {a.position.x + (b.position.x - a.position.x) * f, a.position.y + (b.position.y - a.position.y) * f,
+  r.position = {a.position.x + (b.position.x - a.position.x) * f,
+                a.position.y + (b.position.y - a.position.y) * f,
                 a.position.z + (b.position.z - a.position.z) * f};
   XrQuaternionf qb = b.orientation;
-  double dot = a.orientation.x * qb.x + a.orientation.y * qb.y + a.orientation.z * qb.z + a.orientation.w * qb.w;
+  double dot =
+      a.orientation.x * qb.x + a.orientation.y * qb.y + a.orientation.z * qb.z + a.orientation.w * qb.w;
   if (dot < 0) {
     qb = {-qb.x, -qb.y, -qb.z, -qb.w};
     dot = -dot;
@@ -72,8 +80,9 @@ inline XrPosef pose_lerp(const XrPosef& a, const XrPosef& b, double s) {
     wb = std::sin(s * theta) / std::sin(theta);
   }
   const XrQuaternionf& qa = a.orientation;
-  r.orientation = quat_normalize({static_cast<float>(wa * qa.x + wb * qb.x), static_cast<float>(wa * qa.y + wb * qb.y),
-                                  static_cast<float>(wa * qa.z + wb * qb.z), static_cast<float>(wa * qa.w + wb * qb.w)});
+  r.orientation =
+      quat_normalize({static_cast<float>(wa * qa.x + wb * qb.x), static_cast<float>(wa * qa.y + wb * qb.y),
+                      static_cast<float>(wa * qa.z + wb * qb.z), static_cast<float>(wa * qa.w + wb * qb.w)});
   return r;
 }
 

@@ -23,7 +23,8 @@ constexpr float kStageWidth = 4.f;  // meters along X
 constexpr float kStageDepth = 3.f;  // meters along Z
 
 XrResult check_reference_type(XrReferenceSpaceType t) {
-  if (t == XR_REFERENCE_SPACE_TYPE_VIEW || t == XR_REFERENCE_SPACE_TYPE_LOCAL || t == XR_REFERENCE_SPACE_TYPE_STAGE)
+  if (t == XR_REFERENCE_SPACE_TYPE_VIEW || t == XR_REFERENCE_SPACE_TYPE_LOCAL ||
+      t == XR_REFERENCE_SPACE_TYPE_STAGE)
     return XR_SUCCESS;
   if (t == XR_REFERENCE_SPACE_TYPE_UNBOUNDED_MSFT || t == XR_REFERENCE_SPACE_TYPE_COMBINED_EYE_VARJO)
     return XR_ERROR_REFERENCE_SPACE_UNSUPPORTED;
@@ -36,12 +37,13 @@ XrResult XRAPI_CALL enumerate_reference_spaces(XrSession handle, uint32_t capaci
   Session* s = nullptr;
   if (const XrResult r = get_session(handle, &s); XR_FAILED(r)) return r;
   if (capacity != 0 && spaces == nullptr) return XR_ERROR_VALIDATION_FAILURE;
-  static constexpr XrReferenceSpaceType kTypes[] = {XR_REFERENCE_SPACE_TYPE_VIEW, XR_REFERENCE_SPACE_TYPE_LOCAL,
-                                                    XR_REFERENCE_SPACE_TYPE_STAGE};
+  static constexpr XrReferenceSpaceType kTypes[] = {
+      XR_REFERENCE_SPACE_TYPE_VIEW, XR_REFERENCE_SPACE_TYPE_LOCAL, XR_REFERENCE_SPACE_TYPE_STAGE};
   return two_call(capacity, count, 3, [&](uint32_t i) { spaces[i] = kTypes[i]; });
 }
 
-XrResult XRAPI_CALL create_reference_space(XrSession handle, const XrReferenceSpaceCreateInfo* info, XrSpace* out) {
+XrResult XRAPI_CALL create_reference_space(XrSession handle, const XrReferenceSpaceCreateInfo* info,
+                                           XrSpace* out) {
   Lock lock(big_lock());
   Session* s = nullptr;
   if (const XrResult r = get_session(handle, &s); XR_FAILED(r)) return r;
@@ -85,7 +87,8 @@ XrResult XRAPI_CALL create_action_space(XrSession handle, const XrActionSpaceCre
   if (action->type != XR_ACTION_TYPE_POSE_INPUT) return XR_ERROR_ACTION_TYPE_MISMATCH;
   if (info->subactionPath != XR_NULL_PATH) {
     if (s->instance->path_string(info->subactionPath) == nullptr) return XR_ERROR_PATH_INVALID;
-    if (std::find(action->subactions.begin(), action->subactions.end(), info->subactionPath) == action->subactions.end())
+    if (std::find(action->subactions.begin(), action->subactions.end(), info->subactionPath) ==
+        action->subactions.end())
       return XR_ERROR_PATH_UNSUPPORTED;
   }
   if (!quat_is_unit(info->poseInActionSpace.orientation)) return XR_ERROR_POSE_INVALID;
@@ -110,10 +113,9 @@ XrResult XRAPI_CALL destroy_space_entry(XrSpace handle) {
   return XR_SUCCESS;
 }
 
-constexpr XrSpaceLocationFlags kAllValid = XR_SPACE_LOCATION_ORIENTATION_VALID_BIT |
-                                          XR_SPACE_LOCATION_POSITION_VALID_BIT |
-                                          XR_SPACE_LOCATION_ORIENTATION_TRACKED_BIT |
-                                          XR_SPACE_LOCATION_POSITION_TRACKED_BIT;
+constexpr XrSpaceLocationFlags kAllValid =
+    XR_SPACE_LOCATION_ORIENTATION_VALID_BIT | XR_SPACE_LOCATION_POSITION_VALID_BIT |
+    XR_SPACE_LOCATION_ORIENTATION_TRACKED_BIT | XR_SPACE_LOCATION_POSITION_TRACKED_BIT;
 
 // T_base_space at `time`, or nullopt.
 std::optional<XrPosef> relative_pose(const Session& s, const Space& space, const Space& base, XrTime time) {
@@ -123,7 +125,8 @@ std::optional<XrPosef> relative_pose(const Session& s, const Space& space, const
   return pose_mul(pose_inverse(*b), *a);
 }
 
-XrResult XRAPI_CALL locate_space(XrSpace space_handle, XrSpace base_handle, XrTime time, XrSpaceLocation* location) {
+XrResult XRAPI_CALL locate_space(XrSpace space_handle, XrSpace base_handle, XrTime time,
+                                 XrSpaceLocation* location) {
   Lock lock(big_lock());
   Space* space = lookup<Space>(space_handle);
   Space* base = lookup<Space>(base_handle);
@@ -166,8 +169,8 @@ XrResult XRAPI_CALL locate_space(XrSpace space_handle, XrSpace base_handle, XrTi
   return XR_SUCCESS;
 }
 
-XrResult XRAPI_CALL locate_views(XrSession handle, const XrViewLocateInfo* info, XrViewState* state, uint32_t capacity,
-                                 uint32_t* count, XrView* views) {
+XrResult XRAPI_CALL locate_views(XrSession handle, const XrViewLocateInfo* info, XrViewState* state,
+                                 uint32_t capacity, uint32_t* count, XrView* views) {
   Lock lock(big_lock());
   Session* s = nullptr;
   if (const XrResult r = get_session(handle, &s); XR_FAILED(r)) return r;
@@ -176,7 +179,8 @@ XrResult XRAPI_CALL locate_views(XrSession handle, const XrViewLocateInfo* info,
     return XR_ERROR_VALIDATION_FAILURE;
   if (info->viewConfigurationType != XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO) {
     const XrViewConfigurationType t = info->viewConfigurationType;
-    const bool known = t == XR_VIEW_CONFIGURATION_TYPE_PRIMARY_MONO || t == XR_VIEW_CONFIGURATION_TYPE_PRIMARY_QUAD_VARJO ||
+    const bool known = t == XR_VIEW_CONFIGURATION_TYPE_PRIMARY_MONO ||
+                       t == XR_VIEW_CONFIGURATION_TYPE_PRIMARY_QUAD_VARJO ||
                        t == XR_VIEW_CONFIGURATION_TYPE_SECONDARY_MONO_FIRST_PERSON_OBSERVER_MSFT;
     return known ? XR_ERROR_VIEW_CONFIGURATION_TYPE_UNSUPPORTED : XR_ERROR_VALIDATION_FAILURE;
   }

@@ -48,8 +48,12 @@ std::recursive_mutex& big_lock() {
   return mutex;
 }
 
-void register_handle(const void* object, HandleKind kind) { handles()[object] = kind; }
-void unregister_handle(const void* object) { handles().erase(object); }
+void register_handle(const void* object, HandleKind kind) {
+  handles()[object] = kind;
+}
+void unregister_handle(const void* object) {
+  handles().erase(object);
+}
 bool handle_is(const void* object, HandleKind kind) {
   const auto it = handles().find(object);
   return it != handles().end() && it->second == kind;
@@ -75,7 +79,9 @@ const std::string* Instance::path_string(XrPath path) const {
   return &path_strings[path - 1];
 }
 
-void Instance::push_event(const XrEventDataBuffer& event) { events.push_back(event); }
+void Instance::push_event(const XrEventDataBuffer& event) {
+  events.push_back(event);
+}
 
 XrTime Session::input_time() const {
   if (!is_virtual_clock()) return monotonic_now();

@@ -13,7 +13,9 @@
 
 #define XR_USE_GRAPHICS_API_VULKAN
 #define XR_USE_TIMESPEC
+// Vulkan first: openxr_platform.h uses its types.
 #include <vulkan/vulkan.h>
+
 #include <openxr/openxr.h>
 #include <openxr/openxr_platform.h>
 
@@ -40,10 +42,10 @@ constexpr XrSystemId kSystemId = 1;
 //   PUSHPULL_XR_SIM_CAPTURE_EVERY     also capture every N frames (default 0: only at "capture" events)
 //   PUSHPULL_XR_SIM_PROFILE           interaction profile to make current (default: first suggested of
 //                                     khr/simple, oculus/touch, valve/index, htc/vive, microsoft/motion)
-//   PUSHPULL_XR_SIM_VK_DEVICE         substring of the Vulkan device name to use (default: a GPU, else lavapipe)
-//   PUSHPULL_XR_SIM_HAPTICS           JSON Lines file each haptic output is appended to
-//                                     ({"t": s, "path": ..., "duration_ns": .., "frequency": .., "amplitude": ..}
-//                                     or {"t": s, "path": ..., "stop": true}; t in script seconds)
+//   PUSHPULL_XR_SIM_VK_DEVICE         substring of the Vulkan device name to use (default: a GPU, else
+//   lavapipe) PUSHPULL_XR_SIM_HAPTICS           JSON Lines file each haptic output is appended to
+//                                     ({"t": s, "path": ..., "duration_ns": .., "frequency": .., "amplitude":
+//                                     ..} or {"t": s, "path": ..., "stop": true}; t in script seconds)
 struct Config {
   uint32_t width = 1440;
   uint32_t height = 1600;
@@ -157,7 +159,7 @@ struct Session {
   std::vector<ActionSet*> attached;
   const InteractionProfile* profile = nullptr;  // current profile of both hands
   bool profile_event_pending = false;
-  std::map<std::string, InputValue> overrides;        // XR_EXT_conformance_automation
+  std::map<std::string, InputValue> overrides;  // XR_EXT_conformance_automation
   std::map<std::string, std::pair<Space*, XrPosef>> location_overrides;
   std::set<std::string> inactive_devices;  // top-level paths made inactive by automation
   std::vector<HapticRecord> haptics;
@@ -196,8 +198,8 @@ struct Action {
   std::string localized_name;
   XrActionType type = XR_ACTION_TYPE_BOOLEAN_INPUT;
   std::vector<XrPath> subactions;
-  std::vector<std::string> bound;          // component paths in the session's current profile
-  std::map<XrPath, ActionState> states;    // per subaction path; XR_NULL_PATH: all combined
+  std::vector<std::string> bound;        // component paths in the session's current profile
+  std::map<XrPath, ActionState> states;  // per subaction path; XR_NULL_PATH: all combined
 };
 
 struct ActionSet {

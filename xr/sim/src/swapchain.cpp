@@ -10,29 +10,34 @@ namespace {
 
 // In the order the runtime prefers them (the spec asks for preference order).
 constexpr VkFormat kCandidateFormats[] = {
-    VK_FORMAT_R8G8B8A8_SRGB, VK_FORMAT_B8G8R8A8_SRGB,     VK_FORMAT_R8G8B8A8_UNORM,      VK_FORMAT_B8G8R8A8_UNORM,
-    VK_FORMAT_D32_SFLOAT,    VK_FORMAT_D24_UNORM_S8_UINT, VK_FORMAT_D32_SFLOAT_S8_UINT, VK_FORMAT_D16_UNORM,
+    VK_FORMAT_R8G8B8A8_SRGB,      VK_FORMAT_B8G8R8A8_SRGB, VK_FORMAT_R8G8B8A8_UNORM,
+    VK_FORMAT_B8G8R8A8_UNORM,     VK_FORMAT_D32_SFLOAT,    VK_FORMAT_D24_UNORM_S8_UINT,
+    VK_FORMAT_D32_SFLOAT_S8_UINT, VK_FORMAT_D16_UNORM,
 };
 
 bool is_depth(VkFormat f) {
   return f == VK_FORMAT_D32_SFLOAT || f == VK_FORMAT_D24_UNORM_S8_UINT || f == VK_FORMAT_D32_SFLOAT_S8_UINT ||
          f == VK_FORMAT_D16_UNORM;
 }
-bool has_stencil(VkFormat f) { return f == VK_FORMAT_D24_UNORM_S8_UINT || f == VK_FORMAT_D32_SFLOAT_S8_UINT; }
+bool has_stencil(VkFormat f) {
+  return f == VK_FORMAT_D24_UNORM_S8_UINT || f == VK_FORMAT_D32_SFLOAT_S8_UINT;
+}
 
 std::vector<VkFormat> supported_formats(VkPhysicalDevice device) {
   std::vector<VkFormat> out;
   for (VkFormat f : kCandidateFormats) {
     VkFormatProperties p;
     vkGetPhysicalDeviceFormatProperties(device, f, &p);
-    const VkFormatFeatureFlags need = is_depth(f) ? VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT
-                                                  : (VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT | VK_FORMAT_FEATURE_TRANSFER_SRC_BIT);
+    const VkFormatFeatureFlags need =
+        is_depth(f) ? VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT
+                    : (VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT | VK_FORMAT_FEATURE_TRANSFER_SRC_BIT);
     if ((p.optimalTilingFeatures & need) == need) out.push_back(f);
   }
   return out;
 }
 
-XrResult XRAPI_CALL enumerate_formats(XrSession handle, uint32_t capacity, uint32_t* count, int64_t* formats) {
+XrResult XRAPI_CALL enumerate_formats(XrSession handle, uint32_t capacity, uint32_t* count,
+                                      int64_t* formats) {
   Lock lock(big_lock());
   Session* s = nullptr;
   if (const XrResult r = get_session(handle, &s); XR_FAILED(r)) return r;
@@ -61,13 +66,15 @@ XrResult XRAPI_CALL create_swapchain(XrSession handle, const XrSwapchainCreateIn
     return XR_ERROR_VALIDATION_FAILURE;
   if (info->createFlags & XR_SWAPCHAIN_CREATE_PROTECTED_CONTENT_BIT) return XR_ERROR_FEATURE_UNSUPPORTED;
   if (info->createFlags & ~XrSwapchainCreateFlags(XR_SWAPCHAIN_CREATE_PROTECTED_CONTENT_BIT |
-                                                   XR_SWAPCHAIN_CREATE_STATIC_IMAGE_BIT))
+                                                  XR_SWAPCHAIN_CREATE_STATIC_IMAGE_BIT))
     return XR_ERROR_VALIDATION_FAILURE;
   const std::vector<VkFormat> formats = supported_formats(s->vk.physical_device);
   const auto format = static_cast<VkFormat>(info->format);
-  if (std::find(formats.begin(), formats.end(), format) == formats.end()) return XR_ERROR_SWAPCHAIN_FORMAT_UNSUPPORTED;
-  if (info->width == 0 || info->height == 0 || info->width > 4096 || info->height > 4096 || info->arraySize == 0 ||
-      info->mipCount == 0 || (info->faceCount != 1 && info->faceCount != 6) || info->sampleCount != 1)
+  if (std::find(formats.begin(), formats.end(), format) == formats.end())
+    return XR_ERROR_SWAPCHAIN_FORMAT_UNSUPPORTED;
+  if (info->width == 0 || info->height == 0 || info->width > 4096 || info->height > 4096 ||
+      info->arraySize == 0 || info->mipCount == 0 || (info->faceCount != 1 && info->faceCount != 6) ||
+      info->sampleCount != 1)
     return XR_ERROR_VALIDATION_FAILURE;
   if (is_depth(format) && (info->usageFlags & XR_SWAPCHAIN_USAGE_COLOR_ATTACHMENT_BIT))
     return XR_ERROR_FEATURE_UNSUPPORTED;
@@ -86,7 +93,8 @@ XrResult XRAPI_CALL create_swapchain(XrSession handle, const XrSwapchainCreateIn
   for (uint32_t i = 0; i < count && XR_SUCCEEDED(result); ++i) {
     VkImageCreateInfo ci{};
     ci.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO;
-    ci.flags = (info->usageFlags & XR_SWAPCHAIN_USAGE_MUTABLE_FORMAT_BIT) ? VK_IMAGE_CREATE_MUTABLE_FORMAT_BIT : 0;
+    ci.flags =
+        (info->usageFlags & XR_SWAPCHAIN_USAGE_MUTABLE_FORMAT_BIT) ? VK_IMAGE_CREATE_MUTABLE_FORMAT_BIT : 0;
     if (info->faceCount == 6) ci.flags |= VK_IMAGE_CREATE_CUBE_COMPATIBLE_BIT;
     ci.imageType = VK_IMAGE_TYPE_2D;
     ci.format = format;
@@ -109,8 +117,10 @@ XrResult XRAPI_CALL create_swapchain(XrSession handle, const XrSwapchainCreateIn
     VkMemoryAllocateInfo ai{};
     ai.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
     ai.allocationSize = req.size;
-    ai.memoryTypeIndex = find_memory_type(s->vk.physical_device, req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-    if (ai.memoryTypeIndex == UINT32_MAX) ai.memoryTypeIndex = find_memory_type(s->vk.physical_device, req.memoryTypeBits, 0);
+    ai.memoryTypeIndex =
+        find_memory_type(s->vk.physical_device, req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    if (ai.memoryTypeIndex == UINT32_MAX)
+      ai.memoryTypeIndex = find_memory_type(s->vk.physical_device, req.memoryTypeBits, 0);
     VkDeviceMemory memory = VK_NULL_HANDLE;
     if (vkAllocateMemory(device, &ai, nullptr, &memory) != VK_SUCCESS) {
       result = XR_ERROR_RUNTIME_FAILURE;
@@ -126,16 +136,18 @@ XrResult XRAPI_CALL create_swapchain(XrSession handle, const XrSwapchainCreateIn
         VkImageMemoryBarrier b{};
         b.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER;
         b.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-        b.newLayout = depth ? VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL : VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-        b.dstAccessMask = depth ? VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT : VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
+        b.newLayout = depth ? VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL
+                            : VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+        b.dstAccessMask =
+            depth ? VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT : VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
         b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
         b.image = image;
         const VkImageAspectFlags aspect =
             depth ? (VK_IMAGE_ASPECT_DEPTH_BIT | (has_stencil(format) ? VK_IMAGE_ASPECT_STENCIL_BIT : 0))
                   : VK_IMAGE_ASPECT_COLOR_BIT;
         b.subresourceRange = {aspect, 0, info->mipCount, 0, layers};
-        vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 0, nullptr,
-                             0, nullptr, 1, &b);
+        vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 0,
+                             nullptr, 0, nullptr, 1, &b);
       }
     });
     if (r != VK_SUCCESS) result = XR_ERROR_RUNTIME_FAILURE;
@@ -179,7 +191,8 @@ XrResult XRAPI_CALL enumerate_images(XrSwapchain handle, uint32_t capacity, uint
                   [&](uint32_t i) { vk_images[i].image = sc->images[i]; });
 }
 
-XrResult XRAPI_CALL acquire_image(XrSwapchain handle, const XrSwapchainImageAcquireInfo* info, uint32_t* index) {
+XrResult XRAPI_CALL acquire_image(XrSwapchain handle, const XrSwapchainImageAcquireInfo* info,
+                                  uint32_t* index) {
   Lock lock(big_lock());
   Swapchain* sc = nullptr;
   if (const XrResult r = get_swapchain(handle, &sc); XR_FAILED(r)) return r;
@@ -209,7 +222,8 @@ XrResult XRAPI_CALL release_image(XrSwapchain handle, const XrSwapchainImageRele
   Lock lock(big_lock());
   Swapchain* sc = nullptr;
   if (const XrResult r = get_swapchain(handle, &sc); XR_FAILED(r)) return r;
-  if (info != nullptr && info->type != XR_TYPE_SWAPCHAIN_IMAGE_RELEASE_INFO) return XR_ERROR_VALIDATION_FAILURE;
+  if (info != nullptr && info->type != XR_TYPE_SWAPCHAIN_IMAGE_RELEASE_INFO)
+    return XR_ERROR_VALIDATION_FAILURE;
   if (sc->acquired.empty() || !sc->waited) return XR_ERROR_CALL_ORDER_INVALID;
   sc->last_released = sc->acquired.front();
   sc->acquired.pop_front();

@@ -12,7 +12,8 @@ namespace pushpull::xrsim {
 XrResult bind_vulkan(const Instance& instance, const void* next, VulkanBinding* out) {
   const XrGraphicsBindingVulkanKHR* binding = nullptr;
   for (auto* h = static_cast<const XrBaseInStructure*>(next); h != nullptr; h = h->next)
-    if (h->type == XR_TYPE_GRAPHICS_BINDING_VULKAN_KHR) binding = reinterpret_cast<const XrGraphicsBindingVulkanKHR*>(h);
+    if (h->type == XR_TYPE_GRAPHICS_BINDING_VULKAN_KHR)
+      binding = reinterpret_cast<const XrGraphicsBindingVulkanKHR*>(h);
   if (binding == nullptr) return XR_ERROR_GRAPHICS_DEVICE_INVALID;
   if (!instance.vk_requirements_queried) return XR_ERROR_GRAPHICS_REQUIREMENTS_CALL_MISSING;
   if (binding->instance == VK_NULL_HANDLE || binding->physicalDevice == VK_NULL_HANDLE ||
@@ -32,7 +33,8 @@ XrResult bind_vulkan(const Instance& instance, const void* next, VulkanBinding* 
   pool.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO;
   pool.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT | VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
   pool.queueFamilyIndex = vk.queue_family;
-  if (vkCreateCommandPool(vk.device, &pool, nullptr, &vk.pool) != VK_SUCCESS) return XR_ERROR_GRAPHICS_DEVICE_INVALID;
+  if (vkCreateCommandPool(vk.device, &pool, nullptr, &vk.pool) != VK_SUCCESS)
+    return XR_ERROR_GRAPHICS_DEVICE_INVALID;
   *out = vk;
   return XR_SUCCESS;
 }
@@ -78,7 +80,8 @@ uint32_t find_memory_type(VkPhysicalDevice device, uint32_t type_bits, VkMemoryP
   VkPhysicalDeviceMemoryProperties mp;
   vkGetPhysicalDeviceMemoryProperties(device, &mp);
   for (uint32_t i = 0; i < mp.memoryTypeCount; ++i)
-    if ((type_bits & (1u << i)) != 0 && (mp.memoryTypes[i].propertyFlags & properties) == properties) return i;
+    if ((type_bits & (1u << i)) != 0 && (mp.memoryTypes[i].propertyFlags & properties) == properties)
+      return i;
   return UINT32_MAX;
 }
 
@@ -92,11 +95,13 @@ XrResult check_instance_system(XrInstance handle, XrSystemId system, Instance** 
   return XR_SUCCESS;
 }
 
-XrResult XRAPI_CALL get_requirements(XrInstance handle, XrSystemId system, XrGraphicsRequirementsVulkanKHR* req) {
+XrResult XRAPI_CALL get_requirements(XrInstance handle, XrSystemId system,
+                                     XrGraphicsRequirementsVulkanKHR* req) {
   Lock lock(big_lock());
   Instance* instance = nullptr;
   if (const XrResult r = check_instance_system(handle, system, &instance); XR_FAILED(r)) return r;
-  if (req == nullptr || req->type != XR_TYPE_GRAPHICS_REQUIREMENTS_VULKAN_KHR) return XR_ERROR_VALIDATION_FAILURE;
+  if (req == nullptr || req->type != XR_TYPE_GRAPHICS_REQUIREMENTS_VULKAN_KHR)
+    return XR_ERROR_VALIDATION_FAILURE;
   req->minApiVersionSupported = XR_MAKE_VERSION(1, 0, 0);
   req->maxApiVersionSupported = XR_MAKE_VERSION(1, 3, 0);
   instance->vk_requirements_queried = true;
@@ -115,7 +120,8 @@ XrResult XRAPI_CALL get_extensions(XrInstance handle, XrSystemId system, uint32_
 // first GPU with a graphics queue, else the first device (lavapipe on a machine without a GPU).
 VkPhysicalDevice choose_physical_device(const Config& config, VkInstance vk_instance,
                                         PFN_vkGetInstanceProcAddr gipa) {
-  auto enumerate = reinterpret_cast<PFN_vkEnumeratePhysicalDevices>(gipa(vk_instance, "vkEnumeratePhysicalDevices"));
+  auto enumerate =
+      reinterpret_cast<PFN_vkEnumeratePhysicalDevices>(gipa(vk_instance, "vkEnumeratePhysicalDevices"));
   auto properties =
       reinterpret_cast<PFN_vkGetPhysicalDeviceProperties>(gipa(vk_instance, "vkGetPhysicalDeviceProperties"));
   auto families = reinterpret_cast<PFN_vkGetPhysicalDeviceQueueFamilyProperties>(
@@ -182,7 +188,8 @@ XrResult XRAPI_CALL create_vulkan_instance(XrInstance handle, const XrVulkanInst
       info->vulkanCreateInfo == nullptr || info->createFlags != 0)
     return XR_ERROR_VALIDATION_FAILURE;
   if (info->systemId != kSystemId) return XR_ERROR_SYSTEM_INVALID;
-  auto create = reinterpret_cast<PFN_vkCreateInstance>(info->pfnGetInstanceProcAddr(VK_NULL_HANDLE, "vkCreateInstance"));
+  auto create = reinterpret_cast<PFN_vkCreateInstance>(
+      info->pfnGetInstanceProcAddr(VK_NULL_HANDLE, "vkCreateInstance"));
   if (create == nullptr) return XR_ERROR_RUNTIME_FAILURE;
   *vk_result = create(info->vulkanCreateInfo, info->vulkanAllocator, vk_instance);
   return XR_SUCCESS;
@@ -195,7 +202,8 @@ XrResult XRAPI_CALL create_vulkan_device(XrInstance handle, const XrVulkanDevice
   if (instance == nullptr) return XR_ERROR_HANDLE_INVALID;
   if (info == nullptr || vk_device == nullptr || vk_result == nullptr ||
       info->type != XR_TYPE_VULKAN_DEVICE_CREATE_INFO_KHR || info->pfnGetInstanceProcAddr == nullptr ||
-      info->vulkanCreateInfo == nullptr || info->vulkanPhysicalDevice == VK_NULL_HANDLE || info->createFlags != 0)
+      info->vulkanCreateInfo == nullptr || info->vulkanPhysicalDevice == VK_NULL_HANDLE ||
+      info->createFlags != 0)
     return XR_ERROR_VALIDATION_FAILURE;
   if (info->systemId != kSystemId) return XR_ERROR_SYSTEM_INVALID;
   // Device creation dispatches on the physical device, so the loader this library links (the same

@@ -78,11 +78,14 @@ TEST_F(ActionsTest, BindingsForAnUnknownProfileOrInputAreUnsupported) {
   XrActionSet set = make_set(sim, "s", "S");
   XrAction click = make_action(set, "click", XR_ACTION_TYPE_BOOLEAN_INPUT, {});
   XrAction pose = make_action(set, "pose", XR_ACTION_TYPE_POSE_INPUT, {});
-  EXPECT_EQ(suggest(sim, "/interaction_profiles/acme/teleporter", {{click, "/user/hand/left/input/select/click"}}),
-            XR_ERROR_PATH_UNSUPPORTED);
-  EXPECT_EQ(suggest(sim, "/interaction_profiles/khr/simple_controller", {{click, "/user/hand/left/input/x/click"}}),
-            XR_ERROR_PATH_UNSUPPORTED);
-  EXPECT_EQ(suggest(sim, "/interaction_profiles/khr/simple_controller", {{pose, "/user/hand/left/input/menu/click"}}),
+  EXPECT_EQ(
+      suggest(sim, "/interaction_profiles/acme/teleporter", {{click, "/user/hand/left/input/select/click"}}),
+      XR_ERROR_PATH_UNSUPPORTED);
+  EXPECT_EQ(
+      suggest(sim, "/interaction_profiles/khr/simple_controller", {{click, "/user/hand/left/input/x/click"}}),
+      XR_ERROR_PATH_UNSUPPORTED);
+  EXPECT_EQ(suggest(sim, "/interaction_profiles/khr/simple_controller",
+                    {{pose, "/user/hand/left/input/menu/click"}}),
             XR_ERROR_PATH_UNSUPPORTED);
   for (const char* profile :
        {"/interaction_profiles/khr/simple_controller", "/interaction_profiles/oculus/touch_controller",
@@ -90,8 +93,9 @@ TEST_F(ActionsTest, BindingsForAnUnknownProfileOrInputAreUnsupported) {
         "/interaction_profiles/microsoft/motion_controller"})
     EXPECT_EQ(suggest(sim, profile, {{pose, "/user/hand/right/input/aim/pose"}}), XR_SUCCESS) << profile;
   // Identifiers without a component are completed (".../select" -> ".../select/click").
-  EXPECT_EQ(suggest(sim, "/interaction_profiles/khr/simple_controller", {{click, "/user/hand/left/input/select"}}),
-            XR_SUCCESS);
+  EXPECT_EQ(
+      suggest(sim, "/interaction_profiles/khr/simple_controller", {{click, "/user/hand/left/input/select"}}),
+      XR_SUCCESS);
 }
 
 TEST_F(ActionsTest, AttachChoosesAProfileAndLocksTheSets) {
@@ -100,14 +104,16 @@ TEST_F(ActionsTest, AttachChoosesAProfileAndLocksTheSets) {
   XrActionSet set = make_set(sim, "s", "S");
   const XrPath left = sim.path("/user/hand/left"), right = sim.path("/user/hand/right");
   XrAction menu = make_action(set, "menu", XR_ACTION_TYPE_BOOLEAN_INPUT, {left, right});
-  ASSERT_EQ(suggest(sim, "/interaction_profiles/htc/vive_controller", {{menu, "/user/hand/left/input/menu/click"}}),
-            XR_SUCCESS);
+  ASSERT_EQ(
+      suggest(sim, "/interaction_profiles/htc/vive_controller", {{menu, "/user/hand/left/input/menu/click"}}),
+      XR_SUCCESS);
   XrInteractionProfileState ps{XR_TYPE_INTERACTION_PROFILE_STATE};
   EXPECT_EQ(xrGetCurrentInteractionProfile(sim.session, left, &ps), XR_ERROR_ACTIONSET_NOT_ATTACHED);
   ASSERT_EQ(attach(sim, set), XR_SUCCESS);
   EXPECT_EQ(attach(sim, set), XR_ERROR_ACTIONSETS_ALREADY_ATTACHED);
   make_action(set, "late", XR_ACTION_TYPE_BOOLEAN_INPUT, {}, XR_ERROR_ACTIONSETS_ALREADY_ATTACHED);
-  EXPECT_EQ(suggest(sim, "/interaction_profiles/khr/simple_controller", {{menu, "/user/hand/left/input/menu/click"}}),
+  EXPECT_EQ(suggest(sim, "/interaction_profiles/khr/simple_controller",
+                    {{menu, "/user/hand/left/input/menu/click"}}),
             XR_ERROR_ACTIONSETS_ALREADY_ATTACHED);
   ASSERT_EQ(xrGetCurrentInteractionProfile(sim.session, left, &ps), XR_SUCCESS);
   EXPECT_EQ(ps.interactionProfile, sim.path("/interaction_profiles/htc/vive_controller"));
@@ -115,7 +121,8 @@ TEST_F(ActionsTest, AttachChoosesAProfileAndLocksTheSets) {
   EXPECT_EQ(ps.interactionProfile, XR_NULL_PATH);
   sim.poll_states();
   bool profile_event = false;
-  for (const auto& e : sim.other_events) profile_event |= e.type == XR_TYPE_EVENT_DATA_INTERACTION_PROFILE_CHANGED;
+  for (const auto& e : sim.other_events)
+    profile_event |= e.type == XR_TYPE_EVENT_DATA_INTERACTION_PROFILE_CHANGED;
   EXPECT_TRUE(profile_event);
   // Bound sources and their names.
   XrBoundSourcesForActionEnumerateInfo ei{XR_TYPE_BOUND_SOURCES_FOR_ACTION_ENUMERATE_INFO};
@@ -174,9 +181,11 @@ TEST_F(ActionsTest, StatesFollowAutomationInputAndSubactionPaths) {
   ASSERT_EQ(sim.poll_states().back(), XR_SESSION_STATE_FOCUSED);
 
   ASSERT_EQ(set_float(sim.session, left, sim.path("/user/hand/left/input/trigger/value"), 0.25f), XR_SUCCESS);
-  ASSERT_EQ(set_float(sim.session, right, sim.path("/user/hand/right/input/trigger/value"), 0.75f), XR_SUCCESS);
+  ASSERT_EQ(set_float(sim.session, right, sim.path("/user/hand/right/input/trigger/value"), 0.75f),
+            XR_SUCCESS);
   ASSERT_EQ(set_bool(sim.session, right, sim.path("/user/hand/right/input/a/click"), XR_TRUE), XR_SUCCESS);
-  ASSERT_EQ(set_vec(sim.session, right, sim.path("/user/hand/right/input/thumbstick"), {0.5f, -1.f}), XR_SUCCESS);
+  ASSERT_EQ(set_vec(sim.session, right, sim.path("/user/hand/right/input/thumbstick"), {0.5f, -1.f}),
+            XR_SUCCESS);
   ASSERT_EQ(sync(sim, set), XR_SUCCESS);
 
   XrActionStateGetInfo gi{XR_TYPE_ACTION_STATE_GET_INFO};
@@ -212,7 +221,8 @@ TEST_F(ActionsTest, StatesFollowAutomationInputAndSubactionPaths) {
   // The grip pose is located and follows automation.
   auto set_location = sim.fn<PFN_xrSetInputDeviceLocationEXT>("xrSetInputDeviceLocationEXT");
   XrPosef p{{0, 0, 0, 1}, {0.3f, 1.1f, -0.2f}};
-  ASSERT_EQ(set_location(sim.session, right, sim.path("/user/hand/right/input/grip/pose"), stage, p), XR_SUCCESS);
+  ASSERT_EQ(set_location(sim.session, right, sim.path("/user/hand/right/input/grip/pose"), stage, p),
+            XR_SUCCESS);
   XrSpaceLocation loc{XR_TYPE_SPACE_LOCATION};
   ASSERT_EQ(xrLocateSpace(grip_space, stage, t, &loc), XR_SUCCESS);
   EXPECT_NE(loc.locationFlags & XR_SPACE_LOCATION_POSITION_VALID_BIT, 0u);
@@ -242,8 +252,9 @@ TEST_F(ActionsTest, StatesFollowAutomationInputAndSubactionPaths) {
 
   // A device made inactive deactivates its actions.
   auto set_active = sim.fn<PFN_xrSetInputDeviceActiveEXT>("xrSetInputDeviceActiveEXT");
-  ASSERT_EQ(set_active(sim.session, sim.path("/interaction_profiles/oculus/touch_controller"), right, XR_FALSE),
-            XR_SUCCESS);
+  ASSERT_EQ(
+      set_active(sim.session, sim.path("/interaction_profiles/oculus/touch_controller"), right, XR_FALSE),
+      XR_SUCCESS);
   ASSERT_EQ(sync(sim, set), XR_SUCCESS);
   gi.action = a_button;
   ASSERT_EQ(xrGetActionStateBoolean(sim.session, &gi, &b), XR_SUCCESS);

@@ -23,7 +23,8 @@ using namespace sim_test;
 
 namespace {
 
-constexpr const char* kScript = R"({"t": 0.0, "path": "/user/hand/right/input/aim/pose", "pose": {"p": [0.15, 1.35, -0.5], "q": [0, 0, 0, 1]}}
+constexpr const char* kScript =
+    R"({"t": 0.0, "path": "/user/hand/right/input/aim/pose", "pose": {"p": [0.15, 1.35, -0.5], "q": [0, 0, 0, 1]}}
 {"t": 0.5, "event": "capture"}
 {"t": 1.0, "path": "/user/hand/left/input/menu/click", "value": true}
 {"t": 1.2, "path": "/user/hand/left/input/menu/click", "value": false}
@@ -73,7 +74,9 @@ RunResult run_hello_xr(const char* graphics, const std::string& log_file, std::c
   return r;
 }
 
-std::string tail(const std::string& s, std::size_t n = 4000) { return s.size() > n ? s.substr(s.size() - n) : s; }
+std::string tail(const std::string& s, std::size_t n = 4000) {
+  return s.size() > n ? s.substr(s.size() - n) : s;
+}
 
 // Lines where a validation layer (OpenXR core validation, Vulkan's when hello_xr enables it) or
 // hello_xr itself reports a problem. hello_xr's own note that Vulkan validation layers are not

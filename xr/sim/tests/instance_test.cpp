@@ -76,11 +76,12 @@ TEST_F(InstanceTest, PrimaryStereoWithConfiguredResolution) {
   std::vector<XrViewConfigurationView> views(2, {XR_TYPE_VIEW_CONFIGURATION_VIEW});
   ASSERT_EQ(xrEnumerateViewConfigurationViews(sim.instance, sim.system, type, 1, &n, views.data()),
             XR_ERROR_SIZE_INSUFFICIENT);
-  ASSERT_EQ(xrEnumerateViewConfigurationViews(sim.instance, sim.system, type, 2, &n, views.data()), XR_SUCCESS);
+  ASSERT_EQ(xrEnumerateViewConfigurationViews(sim.instance, sim.system, type, 2, &n, views.data()),
+            XR_SUCCESS);
   EXPECT_EQ(views[0].recommendedImageRectWidth, 640u);
   EXPECT_EQ(views[1].recommendedImageRectHeight, 480u);
-  EXPECT_EQ(xrEnumerateViewConfigurationViews(sim.instance, sim.system, XR_VIEW_CONFIGURATION_TYPE_PRIMARY_MONO, 0,
-                                              &n, nullptr),
+  EXPECT_EQ(xrEnumerateViewConfigurationViews(sim.instance, sim.system,
+                                              XR_VIEW_CONFIGURATION_TYPE_PRIMARY_MONO, 0, &n, nullptr),
             XR_ERROR_VIEW_CONFIGURATION_TYPE_UNSUPPORTED);
   XrEnvironmentBlendMode mode{};
   ASSERT_EQ(xrEnumerateEnvironmentBlendModes(sim.instance, sim.system, type, 1, &n, &mode), XR_SUCCESS);
@@ -118,21 +119,61 @@ TEST_F(InstanceTest, TimespecConversionRoundTrips) {
 
 TEST_F(InstanceTest, EveryCoreFunctionIsThere) {
   Sim sim;
-  const char* core[] = {
-      "xrGetInstanceProcAddr", "xrEnumerateApiLayerProperties", "xrEnumerateInstanceExtensionProperties",
-      "xrCreateInstance", "xrDestroyInstance", "xrGetInstanceProperties", "xrPollEvent", "xrResultToString",
-      "xrStructureTypeToString", "xrGetSystem", "xrGetSystemProperties", "xrEnumerateEnvironmentBlendModes",
-      "xrCreateSession", "xrDestroySession", "xrEnumerateReferenceSpaces", "xrCreateReferenceSpace",
-      "xrGetReferenceSpaceBoundsRect", "xrCreateActionSpace", "xrLocateSpace", "xrDestroySpace",
-      "xrEnumerateViewConfigurations", "xrGetViewConfigurationProperties", "xrEnumerateViewConfigurationViews",
-      "xrEnumerateSwapchainFormats", "xrCreateSwapchain", "xrDestroySwapchain", "xrEnumerateSwapchainImages",
-      "xrAcquireSwapchainImage", "xrWaitSwapchainImage", "xrReleaseSwapchainImage", "xrBeginSession",
-      "xrEndSession", "xrRequestExitSession", "xrWaitFrame", "xrBeginFrame", "xrEndFrame", "xrLocateViews",
-      "xrStringToPath", "xrPathToString", "xrCreateActionSet", "xrDestroyActionSet", "xrCreateAction",
-      "xrDestroyAction", "xrSuggestInteractionProfileBindings", "xrAttachSessionActionSets",
-      "xrGetCurrentInteractionProfile", "xrGetActionStateBoolean", "xrGetActionStateFloat",
-      "xrGetActionStateVector2f", "xrGetActionStatePose", "xrSyncActions", "xrEnumerateBoundSourcesForAction",
-      "xrGetInputSourceLocalizedName", "xrApplyHapticFeedback", "xrStopHapticFeedback"};
+  const char* core[] = {"xrGetInstanceProcAddr",
+                        "xrEnumerateApiLayerProperties",
+                        "xrEnumerateInstanceExtensionProperties",
+                        "xrCreateInstance",
+                        "xrDestroyInstance",
+                        "xrGetInstanceProperties",
+                        "xrPollEvent",
+                        "xrResultToString",
+                        "xrStructureTypeToString",
+                        "xrGetSystem",
+                        "xrGetSystemProperties",
+                        "xrEnumerateEnvironmentBlendModes",
+                        "xrCreateSession",
+                        "xrDestroySession",
+                        "xrEnumerateReferenceSpaces",
+                        "xrCreateReferenceSpace",
+                        "xrGetReferenceSpaceBoundsRect",
+                        "xrCreateActionSpace",
+                        "xrLocateSpace",
+                        "xrDestroySpace",
+                        "xrEnumerateViewConfigurations",
+                        "xrGetViewConfigurationProperties",
+                        "xrEnumerateViewConfigurationViews",
+                        "xrEnumerateSwapchainFormats",
+                        "xrCreateSwapchain",
+                        "xrDestroySwapchain",
+                        "xrEnumerateSwapchainImages",
+                        "xrAcquireSwapchainImage",
+                        "xrWaitSwapchainImage",
+                        "xrReleaseSwapchainImage",
+                        "xrBeginSession",
+                        "xrEndSession",
+                        "xrRequestExitSession",
+                        "xrWaitFrame",
+                        "xrBeginFrame",
+                        "xrEndFrame",
+                        "xrLocateViews",
+                        "xrStringToPath",
+                        "xrPathToString",
+                        "xrCreateActionSet",
+                        "xrDestroyActionSet",
+                        "xrCreateAction",
+                        "xrDestroyAction",
+                        "xrSuggestInteractionProfileBindings",
+                        "xrAttachSessionActionSets",
+                        "xrGetCurrentInteractionProfile",
+                        "xrGetActionStateBoolean",
+                        "xrGetActionStateFloat",
+                        "xrGetActionStateVector2f",
+                        "xrGetActionStatePose",
+                        "xrSyncActions",
+                        "xrEnumerateBoundSourcesForAction",
+                        "xrGetInputSourceLocalizedName",
+                        "xrApplyHapticFeedback",
+                        "xrStopHapticFeedback"};
   for (const char* name : core) {
     PFN_xrVoidFunction f = nullptr;
     EXPECT_EQ(xrGetInstanceProcAddr(sim.instance, name, &f), XR_SUCCESS) << name;
@@ -148,10 +189,15 @@ TEST_F(InstanceTest, EveryCoreFunctionIsThere) {
   using Negotiate = XrResult(XRAPI_PTR*)(const XrNegotiateLoaderInfo*, XrNegotiateRuntimeRequest*);
   auto negotiate = reinterpret_cast<Negotiate>(dlsym(lib, "xrNegotiateLoaderRuntimeInterface"));
   ASSERT_NE(negotiate, nullptr);
-  XrNegotiateLoaderInfo info{XR_LOADER_INTERFACE_STRUCT_LOADER_INFO, 1, sizeof(XrNegotiateLoaderInfo), 1, 1,
-                             XR_MAKE_VERSION(1, 0, 0), XR_MAKE_VERSION(1, 0x3ff, 0xfff)};
-  XrNegotiateRuntimeRequest request{XR_LOADER_INTERFACE_STRUCT_RUNTIME_REQUEST, 1, sizeof(XrNegotiateRuntimeRequest),
-                                    0, 0, nullptr};
+  XrNegotiateLoaderInfo info{XR_LOADER_INTERFACE_STRUCT_LOADER_INFO,
+                             1,
+                             sizeof(XrNegotiateLoaderInfo),
+                             1,
+                             1,
+                             XR_MAKE_VERSION(1, 0, 0),
+                             XR_MAKE_VERSION(1, 0x3ff, 0xfff)};
+  XrNegotiateRuntimeRequest request{
+      XR_LOADER_INTERFACE_STRUCT_RUNTIME_REQUEST, 1, sizeof(XrNegotiateRuntimeRequest), 0, 0, nullptr};
   XrNegotiateLoaderInfo wrong = info;
   wrong.minInterfaceVersion = wrong.maxInterfaceVersion = 7;
   EXPECT_EQ(negotiate(&wrong, &request), XR_ERROR_INITIALIZATION_FAILED);
@@ -180,9 +226,11 @@ TEST_F(InstanceTest, EveryCoreFunctionIsThere) {
 TEST_F(InstanceTest, ExtensionFunctionsNeedTheExtensionEnabled) {
   Sim sim({XR_KHR_VULKAN_ENABLE2_EXTENSION_NAME});
   PFN_xrVoidFunction f = nullptr;
-  EXPECT_EQ(xrGetInstanceProcAddr(sim.instance, "xrConvertTimeToTimespecTimeKHR", &f), XR_ERROR_FUNCTION_UNSUPPORTED);
+  EXPECT_EQ(xrGetInstanceProcAddr(sim.instance, "xrConvertTimeToTimespecTimeKHR", &f),
+            XR_ERROR_FUNCTION_UNSUPPORTED);
   EXPECT_EQ(f, nullptr);
-  EXPECT_EQ(xrGetInstanceProcAddr(sim.instance, "xrSetInputDeviceActiveEXT", &f), XR_ERROR_FUNCTION_UNSUPPORTED);
+  EXPECT_EQ(xrGetInstanceProcAddr(sim.instance, "xrSetInputDeviceActiveEXT", &f),
+            XR_ERROR_FUNCTION_UNSUPPORTED);
   EXPECT_EQ(xrGetInstanceProcAddr(sim.instance, "xrCreateVulkanInstanceKHR", &f), XR_SUCCESS);
   EXPECT_NE(f, nullptr);
 }
@@ -216,7 +264,8 @@ TEST_F(InstanceTest, WrongHandlesAreRejected) {
 
 TEST_F(InstanceTest, ABadInputScriptFailsInstanceCreation) {
   setenv("PUSHPULL_XR_SIM_INPUT",
-         write_temp_file("bad.jsonl", "{\"t\": 0.0, \"path\": \"/user/head\", \"pose\": {\"p\": [1, 2]}}\n").c_str(),
+         write_temp_file("bad.jsonl", "{\"t\": 0.0, \"path\": \"/user/head\", \"pose\": {\"p\": [1, 2]}}\n")
+             .c_str(),
          1);
   XrInstanceCreateInfo ci{XR_TYPE_INSTANCE_CREATE_INFO};
   std::snprintf(ci.applicationInfo.applicationName, XR_MAX_APPLICATION_NAME_SIZE, "t");
@@ -225,8 +274,9 @@ TEST_F(InstanceTest, ABadInputScriptFailsInstanceCreation) {
   EXPECT_EQ(xrCreateInstance(&ci, &instance), XR_ERROR_INITIALIZATION_FAILED);
   // Recording headers and other records without "t" are skipped; comments too.
   setenv("PUSHPULL_XR_SIM_INPUT",
-         write_temp_file("ok.jsonl", "{\"model\": \"car.glb\", \"version\": 1}\n# comment\n\n"
-                                     "{\"t\": 0.5, \"path\": \"/user/hand/left/input/menu/click\", \"value\": true}\n")
+         write_temp_file("ok.jsonl",
+                         "{\"model\": \"car.glb\", \"version\": 1}\n# comment\n\n"
+                         "{\"t\": 0.5, \"path\": \"/user/hand/left/input/menu/click\", \"value\": true}\n")
              .c_str(),
          1);
   ASSERT_EQ(xrCreateInstance(&ci, &instance), XR_SUCCESS);

@@ -140,8 +140,8 @@ TEST(ReplayTest, SameScriptGivesIdenticalPosesAndActionStatesFrameByFrame) {
   EXPECT_EQ(first[30].time_from_start, 1000000000);
   EXPECT_NE(first[0].eyes[0].orientation.y, first[30].eyes[0].orientation.y);
   EXPECT_NEAR(first[15].aim.position.z, -0.6f, 1e-6);  // t = 0.5 s
-  EXPECT_FLOAT_EQ(first[12].trigger, 0.9f);             // t = 0.4 s
-  EXPECT_FLOAT_EQ(first[24].trigger, 0.f);              // t = 0.8 s
+  EXPECT_FLOAT_EQ(first[12].trigger, 0.9f);            // t = 0.4 s
+  EXPECT_FLOAT_EQ(first[24].trigger, 0.f);             // t = 0.8 s
   EXPECT_FLOAT_EQ(first[10].stick.y, -0.25f);
   EXPECT_TRUE(first[12].a && first[12].a_changed);
   EXPECT_TRUE(first[13].a && !first[13].a_changed);

@@ -27,13 +27,16 @@ TEST_F(SessionTest, StateMachineFromIdleToExiting) {
   const XrSessionBeginInfo bi = stereo();
   ASSERT_EQ(xrBeginSession(sim.session, &bi), XR_SUCCESS);
   sim.frame();
-  EXPECT_EQ(sim.poll_states(), (std::vector<XrSessionState>{XR_SESSION_STATE_SYNCHRONIZED, XR_SESSION_STATE_VISIBLE,
-                                                            XR_SESSION_STATE_FOCUSED}));
+  EXPECT_EQ(sim.poll_states(),
+            (std::vector<XrSessionState>{XR_SESSION_STATE_SYNCHRONIZED, XR_SESSION_STATE_VISIBLE,
+                                         XR_SESSION_STATE_FOCUSED}));
   ASSERT_EQ(xrRequestExitSession(sim.session), XR_SUCCESS);
-  EXPECT_EQ(sim.poll_states(), (std::vector<XrSessionState>{XR_SESSION_STATE_VISIBLE, XR_SESSION_STATE_SYNCHRONIZED,
-                                                            XR_SESSION_STATE_STOPPING}));
+  EXPECT_EQ(sim.poll_states(),
+            (std::vector<XrSessionState>{XR_SESSION_STATE_VISIBLE, XR_SESSION_STATE_SYNCHRONIZED,
+                                         XR_SESSION_STATE_STOPPING}));
   ASSERT_EQ(xrEndSession(sim.session), XR_SUCCESS);
-  EXPECT_EQ(sim.poll_states(), (std::vector<XrSessionState>{XR_SESSION_STATE_IDLE, XR_SESSION_STATE_EXITING}));
+  EXPECT_EQ(sim.poll_states(),
+            (std::vector<XrSessionState>{XR_SESSION_STATE_IDLE, XR_SESSION_STATE_EXITING}));
   EXPECT_EQ(xrDestroySession(sim.session), XR_SUCCESS);
   EXPECT_EQ(xrDestroySession(sim.session), XR_ERROR_HANDLE_INVALID);
   sim.session = XR_NULL_HANDLE;
@@ -89,7 +92,8 @@ TEST_F(SessionTest, RealTimeFramesArePacedAtTheConfiguredRate) {
 }
 
 TEST_F(SessionTest, ScriptedClockIsVirtualAndScriptedExitAndLossArrive) {
-  setenv("PUSHPULL_XR_SIM_INPUT", write_temp_file("exit.jsonl", "{\"t\": 0.1, \"event\": \"exit\"}\n").c_str(), 1);
+  setenv("PUSHPULL_XR_SIM_INPUT",
+         write_temp_file("exit.jsonl", "{\"t\": 0.1, \"event\": \"exit\"}\n").c_str(), 1);
   setenv("PUSHPULL_XR_SIM_RATE", "10", 1);
   Sim sim;
   sim.create_session();
@@ -107,7 +111,8 @@ TEST_F(SessionTest, ScriptedClockIsVirtualAndScriptedExitAndLossArrive) {
 }
 
 TEST_F(SessionTest, ScriptedLossGivesLossPending) {
-  setenv("PUSHPULL_XR_SIM_INPUT", write_temp_file("loss.jsonl", "{\"t\": 0.0, \"event\": \"loss\"}\n").c_str(), 1);
+  setenv("PUSHPULL_XR_SIM_INPUT",
+         write_temp_file("loss.jsonl", "{\"t\": 0.0, \"event\": \"loss\"}\n").c_str(), 1);
   Sim sim;
   sim.create_session();
   sim.begin_session();

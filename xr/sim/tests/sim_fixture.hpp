@@ -5,7 +5,9 @@
 
 #define XR_USE_GRAPHICS_API_VULKAN
 #define XR_USE_TIMESPEC
+// Vulkan first: openxr_platform.h uses its types.
 #include <vulkan/vulkan.h>
+
 #include <openxr/openxr.h>
 #include <openxr/openxr_platform.h>
 

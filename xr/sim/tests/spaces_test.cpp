@@ -21,8 +21,9 @@ TEST_F(SpacesTest, EnumeratesViewLocalStageAndStageHasBounds) {
   ASSERT_EQ(xrEnumerateReferenceSpaces(sim.session, 0, &n, nullptr), XR_SUCCESS);
   std::vector<XrReferenceSpaceType> types(n);
   ASSERT_EQ(xrEnumerateReferenceSpaces(sim.session, n, &n, types.data()), XR_SUCCESS);
-  EXPECT_EQ(types, (std::vector<XrReferenceSpaceType>{XR_REFERENCE_SPACE_TYPE_VIEW, XR_REFERENCE_SPACE_TYPE_LOCAL,
-                                                      XR_REFERENCE_SPACE_TYPE_STAGE}));
+  EXPECT_EQ(types,
+            (std::vector<XrReferenceSpaceType>{XR_REFERENCE_SPACE_TYPE_VIEW, XR_REFERENCE_SPACE_TYPE_LOCAL,
+                                               XR_REFERENCE_SPACE_TYPE_STAGE}));
   XrExtent2Df bounds{};
   EXPECT_EQ(xrGetReferenceSpaceBoundsRect(sim.session, XR_REFERENCE_SPACE_TYPE_STAGE, &bounds), XR_SUCCESS);
   EXPECT_GT(bounds.width, 1.f);
@@ -60,8 +61,9 @@ TEST_F(SpacesTest, ViewIsTheHeadInStageAndLocalStartsAtTheHead) {
   XrSpaceVelocity velocity{XR_TYPE_SPACE_VELOCITY};
   XrSpaceLocation loc{XR_TYPE_SPACE_LOCATION, &velocity};
   ASSERT_EQ(xrLocateSpace(view, stage, 1000, &loc), XR_SUCCESS);
-  const XrSpaceLocationFlags all = XR_SPACE_LOCATION_ORIENTATION_VALID_BIT | XR_SPACE_LOCATION_POSITION_VALID_BIT |
-                                   XR_SPACE_LOCATION_ORIENTATION_TRACKED_BIT | XR_SPACE_LOCATION_POSITION_TRACKED_BIT;
+  const XrSpaceLocationFlags all =
+      XR_SPACE_LOCATION_ORIENTATION_VALID_BIT | XR_SPACE_LOCATION_POSITION_VALID_BIT |
+      XR_SPACE_LOCATION_ORIENTATION_TRACKED_BIT | XR_SPACE_LOCATION_POSITION_TRACKED_BIT;
   EXPECT_EQ(loc.locationFlags, all);
   EXPECT_FLOAT_EQ(loc.pose.position.y, 1.6f);
   EXPECT_NE(velocity.velocityFlags, 0u);
@@ -85,18 +87,20 @@ TEST_F(SpacesTest, ViewsAreStereoWithAsymmetricMirroredFovs) {
   ASSERT_EQ(n, 2u);
   EXPECT_NE(vs.viewStateFlags & XR_VIEW_STATE_POSITION_VALID_BIT, 0u);
   EXPECT_NEAR(views[1].pose.position.x - views[0].pose.position.x, 0.064f, 1e-5);
-  EXPECT_NE(views[0].fov.angleLeft, -views[0].fov.angleRight);  // asymmetric
+  EXPECT_NE(views[0].fov.angleLeft, -views[0].fov.angleRight);        // asymmetric
   EXPECT_FLOAT_EQ(views[0].fov.angleLeft, -views[1].fov.angleRight);  // mirrored
   li.viewConfigurationType = XR_VIEW_CONFIGURATION_TYPE_PRIMARY_MONO;
-  EXPECT_EQ(xrLocateViews(sim.session, &li, &vs, 2, &n, views.data()), XR_ERROR_VIEW_CONFIGURATION_TYPE_UNSUPPORTED);
+  EXPECT_EQ(xrLocateViews(sim.session, &li, &vs, 2, &n, views.data()),
+            XR_ERROR_VIEW_CONFIGURATION_TYPE_UNSUPPORTED);
 }
 
 TEST_F(SpacesTest, ScriptedHeadPoseIsInterpolated) {
   setenv("PUSHPULL_XR_SIM_INPUT",
-         write_temp_file("head.jsonl",
-                         "{\"t\": 0.0, \"path\": \"/user/head\", \"pose\": {\"p\": [0, 1.5, 0], \"q\": [0, 0, 0, 1]}}\n"
-                         "{\"t\": 1.0, \"path\": \"/user/head\", \"pose\": {\"p\": [1, 1.5, 0], \"q\": [0, 0.7071068, "
-                         "0, 0.7071068]}}\n")
+         write_temp_file(
+             "head.jsonl",
+             "{\"t\": 0.0, \"path\": \"/user/head\", \"pose\": {\"p\": [0, 1.5, 0], \"q\": [0, 0, 0, 1]}}\n"
+             "{\"t\": 1.0, \"path\": \"/user/head\", \"pose\": {\"p\": [1, 1.5, 0], \"q\": [0, 0.7071068, "
+             "0, 0.7071068]}}\n")
              .c_str(),
          1);
   Sim sim;

@@ -143,17 +143,18 @@ TEST_F(SwapchainTest, CapturesWhatEachEyeShows) {
     b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
     b.image = imgs[index];
     b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 2};
-    vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0,
-                         nullptr, 1, &b);
+    vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr,
+                         0, nullptr, 1, &b);
     const VkClearColorValue red{{1.f, 0.f, 0.f, 1.f}}, blue{{0.f, 0.f, 1.f, 1.f}};
-    VkImageSubresourceRange r0{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1}, r1{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 1, 1};
+    VkImageSubresourceRange r0{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1},
+        r1{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 1, 1};
     vkCmdClearColorImage(cb, imgs[index], VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &red, 1, &r0);
     vkCmdClearColorImage(cb, imgs[index], VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &blue, 1, &r1);
     std::swap(b.oldLayout, b.newLayout);
     b.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
     b.dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
-    vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, 0, 0,
-                         nullptr, 0, nullptr, 1, &b);
+    vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, 0,
+                         0, nullptr, 0, nullptr, 1, &b);
     vkEndCommandBuffer(cb);
     VkSubmitInfo si{};
     si.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO;
