@@ -224,6 +224,7 @@ struct Swapchain {
   uint32_t next_index = 0;
   int64_t last_released = -1;
   bool static_used = false;
+  std::vector<bool> laid_out;  // image i moved from UNDEFINED to its attachment layout (at first acquire)
 };
 
 // Destroys a session and everything it owns (spaces, swapchains); caller holds big_lock().

@@ -58,6 +58,29 @@ VkImageUsageFlags vulkan_usage(XrSwapchainUsageFlags u, VkFormat f) {
   return v;
 }
 
+// Moves image `index` from UNDEFINED to the layout images are handed out in. Done at its first acquire
+// because xrAcquireSwapchainImage is one of the calls during which the runtime may use the queue.
+VkResult lay_out(const Swapchain& sc, uint32_t index) {
+  const bool depth = is_depth(sc.format);
+  return submit_and_wait(sc.session->vk, [&](VkCommandBuffer cb) {
+    VkImageMemoryBarrier b{};
+    b.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER;
+    b.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    b.newLayout =
+        depth ? VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL : VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+    b.dstAccessMask =
+        depth ? VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT : VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
+    b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    b.image = sc.images[index];
+    const VkImageAspectFlags aspect =
+        depth ? (VK_IMAGE_ASPECT_DEPTH_BIT | (has_stencil(sc.format) ? VK_IMAGE_ASPECT_STENCIL_BIT : 0))
+              : VK_IMAGE_ASPECT_COLOR_BIT;
+    b.subresourceRange = {aspect, 0, sc.info.mipCount, 0, sc.info.arraySize * sc.info.faceCount};
+    vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 0,
+                         nullptr, 0, nullptr, 1, &b);
+  });
+}
+
 XrResult XRAPI_CALL create_swapchain(XrSession handle, const XrSwapchainCreateInfo* info, XrSwapchain* out) {
   Lock lock(big_lock());
   Session* s = nullptr;
@@ -81,6 +104,20 @@ XrResult XRAPI_CALL create_swapchain(XrSession handle, const XrSwapchainCreateIn
   if (!is_depth(format) && (info->usageFlags & XR_SWAPCHAIN_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT))
     return XR_ERROR_FEATURE_UNSUPPORTED;
 
+  if (info->faceCount == 6 && info->width != info->height) return XR_ERROR_VALIDATION_FAILURE;
+  {
+    // The usage the application asks for must be possible with this format on this device.
+    VkImageFormatProperties props;
+    const VkImageCreateFlags flags =
+        ((info->usageFlags & XR_SWAPCHAIN_USAGE_MUTABLE_FORMAT_BIT) ? VK_IMAGE_CREATE_MUTABLE_FORMAT_BIT
+                                                                    : 0) |
+        (info->faceCount == 6 ? VK_IMAGE_CREATE_CUBE_COMPATIBLE_BIT : 0);
+    if (vkGetPhysicalDeviceImageFormatProperties(
+            s->vk.physical_device, format, VK_IMAGE_TYPE_2D, VK_IMAGE_TILING_OPTIMAL,
+            vulkan_usage(info->usageFlags, format), flags, &props) != VK_SUCCESS ||
+        info->arraySize * info->faceCount > props.maxArrayLayers || info->mipCount > props.maxMipLevels)
+      return XR_ERROR_FEATURE_UNSUPPORTED;
+  }
   auto sc = std::make_unique<Swapchain>();
   sc->session = s;
   sc->info = *info;
@@ -129,29 +166,7 @@ XrResult XRAPI_CALL create_swapchain(XrSession handle, const XrSwapchainCreateIn
     sc->memory.push_back(memory);
     if (vkBindImageMemory(device, image, memory, 0) != VK_SUCCESS) result = XR_ERROR_RUNTIME_FAILURE;
   }
-  if (XR_SUCCEEDED(result)) {
-    const bool depth = is_depth(format);
-    const VkResult r = submit_and_wait(s->vk, [&](VkCommandBuffer cb) {
-      for (VkImage image : sc->images) {
-        VkImageMemoryBarrier b{};
-        b.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER;
-        b.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-        b.newLayout = depth ? VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL
-                            : VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-        b.dstAccessMask =
-            depth ? VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT : VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
-        b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-        b.image = image;
-        const VkImageAspectFlags aspect =
-            depth ? (VK_IMAGE_ASPECT_DEPTH_BIT | (has_stencil(format) ? VK_IMAGE_ASPECT_STENCIL_BIT : 0))
-                  : VK_IMAGE_ASPECT_COLOR_BIT;
-        b.subresourceRange = {aspect, 0, info->mipCount, 0, layers};
-        vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 0,
-                             nullptr, 0, nullptr, 1, &b);
-      }
-    });
-    if (r != VK_SUCCESS) result = XR_ERROR_RUNTIME_FAILURE;
-  }
+  sc->laid_out.assign(sc->images.size(), false);
   Swapchain* raw = sc.release();
   register_handle(raw, HandleKind::swapchain);
   s->swapchains.push_back(raw);
@@ -201,6 +216,10 @@ XrResult XRAPI_CALL acquire_image(XrSwapchain handle, const XrSwapchainImageAcqu
   if (sc->acquired.size() == sc->images.size()) return XR_ERROR_CALL_ORDER_INVALID;
   if ((sc->info.createFlags & XR_SWAPCHAIN_CREATE_STATIC_IMAGE_BIT) && sc->static_used)
     return XR_ERROR_CALL_ORDER_INVALID;
+  if (!sc->laid_out[sc->next_index]) {
+    if (lay_out(*sc, sc->next_index) != VK_SUCCESS) return XR_ERROR_RUNTIME_FAILURE;
+    sc->laid_out[sc->next_index] = true;
+  }
   sc->static_used = true;
   *index = sc->next_index;
   sc->acquired.push_back(sc->next_index);

@@ -67,6 +67,22 @@ TEST_F(SwapchainTest, OffersSrgbUnormAndDepthFormats) {
   EXPECT_EQ(images(depth).size(), 3u);
   XrSwapchain array = make_swapchain(sim, VK_FORMAT_R8G8B8A8_SRGB, 2);
   EXPECT_EQ(images(array).size(), 3u);
+  // A cube swapchain (six faces) needs square faces.
+  XrSwapchainCreateInfo ci{XR_TYPE_SWAPCHAIN_CREATE_INFO};
+  ci.usageFlags = XR_SWAPCHAIN_USAGE_SAMPLED_BIT;
+  ci.format = VK_FORMAT_R8G8B8A8_UNORM;
+  ci.sampleCount = 1;
+  ci.width = 32;
+  ci.height = 16;
+  ci.faceCount = 6;
+  ci.arraySize = 1;
+  ci.mipCount = 1;
+  XrSwapchain cube = XR_NULL_HANDLE;
+  EXPECT_EQ(xrCreateSwapchain(sim.session, &ci, &cube), XR_ERROR_VALIDATION_FAILURE);
+  ci.height = 32;
+  EXPECT_EQ(xrCreateSwapchain(sim.session, &ci, &cube), XR_SUCCESS);
+  uint32_t index = 0;
+  EXPECT_EQ(xrAcquireSwapchainImage(cube, nullptr, &index), XR_SUCCESS);
 }
 
 TEST_F(SwapchainTest, AcquireWaitReleaseOrderIsChecked) {
