@@ -93,6 +93,7 @@ struct Instance {
   std::string application_name;
   bool system_queried = false;
   bool vk_requirements_queried = false;
+  VkInstance vk_instance_created = VK_NULL_HANDLE;  // the last VkInstance made by xrCreateVulkanInstanceKHR
   std::deque<XrEventDataBuffer> events;
   std::vector<std::string> path_strings;  // XrPath p names path_strings[p - 1]
   std::unordered_map<std::string, XrPath> path_ids;

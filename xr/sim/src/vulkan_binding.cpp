@@ -192,6 +192,7 @@ XrResult XRAPI_CALL create_vulkan_instance(XrInstance handle, const XrVulkanInst
       info->pfnGetInstanceProcAddr(VK_NULL_HANDLE, "vkCreateInstance"));
   if (create == nullptr) return XR_ERROR_RUNTIME_FAILURE;
   *vk_result = create(info->vulkanCreateInfo, info->vulkanAllocator, vk_instance);
+  if (*vk_result == VK_SUCCESS) instance->vk_instance_created = *vk_instance;
   return XR_SUCCESS;
 }
 
@@ -206,9 +207,14 @@ XrResult XRAPI_CALL create_vulkan_device(XrInstance handle, const XrVulkanDevice
       info->createFlags != 0)
     return XR_ERROR_VALIDATION_FAILURE;
   if (info->systemId != kSystemId) return XR_ERROR_SYSTEM_INVALID;
-  // Device creation dispatches on the physical device, so the loader this library links (the same
-  // libvulkan.so.1 the application loaded) reaches the application's instance.
-  const PFN_vkCreateDevice create = vkCreateDevice;
+  // Through the application's vkGetInstanceProcAddr on the instance the runtime made for it; otherwise
+  // (an instance the application made itself) through the Vulkan loader this library links, which
+  // dispatches on the physical device.
+  PFN_vkCreateDevice create = nullptr;
+  if (instance->vk_instance_created != VK_NULL_HANDLE)
+    create = reinterpret_cast<PFN_vkCreateDevice>(
+        info->pfnGetInstanceProcAddr(instance->vk_instance_created, "vkCreateDevice"));
+  if (create == nullptr) create = vkCreateDevice;
   *vk_result = create(info->vulkanPhysicalDevice, info->vulkanCreateInfo, info->vulkanAllocator, vk_device);
   return XR_SUCCESS;
 }
