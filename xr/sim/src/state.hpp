@@ -1,0 +1,249 @@
+// Objects behind the simulated runtime's OpenXR handles and the locking that guards them.
+//
+// Threading: every entry point takes big_lock() (a recursive mutex) for its whole body, so the
+// runtime is safe to call from several threads as OpenXR requires; xrWaitFrame releases it while
+// it paces or waits for xrBeginFrame (so xrBeginFrame/xrEndFrame may run on another thread).
+// Handles are the addresses of these objects; lookup<T>() checks that a handle is live and of the
+// right type (XR_ERROR_HANDLE_INVALID otherwise). Times are XrTime nanoseconds on CLOCK_MONOTONIC;
+// poses are T_stage_x (STAGE space, meters).
+#pragma once
+
+#include "input_script.hpp"
+#include "profiles.hpp"
+
+#define XR_USE_GRAPHICS_API_VULKAN
+#define XR_USE_TIMESPEC
+// Vulkan first: openxr_platform.h uses its types.
+#include <vulkan/vulkan.h>
+
+#include <openxr/openxr.h>
+#include <openxr/openxr_platform.h>
+
+#include <condition_variable>
+#include <cstdint>
+#include <deque>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <set>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+namespace pushpull::xrsim {
+
+constexpr XrSystemId kSystemId = 1;
+
+// Runtime configuration from the environment (read at xrCreateInstance):
+//   PUSHPULL_XR_SIM_WIDTH / _HEIGHT   recommended per-eye image size (default 1440 x 1600)
+//   PUSHPULL_XR_SIM_RATE              display refresh rate in Hz (default 90)
+//   PUSHPULL_XR_SIM_INPUT             JSON Lines input script (virtual clock when set)
+//   PUSHPULL_XR_SIM_CAPTURE           folder for captured eye images (PNG)
+//   PUSHPULL_XR_SIM_CAPTURE_EVERY     also capture every N frames (default 0: only at "capture" events)
+//   PUSHPULL_XR_SIM_PROFILE           interaction profile to make current (default: first suggested of
+//                                     khr/simple, oculus/touch, valve/index, htc/vive, microsoft/motion)
+//   PUSHPULL_XR_SIM_VK_DEVICE         substring of the Vulkan device name to use (default: a GPU, else
+//   lavapipe) PUSHPULL_XR_SIM_HAPTICS           JSON Lines file each haptic output is appended to
+//                                     ({"t": s, "path": ..., "duration_ns": .., "frequency": .., "amplitude":
+//                                     ..} or {"t": s, "path": ..., "stop": true}; t in script seconds)
+struct Config {
+  uint32_t width = 1440;
+  uint32_t height = 1600;
+  double rate_hz = 90.0;
+  std::string input_script;
+  std::string capture_dir;
+  uint32_t capture_every = 0;
+  std::string profile;
+  std::string vk_device;
+  std::string haptics_log;
+  float ipd_m = 0.064f;
+  static Config from_env();
+};
+
+enum class HandleKind { instance, session, space, action_set, action, swapchain };
+
+std::recursive_mutex& big_lock();
+using Lock = std::unique_lock<std::recursive_mutex>;
+
+void register_handle(const void* object, HandleKind kind);
+void unregister_handle(const void* object);
+bool handle_is(const void* object, HandleKind kind);
+
+template <class T, class H>
+T* lookup(H handle) {
+  T* p = reinterpret_cast<T*>(handle);
+  return (p != nullptr && handle_is(p, T::kKind)) ? p : nullptr;
+}
+template <class H, class T>
+H to_handle(T* object) {
+  return reinterpret_cast<H>(object);
+}
+
+XrTime monotonic_now();
+
+struct Session;
+struct ActionSet;
+struct Action;
+
+struct Instance {
+  static constexpr HandleKind kKind = HandleKind::instance;
+  Config config;
+  std::shared_ptr<const InputScript> script;  // null: real-time clock, no scripted input
+  std::set<std::string> extensions;
+  std::string application_name;
+  bool system_queried = false;
+  bool vk_requirements_queried = false;
+  VkInstance vk_instance_created = VK_NULL_HANDLE;  // the last VkInstance made by xrCreateVulkanInstanceKHR
+  std::deque<XrEventDataBuffer> events;
+  std::vector<std::string> path_strings;  // XrPath p names path_strings[p - 1]
+  std::unordered_map<std::string, XrPath> path_ids;
+  std::vector<Session*> sessions;
+  std::vector<ActionSet*> action_sets;
+  // Suggested bindings per interaction profile: (action, component path).
+  std::map<std::string, std::vector<std::pair<Action*, std::string>>> suggested;
+
+  XrPath intern(const std::string& path);
+  const std::string* path_string(XrPath path) const;
+  void push_event(const XrEventDataBuffer& event);
+};
+
+struct VulkanBinding {
+  VkInstance instance = VK_NULL_HANDLE;
+  VkPhysicalDevice physical_device = VK_NULL_HANDLE;
+  VkDevice device = VK_NULL_HANDLE;
+  uint32_t queue_family = 0;
+  uint32_t queue_index = 0;
+  VkQueue queue = VK_NULL_HANDLE;
+  VkCommandPool pool = VK_NULL_HANDLE;
+};
+
+struct HapticRecord {
+  XrTime time;
+  std::string path;  // the output it went to, e.g. /user/hand/left/output/haptic
+  XrDuration duration;
+  float frequency;
+  float amplitude;
+  bool stop;
+};
+
+struct Space;
+struct Swapchain;
+
+struct Session {
+  static constexpr HandleKind kKind = HandleKind::session;
+  Instance* instance = nullptr;
+  VulkanBinding vk;
+  XrSessionState state = XR_SESSION_STATE_UNKNOWN;
+  bool running = false;
+  bool exit_requested = false;
+  bool loss_pending = false;
+  XrViewConfigurationType view_configuration = XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO;
+  XrPosef local_origin{};  // T_stage_local: the head at script time 0, gravity-aligned (yaw only)
+
+  // Frame clock. Virtual (scripted): frame n is displayed at clock_origin + n * period.
+  XrTime clock_origin = 0;
+  XrDuration period = 0;
+  int64_t frames_waited = 0;
+  XrTime last_display_time = 0;
+  XrTime next_real_vsync = 0;
+  bool waited_not_begun = false;
+  bool frame_begun = false;
+  int64_t frames_ended = 0;
+  std::condition_variable_any frame_cv;
+  std::size_t next_script_event = 0;
+  bool capture_requested = false;
+
+  std::vector<Space*> spaces;
+  std::vector<Swapchain*> swapchains;
+
+  // Actions.
+  std::vector<ActionSet*> attached;
+  const InteractionProfile* profile = nullptr;  // current profile of both hands
+  bool profile_event_pending = false;
+  std::map<std::string, InputValue> overrides;  // XR_EXT_conformance_automation
+  std::map<std::string, std::pair<Space*, XrPosef>> location_overrides;
+  std::set<std::string> inactive_devices;  // top-level paths made inactive by automation
+  std::vector<HapticRecord> haptics;
+
+  bool is_virtual_clock() const { return instance->script != nullptr; }
+  // Seconds of script time at XrTime t.
+  double script_time(XrTime t) const { return static_cast<double>(t - clock_origin) * 1e-9; }
+  // The time input is sampled at by xrSyncActions: the newest predicted display time (virtual clock)
+  // or now (real time).
+  XrTime input_time() const;
+  void set_state(XrSessionState next, XrTime time);
+};
+
+struct Space {
+  static constexpr HandleKind kKind = HandleKind::space;
+  Session* session = nullptr;
+  bool is_action_space = false;
+  XrReferenceSpaceType reference = XR_REFERENCE_SPACE_TYPE_STAGE;
+  Action* action = nullptr;
+  XrPath subaction = XR_NULL_PATH;
+  XrPosef offset{};  // T_space-origin_space (poseInReferenceSpace / poseInActionSpace)
+};
+
+struct ActionState {
+  float x = 0.f;
+  float y = 0.f;
+  bool active = false;
+  bool changed = false;
+  XrTime last_change = 0;
+};
+
+struct Action {
+  static constexpr HandleKind kKind = HandleKind::action;
+  ActionSet* set = nullptr;
+  std::string name;
+  std::string localized_name;
+  XrActionType type = XR_ACTION_TYPE_BOOLEAN_INPUT;
+  std::vector<XrPath> subactions;
+  std::vector<std::string> bound;        // component paths in the session's current profile
+  std::map<XrPath, ActionState> states;  // per subaction path; XR_NULL_PATH: all combined
+};
+
+struct ActionSet {
+  static constexpr HandleKind kKind = HandleKind::action_set;
+  Instance* instance = nullptr;
+  std::string name;
+  std::string localized_name;
+  uint32_t priority = 0;
+  std::vector<Action*> actions;
+  Session* attached_to = nullptr;
+};
+
+struct Swapchain {
+  static constexpr HandleKind kKind = HandleKind::swapchain;
+  Session* session = nullptr;
+  XrSwapchainCreateInfo info{};
+  VkFormat format = VK_FORMAT_UNDEFINED;
+  std::vector<VkImage> images;
+  std::vector<VkDeviceMemory> memory;
+  std::deque<uint32_t> acquired;  // acquired, not yet released, in acquire order
+  bool waited = false;            // acquired.front() has been waited on
+  uint32_t next_index = 0;
+  int64_t last_released = -1;
+  bool static_used = false;
+  std::vector<bool> laid_out;  // image i moved from UNDEFINED to its attachment layout (at first acquire)
+};
+
+// Destroys a session and everything it owns (spaces, swapchains); caller holds big_lock().
+void destroy_session(Session* session);
+// Destroys an action set and its actions; caller holds big_lock().
+void destroy_action_set(ActionSet* set);
+// Destroys a space / swapchain and removes it from its session; caller holds big_lock().
+void destroy_space(Space* space);
+void destroy_swapchain(Swapchain* swapchain);
+
+// Session helpers shared by the areas (caller holds big_lock()).
+// Checks a session handle; returns XR_ERROR_HANDLE_INVALID when it is not a live session.
+XrResult get_session(XrSession handle, Session** out);
+// Runs the script events due at or before `now` (exit, loss, capture) and queues their state changes.
+void run_script_events(Session& session, XrTime now);
+// Starts the runtime-initiated or app-requested exit: steps the state down to STOPPING.
+void begin_exit(Session& session, XrTime now);
+// The current interaction profile (after attach) and the action states at xrSyncActions.
+void choose_interaction_profile(Session& session);
+
+}  // namespace pushpull::xrsim
