@@ -30,6 +30,19 @@ function(pushpull_add_gtest name)
     PUSHPULL_BINARY_DIR="${CMAKE_BINARY_DIR}")
   gtest_discover_tests(${name}
     WORKING_DIRECTORY ${CMAKE_SOURCE_DIR}
-    PROPERTIES LABELS "${ARG_LABELS}" TIMEOUT ${ARG_TIMEOUT}
+    TEST_LIST ${name}_TESTS
+    PROPERTIES TIMEOUT ${ARG_TIMEOUT}
     DISCOVERY_TIMEOUT 60)
+  pushpull_label_discovered_tests(${name} ${ARG_LABELS})
+endfunction()
+
+# pushpull_label_discovered_tests(<gtest target> LABEL...): gives every test discovered from the target
+# all the labels. gtest_discover_tests splits its PROPERTIES on ';', so LABELS "unit;service" there would
+# set only "unit" (and `ctest -L service` would find nothing); a ctest include file that runs after the
+# discovered tests are defined sets them instead. Needs TEST_LIST <target>_TESTS in gtest_discover_tests.
+function(pushpull_label_discovered_tests name)
+  set(labels_file ${CMAKE_CURRENT_BINARY_DIR}/${name}_labels.cmake)
+  file(WRITE ${labels_file}
+    "if(${name}_TESTS)\n  set_tests_properties(\${${name}_TESTS} PROPERTIES LABELS \"${ARGN}\")\nendif()\n")
+  set_property(DIRECTORY APPEND PROPERTY TEST_INCLUDE_FILES ${labels_file})
 endfunction()
