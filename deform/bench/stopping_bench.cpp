@@ -20,6 +20,10 @@
 #include "pushpull/deform/deformer.hpp"
 #include "pushpull/deform/mesh_io.hpp"
 #include "pushpull/deform/roi.hpp"
+#include "pushpull/deform/surface_point.hpp"
+#ifdef PUSHPULL_BENCH_WITH_ASSETS
+#include "pushpull/assets/model.hpp"
+#endif
 
 namespace pd = pushpull::deform;
 namespace pb = pushpull::bench;
@@ -103,6 +107,23 @@ int main(int argc, char** argv) {
       failures += run(p);
     }
   }
+#ifdef PUSHPULL_BENCH_WITH_ASSETS
+  // The real car: the nose of AsamVehicle pulled 100 mm forward over 1 m and 2 m regions.
+  const std::filesystem::path car =
+      std::filesystem::path(PUSHPULL_SHARED_DATA) / "gltf" / "AsamVehicle" / "vehicle_example.gltf";
+  if (!quick && std::filesystem::exists(car)) {
+    const pd::Mesh mesh = pushpull::assets::load_model(car).deform_mesh;
+    const pd::SurfacePoint hit = pd::closest_surface_point(mesh, Eigen::Vector3d(1.855, 0.694, 0.0));
+    for (const double radius : {1.0, 2.0}) {
+      Problem p;
+      p.name = "AsamVehicle nose, " + std::to_string(radius).substr(0, 3) + " m region";
+      p.mesh = mesh;
+      p.roi = pd::build_roi(mesh, pd::surface_handle(mesh, hit, 0.05), {}, radius);
+      p.d = Eigen::Vector3d(0.1, 0.0, 0.0);
+      failures += run(p);
+    }
+  }
+#endif
   std::printf("\n%d row(s) failed the honesty check\n", failures);
   return 0;
 }
