@@ -195,26 +195,33 @@ struct Service::Impl {
     return *active;
   }
 
-  Snapshot result_snapshot(const Pending& p, const Active& a, const DeformResult& r, Snapshot::Kind kind) const {
+  // A snapshot of request p's positions V (the solver's, parts not yet moved) on the current state.
+  Snapshot request_snapshot(Snapshot::Kind kind, const Pending& p, const Active& a,
+                            std::shared_ptr<const Eigen::MatrixXd> V) const {
     Snapshot s;
     s.kind = kind;
     s.request = p.sequence;
     s.revision = current().id;
     s.rest = current().entry.state;
-    s.positions = a.with_parts(std::make_shared<const Eigen::MatrixXd>(r.V));
+    s.positions = a.with_parts(std::move(V));
     s.region = a.region;
     s.attached_parts = a.parts ? a.parts->parts().size() : 0;
     s.method = p.request.options.method;
     s.d = p.request.d;
+    s.max_displacement = largest_displacement(*s.positions, s.rest->V);
+    s.latency_ms = ms_between(p.submitted, Clock::now());
+    return s;
+  }
+
+  Snapshot result_snapshot(const Pending& p, const Active& a, const DeformResult& r, Snapshot::Kind kind) const {
+    Snapshot s = request_snapshot(kind, p, a, std::make_shared<const Eigen::MatrixXd>(r.V));
     s.iteration = r.iterations;
     s.converged = r.converged;
     s.error_estimate = r.error_estimate;
     s.final = true;
     s.energy = r.energy_trace.empty() ? r.initial_energy : r.energy_trace.back();
-    s.max_displacement = largest_displacement(*s.positions, s.rest->V);
     s.factorize_ms = r.timing.factorize;
     s.solve_ms = r.timing.solve;
-    s.latency_ms = ms_between(p.submitted, Clock::now());
     s.warnings = r.warnings;
     return s;
   }
@@ -234,26 +241,14 @@ struct Service::Impl {
     ConstraintTargets targets = a.deformer->push_pull_targets(p.request.d);
     // Warm start from the drag's previous iterate (previews only; commits start cold).
     if (a.last_iterate) targets.initial_guess = *a.last_iterate;
-    const Eigen::MatrixXd& rest = current().entry.state->V;
     const auto solve_start = Clock::now();
     auto progress = [&](const IterationReport& report) {
-      Snapshot s;
-      s.kind = Snapshot::Kind::Preview;
-      s.request = p.sequence;
-      s.revision = current().id;
-      s.rest = current().entry.state;
-      s.positions = a.with_parts(report.V);
-      s.region = a.region;
-      s.attached_parts = a.parts ? a.parts->parts().size() : 0;
-      s.method = p.request.options.method;
-      s.d = p.request.d;
+      Snapshot s = request_snapshot(Snapshot::Kind::Preview, p, a, report.V);
       s.iteration = report.iteration;
       s.error_estimate = report.error_estimate;
       s.energy = report.energy;
-      s.max_displacement = largest_displacement(*s.positions, rest);
       s.setup_ms = setup_ms;
       s.solve_ms = ms_between(solve_start, Clock::now());
-      s.latency_ms = ms_between(p.submitted, Clock::now());
       a.last_iterate = report.V;
       publish(std::move(s));
       return !interrupt.load(std::memory_order_acquire) && !stopping.load(std::memory_order_acquire);

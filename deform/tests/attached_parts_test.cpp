@@ -14,14 +14,6 @@
 namespace pushpull::deform {
 namespace {
 
-Mesh append(const Mesh& a, const Mesh& b) {
-  Mesh m;
-  m.V.resize(a.V.rows() + b.V.rows(), 3);
-  m.V << a.V, b.V;
-  m.F.resize(a.F.rows() + b.F.rows(), 3);
-  m.F << a.F, (b.F.array() + static_cast<int>(a.V.rows())).matrix();
-  return m;
-}
 
 // A body panel (2 x 2 m, 40 x 40 cells), a plate 1 cm above its centre, a badge far away 1 cm above a
 // corner, all separate components.
@@ -40,7 +32,7 @@ Scene make_scene() {
   s.plate_count = static_cast<int>(plate.V.rows());
   s.badge_first = s.plate_first + s.plate_count;
   s.badge_count = static_cast<int>(badge.V.rows());
-  s.mesh = append(append(body, plate), badge);
+  s.mesh = testing::append(testing::append(body, plate), badge);
   return s;
 }
 

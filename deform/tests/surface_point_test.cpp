@@ -15,14 +15,8 @@ namespace {
 // Two parallel unit sheets 1 cm apart (z = 0 and z = 0.01): separate components, like a lamp lens on a
 // body panel or a dashboard behind a cab wall.
 Mesh two_sheets() {
-  const Mesh a = testing::grid(20, 20, 0.0, 1.0, 0.0, 1.0);
-  const Mesh b = testing::grid(20, 20, 0.0, 1.0, 0.0, 1.0, [](double, double) { return 0.01; });
-  Mesh m;
-  m.V.resize(a.V.rows() + b.V.rows(), 3);
-  m.V << a.V, b.V;
-  m.F.resize(a.F.rows() + b.F.rows(), 3);
-  m.F << a.F, (b.F.array() + static_cast<int>(a.V.rows())).matrix();
-  return m;
+  return testing::append(testing::grid(20, 20, 0.0, 1.0, 0.0, 1.0),
+                         testing::grid(20, 20, 0.0, 1.0, 0.0, 1.0, [](double, double) { return 0.01; }));
 }
 
 TEST(SurfacePoint, ClosestPointLiesInsideTheTriangleNotAtAVertex) {

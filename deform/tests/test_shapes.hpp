@@ -14,6 +14,16 @@
 
 namespace pushpull::deform::testing {
 
+// Both meshes as one (b's vertices after a's): separate components, e.g. a part lying on a panel.
+inline Mesh append(const Mesh& a, const Mesh& b) {
+  Mesh m;
+  m.V.resize(a.V.rows() + b.V.rows(), 3);
+  m.V << a.V, b.V;
+  m.F.resize(a.F.rows() + b.F.rows(), 3);
+  m.F << a.F, (b.F.array() + static_cast<int>(a.V.rows())).matrix();
+  return m;
+}
+
 // (nx+1) x (ny+1) vertices on [x0,x1] x [y0,y1], z = height(x, y); vertex (i, j) is row j * (nx+1) + i.
 // Each cell is split along alternating diagonals so the mesh has no preferred direction.
 inline Mesh grid(

@@ -48,6 +48,15 @@ Request make_request(const Problem& p, const Eigen::Vector3d& d, std::uint64_t d
   return r;
 }
 
+// A request that would run for 100,000 iterations unless stopped.
+Request slow_request(const Problem& p, const Eigen::Vector3d& d, std::uint64_t drag = 1) {
+  Request r = make_request(p, d, drag);
+  r.options.tolerance = 0.0;
+  r.options.energy_tolerance = 0.0;
+  r.options.max_iterations = 100000;
+  return r;
+}
+
 // The same request solved by a Deformer of its own, from rest (what a commit must equal).
 Eigen::MatrixXd cold_solve(const Problem& p, const Request& r) {
   DeformOptions options = r.options;
@@ -272,10 +281,7 @@ TEST(Service, FloodOfSubmitsWhileAnotherThreadReads) {
 // solve at that iteration boundary.
 TEST(Service, NewRequestStopsTheRunningSolveAtTheNextIteration) {
   const Problem p = make_problem(20);
-  Request slow = make_request(p, {0.0, 0.0, 0.08}, 1);
-  slow.options.tolerance = 0.0;
-  slow.options.energy_tolerance = 0.0;
-  slow.options.max_iterations = 100000;
+  const Request slow = slow_request(p, {0.0, 0.0, 0.08}, 1);
   const Request next = make_request(p, {0.0, 0.0, 0.04}, 1);
   Service* self = nullptr;
   std::atomic<bool> submitted{false};
@@ -310,10 +316,7 @@ TEST(Service, NewRequestStopsTheRunningSolveAtTheNextIteration) {
 
 TEST(Service, RequestFromAnotherThreadSupersedesMidSolve) {
   const Problem p = make_problem(30);
-  Request slow = make_request(p, {0.0, 0.0, 0.08}, 1);
-  slow.options.tolerance = 0.0;
-  slow.options.energy_tolerance = 0.0;
-  slow.options.max_iterations = 100000;
+  const Request slow = slow_request(p, {0.0, 0.0, 0.08}, 1);
   Service service(p.mesh);
   service.submit(slow);
   while (service.latest()->iteration < 3) std::this_thread::yield();
@@ -361,10 +364,7 @@ TEST(Service, CancelMidDragShowsTheCommittedStateAgain) {
   service.commit();
   service.wait_idle();
   const auto committed = service.history().back();
-  Request slow = make_request(p, {0.0, 0.05, 0.0}, 2);
-  slow.options.tolerance = 0.0;
-  slow.options.energy_tolerance = 0.0;
-  slow.options.max_iterations = 100000;
+  const Request slow = slow_request(p, {0.0, 0.05, 0.0}, 2);
   service.submit(slow);
   while (service.latest()->request != 2) std::this_thread::yield();
   service.cancel();
@@ -388,10 +388,7 @@ TEST(Service, DestructorStopsARunningSolve) {
     if (destroying.load()) ++published_after_destruction;
   };
   auto service = std::make_unique<Service>(p.mesh, options);
-  Request slow = make_request(p, {0.0, 0.0, 0.08});
-  slow.options.tolerance = 0.0;
-  slow.options.energy_tolerance = 0.0;
-  slow.options.max_iterations = 100000;
+  const Request slow = slow_request(p, {0.0, 0.0, 0.08});
   service->submit(slow);
   while (service->latest()->iteration < 2) std::this_thread::yield();
   destroying = true;
@@ -409,11 +406,7 @@ namespace {
 TEST(Service, AttachedPartsFollowInPreviewsAndCommits) {
   const Mesh body = testing::grid(30, 30, -1.0, 1.0, -1.0, 1.0);
   const Mesh plate = testing::grid(2, 2, -0.1, 0.1, -0.05, 0.05, [](double, double) { return 0.01; });
-  Mesh m;
-  m.V.resize(body.V.rows() + plate.V.rows(), 3);
-  m.V << body.V, plate.V;
-  m.F.resize(body.F.rows() + plate.F.rows(), 3);
-  m.F << body.F, (plate.F.array() + static_cast<int>(body.V.rows())).matrix();
+  const Mesh m = testing::append(body, plate);
   const auto mesh = std::make_shared<const Mesh>(m);
   const int plate_vertex = static_cast<int>(body.V.rows());
   Request r;
