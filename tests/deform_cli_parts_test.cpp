@@ -95,8 +95,8 @@ TEST_F(DeformCliParts, OptionLeavesThePartsWhereTheyAre) {
 TEST_F(DeformCliParts, PointOffTheSurfaceIsRefused) {
   const auto run = pushpull::testing::run_pushpull("deform " + path("scene.off") +
                                                    " --handle-at 0 0 0.5 --handle-radius 0.1 --roi-radius 0.6"
-                                                   " --displacement 0 0 0.1 --out " + path("o.off") +
-                                                   " --metrics " + path("m.json"));
+                                                   " --displacement 0 0 0.1 --out " +
+                                                   path("o.off") + " --metrics " + path("m.json"));
   EXPECT_NE(run.status, 0);
   EXPECT_NE(run.output.find("farther than --handle-radius"), std::string::npos) << run.output;
   EXPECT_FALSE(fs::exists(path("o.off")));

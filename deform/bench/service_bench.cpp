@@ -37,7 +37,9 @@ namespace pb = pushpull::bench;
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double ms(Clock::duration d) { return std::chrono::duration<double, std::milli>(d).count(); }
+double ms(Clock::duration d) {
+  return std::chrono::duration<double, std::milli>(d).count();
+}
 
 double percentile(std::vector<double> values, double q) {
   if (values.empty()) return 0.0;
@@ -126,16 +128,19 @@ class Bench {
       }
       previous = &t;
     }
-    std::printf("  %-22s %5zu requests, %5.1f%% converged before superseded | submit->first preview median %6.1f"
-                " p99 %6.1f ms | submit->converged median %6.1f p99 %6.1f ms\n",
-                label, times_.size(), 100.0 * converged / std::max<std::size_t>(1, times_.size()),
-                percentile(to_preview, 0.5), percentile(to_preview, 0.99), percentile(to_converged, 0.5),
-                percentile(to_converged, 0.99));
+    std::printf(
+        "  %-22s %5zu requests, %5.1f%% converged before superseded | submit->first preview median %6.1f"
+        " p99 %6.1f ms | submit->converged median %6.1f p99 %6.1f ms\n",
+        label, times_.size(), 100.0 * converged / std::max<std::size_t>(1, times_.size()),
+        percentile(to_preview, 0.5), percentile(to_preview, 0.99), percentile(to_converged, 0.5),
+        percentile(to_converged, 0.99));
     if (!stop_delay.empty()) {
-      std::printf("  %-22s superseded mid-solve: %zu; stopped after the next submit within median %.2f, longest %.2f ms"
-                  " (one iteration: median %.2f ms)\n",
-                  "", stop_delay.size(), percentile(stop_delay, 0.5),
-                  *std::max_element(stop_delay.begin(), stop_delay.end()), percentile(iteration, 0.5));
+      std::printf(
+          "  %-22s superseded mid-solve: %zu; stopped after the next submit within median %.2f, longest %.2f "
+          "ms"
+          " (one iteration: median %.2f ms)\n",
+          "", stop_delay.size(), percentile(stop_delay, 0.5),
+          *std::max_element(stop_delay.begin(), stop_delay.end()), percentile(iteration, 0.5));
     }
     times_.clear();
   }
@@ -195,11 +200,13 @@ void bench_size(int n, double seconds) {
   std::printf("  snapshot read (latest()):  longest %.4f ms, p99 %.4f ms, median %.4f ms over %zu frames\n",
               *std::max_element(all_reads.begin(), all_reads.end()), percentile(all_reads, 0.99),
               percentile(all_reads, 0.5), all_reads.size());
-  std::printf("  frame work (read, positions to floats, vertex normals): idle %.3f ms, solving %.3f ms, ratio %.3f"
-              " (goal <= 1.05); p99 idle %.3f, solving %.3f ms\n",
-              mean(idle.busy_ms), mean(busy.busy_ms), mean(busy.busy_ms) / mean(idle.busy_ms),
-              percentile(idle.busy_ms, 0.99), percentile(busy.busy_ms, 0.99));
-  std::printf("  submit() on the frame thread: median %.4f ms, longest %.4f ms\n", percentile(busy.submit_ms, 0.5),
+  std::printf(
+      "  frame work (read, positions to floats, vertex normals): idle %.3f ms, solving %.3f ms, ratio %.3f"
+      " (goal <= 1.05); p99 idle %.3f, solving %.3f ms\n",
+      mean(idle.busy_ms), mean(busy.busy_ms), mean(busy.busy_ms) / mean(idle.busy_ms),
+      percentile(idle.busy_ms, 0.99), percentile(busy.busy_ms, 0.99));
+  std::printf("  submit() on the frame thread: median %.4f ms, longest %.4f ms\n",
+              percentile(busy.submit_ms, 0.5),
               *std::max_element(busy.submit_ms.begin(), busy.submit_ms.end()));
   for (int every : {3, 9, 18}) {  // 30, 10 and 5 requests per second
     (void)bench.run(seconds, every, static_cast<std::uint64_t>(every + 1));
@@ -214,9 +221,10 @@ void bench_size(int n, double seconds) {
 
 int main(int argc, char** argv) {
   const bool quick = argc > 1 && std::strcmp(argv[1], "--quick") == 0;
-  std::printf("service_bench: deform::Service under a 90 Hz frame thread (this machine: %u hardware threads;"
-              " the worker solves on one)\n",
-              std::thread::hardware_concurrency());
+  std::printf(
+      "service_bench: deform::Service under a 90 Hz frame thread (this machine: %u hardware threads;"
+      " the worker solves on one)\n",
+      std::thread::hardware_concurrency());
   bench_size(100, quick ? 1.5 : 3.0);
   if (!quick) bench_size(224, 3.0);
   return 0;

@@ -48,8 +48,8 @@ double true_error(const Eigen::MatrixXd& V, const Eigen::MatrixXd& reference, co
 
 int run(const Problem& p) {
   int failures = 0;
-  std::printf("\n%s: %ld vertices, region %zu, |d| = %g\n", p.name.c_str(), static_cast<long>(p.mesh.V.rows()),
-              p.roi.size(), p.d.norm());
+  std::printf("\n%s: %ld vertices, region %zu, |d| = %g\n", p.name.c_str(),
+              static_cast<long>(p.mesh.V.rows()), p.roi.size(), p.d.norm());
   std::printf("%-8s | %6s %9s %9s %9s %6s | %-28s | %s\n", "method", "iters", "ms", "estimate", "true",
               "ratio", "reference (1e-9): iters, est", "paper (50 plain): true error");
   for (const pd::Method method : pd::kAllMethods) {
@@ -77,7 +77,8 @@ int run(const Problem& p) {
                 std::string(pd::method_name(method)).c_str(), r.iterations, r.converged ? " " : "*",
                 r.timing.factorize + r.timing.solve, estimate, truth, ratio, reference.iterations,
                 reference.converged ? " " : "*", reference.error_estimate.value_or(NAN),
-                true_error(paper.V, reference.V, p.d), honest ? "" : "   <-- optimistic > 2x or not converged");
+                true_error(paper.V, reference.V, p.d),
+                honest ? "" : "   <-- optimistic > 2x or not converged");
     std::fflush(stdout);
   }
   return failures;
@@ -87,12 +88,14 @@ int run(const Problem& p) {
 
 int main(int argc, char** argv) {
   const bool quick = argc > 1 && std::strcmp(argv[1], "--quick") == 0;
-  std::printf("stopping_bench: estimated vs true distance to the minimiser, relative to |d| (default rule: "
-              "estimate <= 1e-2)\nratio = true / estimate (<= 2 required); * = not converged\n");
+  std::printf(
+      "stopping_bench: estimated vs true distance to the minimiser, relative to |d| (default rule: "
+      "estimate <= 1e-2)\nratio = true / estimate (<= 2 required); * = not converged\n");
   int failures = run(height_field(50, Eigen::Vector3d(0.05, 0.0, 0.02), "height field 2.5K, sideways pull"));
   if (!quick) {
     failures += run(height_field(100, Eigen::Vector3d(0.0, 0.0, 0.1), "height field 10K, pull along z"));
-    const std::filesystem::path dome = std::filesystem::path(PUSHPULL_SHARED_DATA) / "meshes" / "hemisphere.off";
+    const std::filesystem::path dome =
+        std::filesystem::path(PUSHPULL_SHARED_DATA) / "meshes" / "hemisphere.off";
     if (std::filesystem::exists(dome)) {
       Problem p;
       p.name = "hemisphere, cap pulled up 0.5";

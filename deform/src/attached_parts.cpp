@@ -22,7 +22,8 @@ std::vector<int> components(const Mesh& mesh) {
   std::iota(parent.begin(), parent.end(), 0);
   auto find = [&](int v) {
     while (parent[static_cast<std::size_t>(v)] != v) {
-      parent[static_cast<std::size_t>(v)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(v)])];
+      parent[static_cast<std::size_t>(v)] =
+          parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(v)])];
       v = parent[static_cast<std::size_t>(v)];
     }
     return v;
@@ -99,7 +100,8 @@ AttachedParts::AttachedParts(const Mesh& rest, const RegionOfInterest& roi, cons
     const int a = rest.F(f, 0);
     if (!solved[static_cast<std::size_t>(label[static_cast<std::size_t>(a)])]) continue;
     carrier_faces.push_back(f);
-    if (in_region(rest.F(f, 0)) || in_region(rest.F(f, 1)) || in_region(rest.F(f, 2))) region_faces.push_back(f);
+    if (in_region(rest.F(f, 0)) || in_region(rest.F(f, 1)) || in_region(rest.F(f, 2)))
+      region_faces.push_back(f);
   }
   const TriangleBvh region_tree(rest.V, rest.F, region_faces);
   if (region_tree.empty()) return;
@@ -147,7 +149,8 @@ AttachedParts::AttachedParts(const Mesh& rest, const RegionOfInterest& roi, cons
     const Eigen::Vector3d p = rest.V.row(v).transpose();
     const auto hit = carrier_tree.closest_point(rest.V, p);
     const int f = hit->face;
-    const Eigen::Vector3d a = rest.V.row(rest.F(f, 0)), b = rest.V.row(rest.F(f, 1)), c = rest.V.row(rest.F(f, 2));
+    const Eigen::Vector3d a = rest.V.row(rest.F(f, 0)), b = rest.V.row(rest.F(f, 1)),
+                          c = rest.V.row(rest.F(f, 2));
     int& slot = slot_of_face[static_cast<std::size_t>(f)];
     if (slot < 0) {  // the face's patch: its corners and their neighbours on the carrier
       slot = static_cast<int>(patch_start_.size()) - 1;
@@ -218,11 +221,14 @@ void AttachedParts::apply(Eigen::MatrixXd& V) const {
     }
     std::vector<Eigen::Matrix3d> H(parts_.size(), Eigen::Matrix3d::Zero());
     for (std::size_t part = 0; part < parts_.size(); ++part) {
-      if (count[part] > 0) part_from[part] /= static_cast<double>(count[part]), part_to[part] /= static_cast<double>(count[part]);
+      if (count[part] > 0)
+        part_from[part] /= static_cast<double>(count[part]),
+            part_to[part] /= static_cast<double>(count[part]);
     }
     for (std::size_t k = 0; k < bound_vertex_.size(); ++k) {
       const std::size_t part = static_cast<std::size_t>(bound_part_[k]);
-      H[part] += (follow[k] - part_to[part]) * (rest_V_.row(bound_vertex_[k]).transpose() - part_from[part]).transpose();
+      H[part] += (follow[k] - part_to[part]) *
+                 (rest_V_.row(bound_vertex_[k]).transpose() - part_from[part]).transpose();
     }
     std::vector<double> residual2(parts_.size(), 0.0), motion2(parts_.size(), 0.0);
     for (std::size_t part = 0; part < parts_.size(); ++part) {

@@ -1,7 +1,7 @@
 #include "error_estimate.hpp"
 
-#include <Eigen/Eigenvalues>
 #include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 
@@ -50,7 +50,8 @@ void ContractionEstimate::add(const Eigen::Ref<const Eigen::VectorXd>& x,
   if (!std::isfinite(largest)) return;
   recent_[static_cast<std::size_t>(estimates_++ % recent_.size())] = std::min(largest, kMaxRate);
   rate_ = 0.0;
-  for (std::size_t k = 0; k < std::min<std::size_t>(recent_.size(), static_cast<std::size_t>(estimates_)); ++k)
+  for (std::size_t k = 0; k < std::min<std::size_t>(recent_.size(), static_cast<std::size_t>(estimates_));
+       ++k)
     rate_ = std::max(rate_, recent_[k]);
 }
 

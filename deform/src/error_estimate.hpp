@@ -36,9 +36,9 @@ class ContractionEstimate {
   int pairs_ = 0;  // secant pairs seen
   bool has_previous_ = false;
   Eigen::VectorXd previous_x_, previous_g_;
-  Eigen::MatrixXd dX_, dG_;  // dimension by window, circular
-  Eigen::MatrixXd xx_, xg_;  // window by window: dX^T dX, dX^T dG
-  double rate_ = 0.0;        // largest |Ritz value| of the recent estimates
+  Eigen::MatrixXd dX_, dG_;          // dimension by window, circular
+  Eigen::MatrixXd xx_, xg_;          // window by window: dX^T dX, dX^T dG
+  double rate_ = 0.0;                // largest |Ritz value| of the recent estimates
   std::array<double, 10> recent_{};  // the last few estimates, circular
   long estimates_ = 0;
 };

@@ -122,8 +122,9 @@ struct Service::Impl {
   bool busy = false;
   bool stop = false;
 
-  std::atomic<bool> interrupt{false};   // new work arrived: the running preview solve stops at its next iteration
-  std::atomic<bool> stopping{false};    // destructor: every solve stops at its next iteration
+  std::atomic<bool> interrupt{
+      false};  // new work arrived: the running preview solve stops at its next iteration
+  std::atomic<bool> stopping{false};  // destructor: every solve stops at its next iteration
   detail::NewestValue<const Snapshot> newest;
   std::atomic<std::uint64_t> revision{1};
 
@@ -213,7 +214,8 @@ struct Service::Impl {
     return s;
   }
 
-  Snapshot result_snapshot(const Pending& p, const Active& a, const DeformResult& r, Snapshot::Kind kind) const {
+  Snapshot result_snapshot(const Pending& p, const Active& a, const DeformResult& r,
+                           Snapshot::Kind kind) const {
     Snapshot s = request_snapshot(kind, p, a, std::make_shared<const Eigen::MatrixXd>(r.V));
     s.iteration = r.iterations;
     s.converged = r.converged;
@@ -226,7 +228,9 @@ struct Service::Impl {
     return s;
   }
 
-  bool stale(const Request& request) const { return request.revision != 0 && request.revision != current().id; }
+  bool stale(const Request& request) const {
+    return request.revision != 0 && request.revision != current().id;
+  }
 
   void solve_preview(const Pending& p) {
     if (stale(p.request)) {
@@ -263,9 +267,10 @@ struct Service::Impl {
 
   void run_commit(const Pending& p, Clock::time_point issued) {
     if (stale(p.request)) {
-      publish_error(p.sequence, issued, "commit of request " + std::to_string(p.sequence) +
-                                            ": it was made for state " + std::to_string(p.request.revision) +
-                                            " but state " + std::to_string(current().id) + " is committed now");
+      publish_error(p.sequence, issued,
+                    "commit of request " + std::to_string(p.sequence) + ": it was made for state " +
+                        std::to_string(p.request.revision) + " but state " + std::to_string(current().id) +
+                        " is committed now");
       return;
     }
     double setup_ms = 0.0;
@@ -351,8 +356,8 @@ struct Service::Impl {
           request = std::move(pending);
         }
       }
-      const std::uint64_t sequence = command ? (command->request ? command->request->sequence : 0)
-                                             : request->sequence;
+      const std::uint64_t sequence =
+          command ? (command->request ? command->request->sequence : 0) : request->sequence;
       const Clock::time_point since = command ? command->issued : request->submitted;
       try {
         if (command)
@@ -384,7 +389,8 @@ struct Service::Impl {
   }
 };
 
-Service::Service(std::shared_ptr<const Mesh> initial, ServiceOptions options) : impl_(std::make_unique<Impl>()) {
+Service::Service(std::shared_ptr<const Mesh> initial, ServiceOptions options)
+    : impl_(std::make_unique<Impl>()) {
   if (!initial) throw std::invalid_argument("deformation service: the initial mesh is null");
   (void)validate_mesh(*initial);  // throws MeshValidationError naming the problem
   impl_->options = std::move(options);

@@ -36,7 +36,8 @@ SurfacePoint closest_surface_point(const Mesh& mesh, const Eigen::Vector3d& p) {
   SurfacePoint best;
   double best_distance2 = std::numeric_limits<double>::infinity();
   for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
-    const Eigen::Vector3d a = mesh.V.row(mesh.F(f, 0)), b = mesh.V.row(mesh.F(f, 1)), c = mesh.V.row(mesh.F(f, 2));
+    const Eigen::Vector3d a = mesh.V.row(mesh.F(f, 0)), b = mesh.V.row(mesh.F(f, 1)),
+                          c = mesh.V.row(mesh.F(f, 2));
     if (degenerate(a, b, c)) continue;
     const Eigen::Vector3d q = closest_point_on_triangle(p, a, b, c);
     const double distance2 = (q - p).squaredNorm();

@@ -106,9 +106,7 @@ void TriangleBvh::build(int node, int begin, int end, const Eigen::MatrixXd& V) 
   int axis = 0;
   (chi - clo).maxCoeff(&axis);
   const int middle = begin + (end - begin) / 2;
-  auto centroid_on_axis = [&](int f) {
-    return V(F_(f, 0), axis) + V(F_(f, 1), axis) + V(F_(f, 2), axis);
-  };
+  auto centroid_on_axis = [&](int f) { return V(F_(f, 0), axis) + V(F_(f, 1), axis) + V(F_(f, 2), axis); };
   std::nth_element(faces_.begin() + begin, faces_.begin() + middle, faces_.begin() + end,
                    [&](int a, int b) { return centroid_on_axis(a) < centroid_on_axis(b); });
   const int left = static_cast<int>(nodes_.size());
@@ -146,7 +144,7 @@ void TriangleBvh::refit(const Eigen::MatrixXd& V) {
 }
 
 std::optional<TriangleBvh::Hit> TriangleBvh::closest_point(const Eigen::MatrixXd& V, const Eigen::Vector3d& p,
-                                                            double max_distance) const {
+                                                           double max_distance) const {
   if (nodes_.empty()) return std::nullopt;
   double best2 = max_distance * max_distance;
   Hit best;
@@ -179,7 +177,7 @@ std::optional<TriangleBvh::Hit> TriangleBvh::closest_point(const Eigen::MatrixXd
 }
 
 std::optional<TriangleBvh::Hit> TriangleBvh::ray_hit(const Eigen::MatrixXd& V, const Eigen::Vector3d& origin,
-                                                      const Eigen::Vector3d& direction, double max_t) const {
+                                                     const Eigen::Vector3d& direction, double max_t) const {
   if (nodes_.empty() || !(direction.squaredNorm() > 0.0)) return std::nullopt;
   const Eigen::Vector3d inverse = direction.cwiseInverse();
   double best_t = max_t;
@@ -194,7 +192,8 @@ std::optional<TriangleBvh::Hit> TriangleBvh::ray_hit(const Eigen::MatrixXd& V, c
       for (int k = n.first; k < n.first + n.count; ++k) {
         // Moeller-Trumbore, both sides.
         const int f = faces_[static_cast<std::size_t>(k)];
-        const Eigen::Vector3d a = corner(V, F_, f, 0), e1 = corner(V, F_, f, 1) - a, e2 = corner(V, F_, f, 2) - a;
+        const Eigen::Vector3d a = corner(V, F_, f, 0), e1 = corner(V, F_, f, 1) - a,
+                              e2 = corner(V, F_, f, 2) - a;
         const Eigen::Vector3d pv = direction.cross(e2);
         const double det = e1.dot(pv);
         if (det == 0.0) continue;

@@ -14,7 +14,6 @@
 namespace pushpull::deform {
 namespace {
 
-
 // A body panel (2 x 2 m, 40 x 40 cells), a plate 1 cm above its centre, a badge far away 1 cm above a
 // corner, all separate components.
 struct Scene {
@@ -112,7 +111,8 @@ TEST(TriangleBvh, ClosestPointAndRayHitAgreeWithBruteForce) {
     const Eigen::Vector3d p(0.013 * k - 0.3, std::fmod(0.37 * k, 1.4) - 0.2, std::fmod(0.11 * k, 0.8) - 0.4);
     double brute = std::numeric_limits<double>::infinity();
     for (int f = 0; f < m.F.rows(); ++f) {
-      const Eigen::Vector3d q = closest_point_on_triangle(p, m.V.row(m.F(f, 0)), m.V.row(m.F(f, 1)), m.V.row(m.F(f, 2)));
+      const Eigen::Vector3d q =
+          closest_point_on_triangle(p, m.V.row(m.F(f, 0)), m.V.row(m.F(f, 1)), m.V.row(m.F(f, 2)));
       brute = std::min(brute, (q - p).norm());
     }
     const auto hit = tree.closest_point(m.V, p);

@@ -30,7 +30,7 @@ struct Term {
 // One bending term (arap-h) of vertex i: (lambda / A_i) |sum_j L_ij x_j - R_i (L P)_i|^2.
 struct Bend {
   int i;
-  double scale;                          // lambda / A_i
+  double scale;                             // lambda / A_i
   std::vector<std::pair<int, double>> row;  // (j, L_ij)
   Eigen::Vector3d LP;
 };
@@ -95,7 +95,8 @@ std::vector<Eigen::Matrix3d> rotations(const Formula& f, const Eigen::MatrixXd& 
 double energy(const Formula& f, const Eigen::MatrixXd& X, const std::vector<Eigen::Matrix3d>& R) {
   double E = 0.0;
   for (const Term& t : f.terms)
-    E += t.w * ((X.row(t.i) - X.row(t.j)).transpose() - R[static_cast<std::size_t>(t.cluster)] * t.e).squaredNorm();
+    E += t.w *
+         ((X.row(t.i) - X.row(t.j)).transpose() - R[static_cast<std::size_t>(t.cluster)] * t.e).squaredNorm();
   for (const Bend& b : f.bends) {
     Eigen::Vector3d LX = Eigen::Vector3d::Zero();
     for (const auto& [j, l] : b.row) LX += l * X.row(j).transpose();
@@ -160,7 +161,8 @@ Formula formula(const Mesh& m, Method method, const DeformOptions& o, const Eige
     const Eigen::Matrix3d tau = Eigen::Matrix3d::Identity() + (o.mu - 1.0) * u * u.transpose();
     P = (tau * m.V.transpose()).transpose();
   }
-  auto corner_weight = [&](const Eigen::MatrixXd& Q, int face, int k) {  // half cot at corner k, edge opposite
+  auto corner_weight = [&](const Eigen::MatrixXd& Q, int face,
+                           int k) {  // half cot at corner k, edge opposite
     const int a = m.F(face, k), b = m.F(face, (k + 1) % 3), c = m.F(face, (k + 2) % 3);
     return half_cot(Q.row(a), Q.row(b), Q.row(c));
   };
@@ -181,7 +183,7 @@ Formula formula(const Mesh& m, Method method, const DeformOptions& o, const Eige
       spoke[{std::min(i, j), std::max(i, j)}] += corner_weight(m.V, face, k);
     }
   }
-  const Method structure = method == Method::Asan ? o.asan_base
+  const Method structure = method == Method::Asan                                  ? o.asan_base
                            : (method == Method::SrArap || method == Method::ArapH) ? Method::ArapSR
                                                                                    : method;
   switch (structure) {
@@ -204,11 +206,14 @@ Formula formula(const Mesh& m, Method method, const DeformOptions& o, const Eige
         std::set<int> near{k};
         for (int r = 1; r < o.arap_n_rings; ++r) {
           std::set<int> next = near;
-          for (int v : near) next.insert(ring[static_cast<std::size_t>(v)].begin(), ring[static_cast<std::size_t>(v)].end());
+          for (int v : near)
+            next.insert(ring[static_cast<std::size_t>(v)].begin(), ring[static_cast<std::size_t>(v)].end());
           near = next;
         }
         std::set<int> faces;
-        for (int v : near) faces.insert(faces_of[static_cast<std::size_t>(v)].begin(), faces_of[static_cast<std::size_t>(v)].end());
+        for (int v : near)
+          faces.insert(faces_of[static_cast<std::size_t>(v)].begin(),
+                       faces_of[static_cast<std::size_t>(v)].end());
         for (int face : faces) face_terms(k, face);
       }
       break;
@@ -221,8 +226,7 @@ Formula formula(const Mesh& m, Method method, const DeformOptions& o, const Eige
   }
   if (method == Method::SrArap) {
     double area = 0.0;
-    for (int face = 0; face < nf; ++face)
-      area += triangle_area(m.V, m.F, face);
+    for (int face = 0; face < nf; ++face) area += triangle_area(m.V, m.F, face);
     f.smooth = o.sr_arap_alpha * area;
     for (const auto& [edge, w] : spoke) f.smooth_edges.emplace_back(edge.first, edge.second, std::abs(w));
   }
@@ -277,7 +281,8 @@ TEST_P(EnergyIndependent, EnergyGradientAndGlobalStepMatchTheFormula) {
   std::mt19937 rng(11);
   std::normal_distribution<double> noise(0.0, 0.05);
   Eigen::MatrixXd X = s.mesh->V;
-  for (Eigen::Index v = 0; v < X.rows(); ++v) X.row(v) += Eigen::RowVector3d(noise(rng), noise(rng), noise(rng));
+  for (Eigen::Index v = 0; v < X.rows(); ++v)
+    X.row(v) += Eigen::RowVector3d(noise(rng), noise(rng), noise(rng));
   for (int h : s.roi.handle) X.row(h) = s.mesh->V.row(h) + s.d.transpose();
   for (int v : s.roi.fixed) X.row(v) = s.mesh->V.row(v);
 
@@ -333,11 +338,12 @@ TEST_P(EnergyIndependent, EnergyGradientAndGlobalStepMatchTheFormula) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(AllMethods, EnergyIndependent, ::testing::ValuesIn(kAllMethods), [](const auto& info) {
-  std::string name(method_name(info.param));
-  std::replace(name.begin(), name.end(), '-', '_');
-  return name;
-});
+INSTANTIATE_TEST_SUITE_P(AllMethods, EnergyIndependent, ::testing::ValuesIn(kAllMethods),
+                         [](const auto& info) {
+                           std::string name(method_name(info.param));
+                           std::replace(name.begin(), name.end(), '-', '_');
+                           return name;
+                         });
 
 // The parameters change the energy they claim to change.
 TEST(EnergyParameters, EachParameterMatters) {

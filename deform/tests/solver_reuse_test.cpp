@@ -19,11 +19,13 @@ struct ReusedProblem {
 
 ReusedProblem make_setup() {
   ReusedProblem s;
-  s.mesh = std::make_shared<const Mesh>(testing::grid(
-      16, 16, 0.0, 1.0, 0.0, 1.0, [](double x, double y) { return 0.2 * std::sin(3 * x) * std::cos(2 * y); }));
+  s.mesh = std::make_shared<const Mesh>(testing::grid(16, 16, 0.0, 1.0, 0.0, 1.0, [](double x, double y) {
+    return 0.2 * std::sin(3 * x) * std::cos(2 * y);
+  }));
   std::vector<int> handle;
   for (Eigen::Index v = 0; v < s.mesh->V.rows(); ++v)
-    if (std::hypot(s.mesh->V(v, 0) - 0.5, s.mesh->V(v, 1) - 0.5) < 0.12) handle.push_back(static_cast<int>(v));
+    if (std::hypot(s.mesh->V(v, 0) - 0.5, s.mesh->V(v, 1) - 0.5) < 0.12)
+      handle.push_back(static_cast<int>(v));
   s.roi = build_roi(*s.mesh, handle, {}, 0.4);
   return s;
 }
@@ -49,7 +51,7 @@ TEST(SolverReuse, AsanWeightsFollowTheLineOfD) {
   const DeformResult c = deformer.solve(d2);  // another direction: new weights, new factorization
   EXPECT_TRUE(c.refactored);
   EXPECT_NE(deformer.energy(a.V), energy_d1_weights);  // the same positions cost differently now
-  EXPECT_EQ(c.V, fresh(s, d2));                         // exactly what a new Deformer computes
+  EXPECT_EQ(c.V, fresh(s, d2));                        // exactly what a new Deformer computes
 
   const DeformResult e = deformer.solve(-d2);  // opposite direction: the stretch depends on d d^T only
   EXPECT_FALSE(e.refactored);

@@ -70,7 +70,8 @@ TEST(SurfacePoint, DistancesFollowTheSurfaceAroundAFold) {
     m.F.row(2 * i) << 2 * i, 2 * i + 2, 2 * i + 1;
     m.F.row(2 * i + 1) << 2 * i + 1, 2 * i + 2, 2 * i + 3;
   }
-  const SurfacePoint hit = closest_surface_point(m, Eigen::Vector3d(-0.01, 0.0, 0.9));  // near the top of arm 1
+  const SurfacePoint hit =
+      closest_surface_point(m, Eigen::Vector3d(-0.01, 0.0, 0.9));  // near the top of arm 1
   const std::vector<int> handle = surface_handle(m, hit, 0.3);
   for (int v : handle) EXPECT_LT(m.V(v, 0), 0.05) << "vertex " << v << " is on the other arm";
   const std::vector<double> distance = surface_distances(m, hit);
@@ -89,8 +90,10 @@ TEST(SurfacePoint, TinyRadiusTakesTheNearestCorner) {
 TEST(SurfacePoint, BadInputIsRefused) {
   const Mesh m = testing::grid(2, 2, 0.0, 1.0, 0.0, 1.0);
   EXPECT_THROW((void)closest_surface_point(m, Eigen::Vector3d(std::nan(""), 0, 0)), std::invalid_argument);
-  EXPECT_THROW((void)surface_handle(m, SurfacePoint{99, Eigen::Vector3d::Zero()}, 0.1), std::invalid_argument);
-  EXPECT_THROW((void)surface_handle(m, SurfacePoint{0, Eigen::Vector3d::Zero()}, -1.0), std::invalid_argument);
+  EXPECT_THROW((void)surface_handle(m, SurfacePoint{99, Eigen::Vector3d::Zero()}, 0.1),
+               std::invalid_argument);
+  EXPECT_THROW((void)surface_handle(m, SurfacePoint{0, Eigen::Vector3d::Zero()}, -1.0),
+               std::invalid_argument);
   Mesh flat;
   flat.V = Eigen::MatrixXd::Zero(3, 3);
   flat.F.resize(1, 3);

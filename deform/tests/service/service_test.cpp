@@ -3,8 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
-#include <cstdio>
 #include <chrono>
+#include <cstdio>
 #include <memory>
 #include <mutex>
 #include <thread>
@@ -29,10 +29,11 @@ struct Problem {
 
 Problem make_problem(int n) {
   Problem p;
-  p.mesh = std::make_shared<const Mesh>(
-      testing::grid(n, n, 0.0, 1.0, 0.0, 1.0, [](double x, double y) { return 0.1 * x * (1 - x) + 0.05 * y; }));
+  p.mesh = std::make_shared<const Mesh>(testing::grid(
+      n, n, 0.0, 1.0, 0.0, 1.0, [](double x, double y) { return 0.1 * x * (1 - x) + 0.05 * y; }));
   for (Eigen::Index v = 0; v < p.mesh->V.rows(); ++v) {
-    if (std::hypot(p.mesh->V(v, 0) - 0.5, p.mesh->V(v, 1) - 0.5) < 0.1) p.handle.push_back(static_cast<int>(v));
+    if (std::hypot(p.mesh->V(v, 0) - 0.5, p.mesh->V(v, 1) - 0.5) < 0.1)
+      p.handle.push_back(static_cast<int>(v));
   }
   return p;
 }
@@ -200,7 +201,8 @@ TEST(Service, SameRequestSequenceGivesTheSameCommits) {
   auto run = [&] {
     Service service(p.mesh);
     for (int pull = 0; pull < 3; ++pull) {
-      for (int k = 1; k <= 4; ++k) service.submit(make_request(p, {0.0, 0.01 * k, 0.01 * pull + 0.005 * k}, pull));
+      for (int k = 1; k <= 4; ++k)
+        service.submit(make_request(p, {0.0, 0.01 * k, 0.01 * pull + 0.005 * k}, pull));
       service.commit();
     }
     service.wait_idle();

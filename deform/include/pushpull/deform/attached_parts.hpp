@@ -45,10 +45,10 @@ struct AttachOptions {
 };
 
 struct AttachedPart {
-  int component = -1;            // connected component (of the face graph, numbered by lowest vertex)
-  std::vector<int> vertices;     // its vertices, sorted
-  double rest_gap = 0.0;         // its smallest distance to a region triangle at rest
-  bool on_surface = false;       // follows the surface vertex by vertex (else rigidly or not at all)
+  int component = -1;         // connected component (of the face graph, numbered by lowest vertex)
+  std::vector<int> vertices;  // its vertices, sorted
+  double rest_gap = 0.0;      // its smallest distance to a region triangle at rest
+  bool on_surface = false;    // follows the surface vertex by vertex (else rigidly or not at all)
 };
 
 class AttachedParts {
@@ -67,17 +67,17 @@ class AttachedParts {
   void apply(Eigen::MatrixXd& V) const;
 
  private:
-  static constexpr double kOnSurfaceShare = 0.9;  // share of vertices within reach for "on the surface"
+  static constexpr double kOnSurfaceShare = 0.9;   // share of vertices within reach for "on the surface"
   static constexpr double kCoherentMotion = 0.25;  // rigid fit residual / motion (RMS) accepted
-  std::vector<int> bound_vertex_;     // mesh vertex
-  std::vector<int> bound_part_;       // index into parts_
-  std::vector<int> carrier_face_;     // row of F it is bound to
-  std::vector<int> carrier_slot_;     // its patch (index into patch_start_)
-  std::vector<Eigen::Vector3d> bary_;    // barycentric coordinates of the bound point
-  std::vector<Eigen::Vector3d> offset_;  // vertex - bound point at rest (model space)
-  std::vector<int> patch_start_, patch_index_;  // per carrier face used: corners and their neighbours
-  Eigen::MatrixXi F_;                    // the mesh's faces
-  Eigen::MatrixXd rest_V_;               // rest corners, to tell moved triangles from unmoved ones
+  std::vector<int> bound_vertex_;                  // mesh vertex
+  std::vector<int> bound_part_;                    // index into parts_
+  std::vector<int> carrier_face_;                  // row of F it is bound to
+  std::vector<int> carrier_slot_;                  // its patch (index into patch_start_)
+  std::vector<Eigen::Vector3d> bary_;              // barycentric coordinates of the bound point
+  std::vector<Eigen::Vector3d> offset_;            // vertex - bound point at rest (model space)
+  std::vector<int> patch_start_, patch_index_;     // per carrier face used: corners and their neighbours
+  Eigen::MatrixXi F_;                              // the mesh's faces
+  Eigen::MatrixXd rest_V_;                         // rest corners, to tell moved triangles from unmoved ones
   std::vector<AttachedPart> parts_;
   double reach_ = 0.0;
 };

@@ -165,8 +165,8 @@ class Service {
   // The committed revision (1 = the initial state; every commit, undo and redo moves it) and the history.
   // revision() reflects the commands the worker has run.
   [[nodiscard]] std::uint64_t revision() const;
-  [[nodiscard]] std::vector<HistoryEntry> history() const;   // a copy, oldest first
-  [[nodiscard]] std::size_t history_position() const;        // index of the current state in history()
+  [[nodiscard]] std::vector<HistoryEntry> history() const;  // a copy, oldest first
+  [[nodiscard]] std::size_t history_position() const;       // index of the current state in history()
 
  private:
   struct Impl;

@@ -22,7 +22,7 @@ namespace pushpull::deform {
 class TriangleBvh {
  public:
   struct Hit {
-    int face = -1;                                   // row of F (an index into the faces given to build)
+    int face = -1;                                    // row of F (an index into the faces given to build)
     Eigen::Vector3d point = Eigen::Vector3d::Zero();  // the closest point / the ray's hit point
     double distance = std::numeric_limits<double>::infinity();  // to the query point / along the ray
   };
@@ -49,7 +49,8 @@ class TriangleBvh {
  private:
   struct Node {
     Eigen::Vector3d lo = Eigen::Vector3d::Zero(), hi = Eigen::Vector3d::Zero();
-    int first = 0, count = 0;  // leaf: faces_[first, first + count); inner: count = 0, children first, first+1
+    int first = 0,
+        count = 0;  // leaf: faces_[first, first + count); inner: count = 0, children first, first+1
   };
   void build(int node, int begin, int end, const Eigen::MatrixXd& V);
   void fit(int node, const Eigen::MatrixXd& V);
