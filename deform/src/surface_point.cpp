@@ -64,13 +64,31 @@ std::vector<double> surface_distances(const Mesh& mesh, const SurfacePoint& from
   std::vector<double> distance(static_cast<std::size_t>(nv), std::numeric_limits<double>::infinity());
   using Entry = std::pair<double, int>;
   std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue;
-  for (int c = 0; c < 3; ++c) {
-    const int v = mesh.F(from.face, c);
-    const double dv = (mesh.V.row(v).transpose() - from.point).norm();
-    if (dv <= max_distance && dv < distance[static_cast<std::size_t>(v)]) {
-      distance[static_cast<std::size_t>(v)] = dv;
-      queue.emplace(dv, v);
+  // Seeds: the corners of the hit triangle and of every triangle around it that also holds the point (a
+  // point on an edge or a vertex lies in several), so the handle does not depend on which of them a ray
+  // hit or a closest-point search happened to return.
+  auto seed_face = [&](int f) {
+    for (int c = 0; c < 3; ++c) {
+      const int v = mesh.F(f, c);
+      const double dv = (mesh.V.row(v).transpose() - from.point).norm();
+      if (dv <= max_distance && dv < distance[static_cast<std::size_t>(v)]) {
+        distance[static_cast<std::size_t>(v)] = dv;
+        queue.emplace(dv, v);
+      }
     }
+  };
+  seed_face(from.face);
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
+    if (f == from.face) continue;
+    bool shares_corner = false;
+    for (int c = 0; c < 3 && !shares_corner; ++c)
+      for (int k = 0; k < 3; ++k) shares_corner |= mesh.F(f, c) == mesh.F(from.face, k);
+    if (!shares_corner) continue;
+    const Eigen::Vector3d a = mesh.V.row(mesh.F(f, 0)), b = mesh.V.row(mesh.F(f, 1)), c = mesh.V.row(mesh.F(f, 2));
+    if (degenerate(a, b, c)) continue;
+    const double size = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+    if ((closest_point_on_triangle(from.point, a, b, c) - from.point).norm() <= 1e-9 * size)
+      seed_face(static_cast<int>(f));
   }
   while (!queue.empty()) {
     const auto [dv, v] = queue.top();

@@ -103,3 +103,36 @@ TEST(SurfacePoint, BadInputIsRefused) {
 
 }  // namespace
 }  // namespace pushpull::deform
+
+namespace pushpull::deform {
+namespace {
+
+// A point on an edge belongs to both triangles of the edge: the handle is the same whichever of them a ray
+// hit or a closest-point search returned.
+TEST(SurfacePoint, PointOnAnEdgeGivesTheSameHandleFromEitherTriangle) {
+  const Mesh m = testing::grid(8, 8, 0.0, 1.0, 0.0, 1.0, [](double x, double y) { return 0.2 * x * y; });
+  // The diagonal of cell (3, 3) is shared by its two triangles; take its midpoint.
+  int first = -1, second = -1;
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();
+  for (int f = 0; f < m.F.rows() && second < 0; ++f) {
+    for (int g = f + 1; g < m.F.rows() && second < 0; ++g) {
+      int shared = 0;
+      std::vector<int> common;
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+          if (m.F(f, i) == m.F(g, j)) ++shared, common.push_back(m.F(f, i));
+      if (shared == 2 && m.V(common[0], 0) > 0.3 && m.V(common[0], 1) > 0.3) {
+        first = f, second = g;
+        point = 0.5 * (m.V.row(common[0]) + m.V.row(common[1])).transpose();
+      }
+    }
+  }
+  ASSERT_GE(second, 0);
+  const std::vector<int> a = surface_handle(m, SurfacePoint{first, point}, 0.2);
+  const std::vector<int> b = surface_handle(m, SurfacePoint{second, point}, 0.2);
+  EXPECT_EQ(a, b);
+  EXPECT_EQ(surface_distances(m, SurfacePoint{first, point}), surface_distances(m, SurfacePoint{second, point}));
+}
+
+}  // namespace
+}  // namespace pushpull::deform
