@@ -70,8 +70,10 @@ void GlobalSystem::plan_split() {
   std::size_t best_top_count = 0;
   long top_work = 0, best_critical = total + 1;
   std::sort(frontier.begin(), frontier.end(), heavier);
-  for (int round = 0, since_best = 0; round < 4096 && since_best < 256 && !frontier.empty();
-       ++round, ++since_best) {
+  // A lone subtree (the chain of a nested-dissection separator) cannot be split: rounds spent walking down
+  // it do not count against the patience, else deep separators would stop the search before any split.
+  for (int round = 0, since_best = 0; round < 65536 && since_best < 256 && !frontier.empty();
+       ++round, since_best += frontier.size() > 1 ? 1 : 0) {
     const long heavier_part = pack(frontier, nullptr);
     if (top_work + heavier_part < best_critical) {
       best_critical = top_work + heavier_part;
