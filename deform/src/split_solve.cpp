@@ -9,25 +9,26 @@ namespace pushpull::deform::detail {
 
 void GlobalSystem::plan_split() {
   const int n = n_free_;
-  const Eigen::SparseMatrix<double>& L = ldlt_.matrixL().nestedExpression();  // strictly lower
-  const int* outer = L.outerIndexPtr();
-  const int* inner = L.innerIndexPtr();
+  const int* outer = l_column_;
+  const int* inner = l_row_;
+  const int skip = l_diagonal_slots_;  // column j's strictly lower entries: [outer[j] + skip, outer[j + 1])
+  const int nonzeros = outer[n];
   // Refactorizations keep the symbolic pattern: plan again only if the factor's pattern differs.
   if (planned_outer_.size() == static_cast<std::size_t>(n) + 1 &&
       std::equal(planned_outer_.begin(), planned_outer_.end(), outer) &&
-      std::equal(planned_inner_.begin(), planned_inner_.end(), inner, inner + L.nonZeros())) {
+      std::equal(planned_inner_.begin(), planned_inner_.end(), inner, inner + nonzeros)) {
     return;
   }
   planned_outer_.assign(outer, outer + n + 1);
-  planned_inner_.assign(inner, inner + L.nonZeros());
+  planned_inner_.assign(inner, inner + nonzeros);
   // Elimination tree (parent = smallest row below the diagonal) and per-subtree solve work.
   std::vector<int> parent(static_cast<std::size_t>(n), -1), child_start(static_cast<std::size_t>(n) + 1, 0);
   std::vector<long> work(static_cast<std::size_t>(n), 0);
   for (int j = 0; j < n; ++j) {
     int lowest = n;
-    for (int p = outer[j]; p < outer[j + 1]; ++p) lowest = std::min(lowest, inner[p]);
+    for (int p = outer[j] + skip; p < outer[j + 1]; ++p) lowest = std::min(lowest, inner[p]);
     parent[static_cast<std::size_t>(j)] = lowest < n ? lowest : -1;
-    work[static_cast<std::size_t>(j)] += outer[j + 1] - outer[j] + 1;
+    work[static_cast<std::size_t>(j)] += outer[j + 1] - outer[j] - skip + 1;
   }
   for (int j = 0; j < n; ++j) {  // children precede parents: subtree sums in one ascending pass
     const int up = parent[static_cast<std::size_t>(j)];
@@ -69,8 +70,10 @@ void GlobalSystem::plan_split() {
   std::size_t best_top_count = 0;
   long top_work = 0, best_critical = total + 1;
   std::sort(frontier.begin(), frontier.end(), heavier);
-  for (int round = 0, since_best = 0; round < 4096 && since_best < 256 && !frontier.empty();
-       ++round, ++since_best) {
+  // A lone subtree (the chain of a nested-dissection separator) cannot be split: rounds spent walking down
+  // it do not count against the patience, else deep separators would stop the search before any split.
+  for (int round = 0, since_best = 0; round < 65536 && since_best < 256 && !frontier.empty();
+       ++round, since_best += frontier.size() > 1 ? 1 : 0) {
     const long heavier_part = pack(frontier, nullptr);
     if (top_work + heavier_part < best_critical) {
       best_critical = top_work + heavier_part;
@@ -122,11 +125,11 @@ void GlobalSystem::plan_split() {
     }
   }
   const int top_count = static_cast<int>(top_columns_.size());
-  forward_target_.assign(inner, inner + L.nonZeros());
+  forward_target_.assign(inner, inner + nonzeros);
   for (int j = 0; j < n; ++j) {
     const char pj = part[static_cast<std::size_t>(j)];
     if (pj == 2) continue;
-    for (int p = outer[j]; p < outer[j + 1]; ++p) {
+    for (int p = outer[j] + skip; p < outer[j + 1]; ++p) {
       const int slot = top_slot[static_cast<std::size_t>(inner[p])];
       if (slot >= 0) forward_target_[static_cast<std::size_t>(p)] = n + pj * top_count + slot;
     }
@@ -139,16 +142,16 @@ void GlobalSystem::solve_in_place(Eigen::Matrix3Xd& B, HelperThread* threads) co
   const int top_count = static_cast<int>(top_columns_.size());
   Eigen::Matrix3Xd W = Eigen::Matrix3Xd::Zero(3, n + 2 * top_count);  // Y, then the parts' accumulators
   for (int i = 0; i < n; ++i) W.col(perm_(i)) = B.col(i);
-  const Eigen::SparseMatrix<double>& L = ldlt_.matrixL().nestedExpression();  // strictly lower, unit diagonal
-  const int* outer = L.outerIndexPtr();
-  const int* inner = L.innerIndexPtr();
+  const int* outer = l_column_;  // unit lower triangular L, strictly lower entries from outer[j] + skip
+  const int* inner = l_row_;
+  const int skip = l_diagonal_slots_;
   const int* target = forward_target_.data();
-  const double* value = L.valuePtr();
+  const double* value = l_value_;
   double* w = W.data();
   // L y = b: column j, once final, updates the rows below it (its etree ancestors).
   auto forward = [&](int j) {
     const double y0 = w[3 * j], y1 = w[3 * j + 1], y2 = w[3 * j + 2];
-    for (int p = outer[j]; p < outer[j + 1]; ++p) {
+    for (int p = outer[j] + skip; p < outer[j + 1]; ++p) {
       double* t = w + 3 * static_cast<std::ptrdiff_t>(target[p]);
       t[0] -= value[p] * y0;
       t[1] -= value[p] * y1;
@@ -158,7 +161,7 @@ void GlobalSystem::solve_in_place(Eigen::Matrix3Xd& B, HelperThread* threads) co
   // L^T x = y: column j gathers from the rows below it (final by then).
   auto backward = [&](int j) {
     double a0 = w[3 * j], a1 = w[3 * j + 1], a2 = w[3 * j + 2];
-    for (int p = outer[j]; p < outer[j + 1]; ++p) {
+    for (int p = outer[j] + skip; p < outer[j + 1]; ++p) {
       const double* x = w + 3 * static_cast<std::ptrdiff_t>(inner[p]);
       a0 -= value[p] * x[0];
       a1 -= value[p] * x[1];
