@@ -1,0 +1,274 @@
+#include "review_loop.hpp"
+
+#include "commands.hpp"
+#include "review_interaction.hpp"
+#include "review_scene.hpp"
+#include "stage_placement.hpp"
+
+#include "pushpull/assets/model.hpp"
+#include "pushpull/assets/write.hpp"
+#include "pushpull/deform/mesh_io.hpp"
+#include "pushpull/deform/service.hpp"
+#include "pushpull/renderer/context.hpp"
+#include "pushpull/renderer/renderer.hpp"
+#include "pushpull/xr/input.hpp"
+#include "pushpull/xr/session.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <numeric>
+#include <thread>
+
+namespace pushpull::app {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+Eigen::Vector3d vec3(const std::vector<double>& v) { return {v.at(0), v.at(1), v.at(2)}; }
+nlohmann::json to_json(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+
+// The hand's aim ray in stage space (the pose's -Z axis).
+HandSample hand_sample(const xr::HandInput& in) {
+  HandSample s;
+  s.trigger = in.trigger;
+  s.tracked = in.T_stage_aim.has_value();
+  if (s.tracked) {
+    const XrPosef& p = *in.T_stage_aim;
+    const Eigen::Quaterniond q(p.orientation.w, p.orientation.x, p.orientation.y, p.orientation.z);
+    s.origin_stage = {p.position.x, p.position.y, p.position.z};
+    s.direction_stage = q.normalized() * Eigen::Vector3d(0.0, 0.0, -1.0);
+  }
+  return s;
+}
+
+// Frame work (from xrWaitFrame's return to xrEndFrame's return), split by whether the solver was busy.
+struct FrameStats {
+  std::vector<double> idle_ms, solving_ms;
+  static double mean(const std::vector<double>& v) {
+    return v.empty() ? 0.0 : std::accumulate(v.begin(), v.end(), 0.0) / double(v.size());
+  }
+  static double percentile(std::vector<double> v, double q) {
+    if (v.empty()) return 0.0;
+    std::sort(v.begin(), v.end());
+    return v[std::min(v.size() - 1, size_t(q * double(v.size())))];
+  }
+  void print() const {
+    std::printf("frame time (xrBeginFrame .. xrEndFrame, CPU): idle %.2f ms mean, %.2f ms p95 (%zu frames); "
+                "solver running %.2f ms mean, %.2f ms p95 (%zu frames); ratio %.3f\n",
+                mean(idle_ms), percentile(idle_ms, 0.95), idle_ms.size(), mean(solving_ms),
+                percentile(solving_ms, 0.95), solving_ms.size(),
+                mean(idle_ms) > 0.0 ? mean(solving_ms) / mean(idle_ms) : 0.0);
+  }
+};
+
+class EventLog {
+ public:
+  explicit EventLog(const std::string& path) {
+    if (path.empty()) return;
+    file_.open(path);
+    if (!file_) throw CommandError(path + ": cannot write the event log");
+  }
+  void write(const nlohmann::json& line) {
+    if (file_.is_open()) file_ << line.dump() << '\n' << std::flush;
+  }
+
+ private:
+  std::ofstream file_;
+};
+
+void write_model(const std::string& path, const assets::Model& model, const Eigen::MatrixXd& V) {
+  std::string extension = fs::path(path).extension().string();
+  for (char& c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
+  try {
+    if (extension == ".glb") {
+      for (const std::string& w : assets::write_glb(model, V, path)) std::printf("  warning: %s\n", w.c_str());
+    } else {
+      deform::write_mesh(path, deform::Mesh{V, model.deform_mesh.F});
+    }
+  } catch (const std::exception& e) {
+    throw CommandError(path + ": " + e.what());
+  }
+}
+
+}  // namespace
+
+void run_review(const ReviewCommandOptions& o) {
+  if (!fs::exists(o.model)) throw CommandError(o.model + ": model file does not exist");
+  if (!o.out.empty()) {
+    std::string extension = fs::path(o.out).extension().string();
+    if (!deform::mesh_format_from_path(o.out) && extension != ".glb")
+      throw CommandError(o.out + ": unsupported output format (expected .glb, .off, .obj or .ply)");
+  }
+  assets::Model model;
+  try {
+    model = assets::load_model(o.model);
+  } catch (const std::exception& e) {
+    throw CommandError(e.what());
+  }
+  const LifeSize life(o.life_size, model.bounds, o.model);
+  auto rest = std::make_shared<const deform::Mesh>(model.deform_mesh);
+  PlacementOptions placement_options;
+  placement_options.up_model = vec3(o.up);
+  placement_options.front_model = vec3(o.front);
+  placement_options.scale = life.scale();
+  placement_options.distance_m = o.distance_m;
+  StagePlacement placement;
+  try {
+    placement = place_on_stage(rest->V, placement_options);
+  } catch (const std::invalid_argument& e) {
+    throw CommandError(std::string("--up/--front: ") + e.what());
+  }
+
+  InteractionOptions interaction_options;
+  interaction_options.handle_radius = life.to_file_units(o.handle_radius_m);
+  interaction_options.roi_radius = life.to_file_units(o.roi_radius_m);
+  interaction_options.scale = life.scale();
+  try {
+    interaction_options.solver.method = deform::parse_method(o.method);
+  } catch (const std::invalid_argument& e) {
+    throw CommandError(std::string("--method: ") + e.what());
+  }
+  interaction_options.solver.mu = o.mu;
+  const ReviewColour colour = o.colour == "material"       ? ReviewColour::Material
+                              : o.colour == "curvature-sign" ? ReviewColour::CurvatureSign
+                                                             : ReviewColour::Displacement;
+
+  xr::SessionOptions session_options;
+  session_options.require_vulkan13_features = [](VkPhysicalDeviceVulkan13Features& f) {
+    renderer::Context::require_features(f);
+  };
+  if (o.eye_size.size() == 2) {
+    session_options.eye_width = uint32_t(o.eye_size[0]);
+    session_options.eye_height = uint32_t(o.eye_size[1]);
+  }
+  std::optional<xr::Session> session;
+  try {
+    session.emplace(session_options);
+  } catch (const xr::RuntimeUnavailable& e) {
+    throw CommandError(e.what());
+  }
+  xr::Session& xr = *session;
+  std::printf("pushpull review: %s on %s (OpenXR runtime \"%s\"), %ux%u per eye, %s space\n", o.model.c_str(),
+              xr.system_name().c_str(), xr.runtime_name().c_str(), xr.eye(0).width(), xr.eye(0).height(),
+              xr.stage_is_local() ? "LOCAL (no STAGE)" : "STAGE");
+
+  EventLog log(o.events);
+  {
+    nlohmann::json header{{"event", "start"},         {"model", o.model},
+                          {"scale", life.scale()},     {"method", o.method},
+                          {"mu", o.mu},                {"handle_radius", interaction_options.handle_radius},
+                          {"roi_radius", interaction_options.roi_radius},
+                          {"runtime", xr.runtime_name()}};
+    std::vector<double> T;
+    for (int r = 0; r < 4; ++r)
+      for (int c = 0; c < 4; ++c) T.push_back(placement.T_stage_model(r, c));
+    header["T_stage_model"] = T;  // row-major 4x4
+    log.write(header);
+  }
+
+  bool lost = false;
+  {
+    const xr::VulkanDevice& vk = xr.vulkan();
+    renderer::Context context = renderer::Context::wrap(
+        {vk.instance, vk.physical_device, vk.device, vk.queue_family_index, vk.queue});
+    renderer::RendererOptions renderer_options;
+    renderer_options.samples = VkSampleCountFlagBits(o.samples);
+    renderer::Renderer renderer(context, renderer_options);
+    ReviewScene scene(renderer, model, placement, colour, life.scale());
+    EyeTargets eyes(vk.device, xr.eye(0), xr.eye(1));
+    deform::Service service(rest);
+    ReviewInteraction interaction(service, *rest, placement, interaction_options);
+    xr::Input input(xr.instance(), xr.handle(), xr.stage_space());
+    FrameStats stats;
+
+    auto log_event = [&](const InteractionEvent& e) {
+      static const char* names[] = {"press", "commit", "cancel"};
+      nlohmann::json line{{"event", names[int(e.kind)]}, {"hand", e.hand == 0 ? "left" : "right"},
+                          {"face", e.face}, {"p0", to_json(e.p0)}, {"d", to_json(e.d)}};
+      if (e.kind == InteractionEvent::Kind::Committed) line["request"] = e.request;
+      log.write(line);
+      std::printf("pushpull review: %s at p0 = (%.4f, %.4f, %.4f), |d| = %.1f mm\n", names[int(e.kind)],
+                  e.p0.x(), e.p0.y(), e.p0.z(), life.to_mm(e.d.norm()));
+    };
+
+    while (!xr.exit_requested()) {
+      try {
+        xr.poll_events();
+        if (xr.exit_requested()) break;
+        if (!xr.running()) {
+          std::this_thread::sleep_for(std::chrono::milliseconds(10));
+          continue;
+        }
+        const xr::FrameViews frame = xr.begin_frame();
+        if (xr.lost()) break;
+        const auto start = Clock::now();
+        input.sync(frame.predicted_display_time);
+        std::array<HandSample, 2> hands{hand_sample(input.hand(xr::Hand::Left)),
+                                        hand_sample(input.hand(xr::Hand::Right))};
+        for (const InteractionEvent& e : interaction.update(hands)) {
+          log_event(e);
+          if (e.kind != InteractionEvent::Kind::Cancelled) input.haptic_pulse(xr::Hand(e.hand), 0.6f, 0.03);
+        }
+        for (int h = 0; h < 2 && !interaction.dragging(); ++h) {
+          const xr::HandInput& in = input.hand(xr::Hand(h));
+          if (in.undo_pressed) {
+            service.undo();
+            log.write({{"event", "undo"}});
+          }
+          if (in.redo_pressed) {
+            service.redo();
+            log.write({{"event", "redo"}});
+          }
+          if (in.menu_pressed) scene.set_colour(next_colour(scene.colour()));
+        }
+        const std::shared_ptr<const deform::Snapshot> snapshot = service.latest();
+        const bool solving = interaction.dragging() || !snapshot->final;
+        interaction.sync_committed(*snapshot);
+        scene.update(snapshot);
+        bool rendered = false;
+        if (frame.should_render) {
+          const uint32_t left = xr.eye(0).acquire();
+          const uint32_t right = xr.eye(1).acquire();
+          const std::array<renderer::View, 2> views{eye_view(frame.eyes[0]), eye_view(frame.eyes[1])};
+          renderer.render(views, scene.draws(), scene.settings(), eyes.targets(left, right));
+          rendered = true;
+        }
+        xr.end_frame(frame, rendered);
+        const double ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+        (solving ? stats.solving_ms : stats.idle_ms).push_back(ms);
+      } catch (const xr::XrError& e) {
+        if (e.result() != XR_ERROR_SESSION_LOST && e.result() != XR_ERROR_INSTANCE_LOST) throw;
+        break;
+      }
+      if (xr.lost()) break;
+    }
+    lost = xr.lost();
+    if (lost) {
+      std::printf("pushpull review: the OpenXR session was lost\n");
+      if (const auto e = interaction.cancel()) log_event(*e);
+      log.write({{"event", "lost"}});
+    }
+    renderer.wait_idle();
+    service.wait_idle();
+    const auto history = service.history();
+    const deform::HistoryEntry& current = history.at(service.history_position());
+    log.write({{"event", "end"},
+               {"revision", service.revision()},
+               {"hash", current.hash},
+               {"commits", service.history_position()}});
+    if (!o.out.empty()) {
+      write_model(o.out, model, current.state->V);
+      std::printf("pushpull review: wrote %s (%zu committed push/pull(s))\n", o.out.c_str(),
+                  service.history_position());
+    }
+    if (o.benchmark) stats.print();
+  }
+}
+
+}  // namespace pushpull::app
