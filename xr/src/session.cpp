@@ -20,7 +20,7 @@ std::string runtime_looked_for() {
 
 constexpr const char* kPointAtRuntime =
     "point at one with XR_RUNTIME_JSON=/path/to/runtime.json (the simulated runtime: "
-    "XR_RUNTIME_JSON=build/xr/sim/pushpull_xr_sim.json), or use --desktop";
+    "XR_RUNTIME_JSON=build/xr/sim/pushpull_xr_sim.json)";
 
 template <class Fn>
 Fn instance_function(XrInstance instance, const char* name) {

@@ -1,0 +1,200 @@
+// `pushpull review` against the simulated OpenXR runtime (xr/sim) on lavapipe, driven by input scripts:
+// a push/pull in the headset commits what `pushpull deform` computes for the same p0, d and handle rule;
+// the eyes see the model in the displacement colours; a session lost mid-drag leaves the model as it was;
+// without a runtime the command says which runtime it looked for and how to point at one.
+#include "command_runner.hpp"
+
+#include "pushpull/deform/mesh_io.hpp"
+#include "pushpull/renderer/image_io.hpp"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+namespace fs = std::filesystem;
+using pushpull::testing::run_command;
+
+const std::string kHood = std::string(PUSHPULL_SOURCE_DIR) + "/examples/hood.off";
+// hood.off is Z-up with its front edge at y = 0 facing -Y: stood on the stage floor with the front edge
+// towards the reviewer, 0.6 m away, it spans stage z -0.6 .. -1.8 and stage y 0 .. 0.11.
+const std::string kPlacement = " --up 0 0 1 --front 0 -1 0 --handle-radius 0.25 --roi-radius 0.9 --samples 1";
+
+fs::path test_dir() {
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  const fs::path dir = fs::temp_directory_path() / "pushpull_review_xr_tests" / info->name();
+  fs::remove_all(dir);
+  fs::create_directories(dir / "capture");
+  return dir;
+}
+
+// Head 1 m up looking 38 degrees down at the bonnet; right controller 0.5 m up pointing straight down at the
+// bonnet 5 cm behind its front edge (x off the centre line: the ray hits inside a triangle, not on an edge).
+std::string script_start() {
+  return R"({"t":0.0,"path":"/user/head","pose":{"p":[0,1.0,0],"q":[-0.32557,0,0,0.94552]}}
+{"t":0.0,"path":"/user/hand/right/input/aim/pose","pose":{"p":[0.0123,0.5,-0.65],"q":[-0.70710678,0,0,0.70710678]}}
+{"t":0.0,"path":"/user/hand/right/input/trigger/value","value":0.0}
+{"t":0.5,"path":"/user/hand/right/input/aim/pose","pose":{"p":[0.0123,0.5,-0.65],"q":[-0.70710678,0,0,0.70710678]}}
+{"t":0.5,"path":"/user/hand/right/input/trigger/value","value":1.0}
+{"t":1.0,"path":"/user/hand/right/input/aim/pose","pose":{"p":[0.0123,0.5,-0.55],"q":[-0.70710678,0,0,0.70710678]}}
+)";
+}
+
+struct ReviewRun {
+  pushpull::testing::CommandResult result;
+  std::vector<nlohmann::json> events;
+  [[nodiscard]] std::vector<nlohmann::json> of(const std::string& kind) const {
+    std::vector<nlohmann::json> out;
+    for (const auto& e : events)
+      if (e.at("event") == kind) out.push_back(e);
+    return out;
+  }
+};
+
+// `pushpull review` on the simulated runtime with a 256x256 eye, 30 Hz virtual clock, Touch controllers.
+ReviewRun run_review(const fs::path& dir, const std::string& script, const std::string& arguments,
+                     const std::string& extra_env = "") {
+  std::ofstream(dir / "input.jsonl") << script;
+  std::string env = "env XR_RUNTIME_JSON=" + std::string(PUSHPULL_XR_SIM_MANIFEST);
+  const char* lvp = "/usr/share/vulkan/icd.d/lvp_icd.x86_64.json";
+  if (fs::exists(lvp)) env += std::string(" VK_ICD_FILENAMES=") + lvp;
+  env += " PUSHPULL_XR_SIM_INPUT=" + (dir / "input.jsonl").string() + " PUSHPULL_XR_SIM_CAPTURE=" +
+         (dir / "capture").string() +
+         " PUSHPULL_XR_SIM_WIDTH=256 PUSHPULL_XR_SIM_HEIGHT=256 PUSHPULL_XR_SIM_RATE=30"
+         " PUSHPULL_XR_SIM_PROFILE=/interaction_profiles/oculus/touch_controller " +
+         extra_env;
+  ReviewRun run;
+  run.result = run_command(env + " " + PUSHPULL_EXECUTABLE + " review " + kHood + kPlacement + " --events " +
+                           (dir / "events.jsonl").string() + " " + arguments);
+  std::ifstream log(dir / "events.jsonl");
+  for (std::string line; std::getline(log, line);)
+    if (!line.empty()) run.events.push_back(nlohmann::json::parse(line));
+  return run;
+}
+
+std::string number(double v) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.17g", v);
+  return text;
+}
+
+TEST(ReviewXr, DragCommitsWhatDeformComputesForTheSameP0AndD) {
+  const fs::path dir = test_dir();
+  const ReviewRun run = run_review(dir,
+                                   script_start() +
+                                       R"({"t":1.4,"path":"/user/hand/right/input/trigger/value","value":1.0}
+{"t":1.5,"path":"/user/hand/right/input/trigger/value","value":0.0}
+{"t":2.0,"event":"capture"}
+{"t":2.5,"event":"exit"}
+)",
+                                   "--out " + (dir / "review.off").string());
+  ASSERT_EQ(run.result.status, 0) << run.result.output;
+  ASSERT_EQ(run.of("press").size(), 1u) << run.result.output;
+  ASSERT_EQ(run.of("commit").size(), 1u) << run.result.output;
+  const nlohmann::json commit = run.of("commit")[0];
+  const std::vector<double> p0 = commit.at("p0"), d = commit.at("d");
+  // The hand moved 100 mm towards the reviewer (stage +Z) = the bonnet's forward, model -Y.
+  EXPECT_NEAR(d[0], 0.0, 1e-6);
+  EXPECT_NEAR(d[1], -0.1, 1e-6);
+  EXPECT_NEAR(d[2], 0.0, 1e-6);
+  EXPECT_NEAR(p0[1], 0.05, 1e-6);  // 5 cm behind the front edge (model y = 0)
+
+  const std::string deform_out = (dir / "deform.off").string();
+  const auto deform = pushpull::testing::run_pushpull(
+      "deform " + kHood + " --handle-at " + number(p0[0]) + " " + number(p0[1]) + " " + number(p0[2]) +
+      " --handle-radius 0.25 --roi-radius 0.9 --method asan --displacement " + number(d[0]) + " " + number(d[1]) +
+      " " + number(d[2]) + " --out " + deform_out + " --metrics " + (dir / "deform.json").string());
+  ASSERT_EQ(deform.status, 0) << deform.output;
+
+  const auto rest = pushpull::deform::read_mesh(kHood);
+  const auto reviewed = pushpull::deform::read_mesh(dir / "review.off");
+  const auto expected = pushpull::deform::read_mesh(deform_out);
+  ASSERT_EQ(reviewed.V.rows(), expected.V.rows());
+  const double size = (rest.V.colwise().maxCoeff() - rest.V.colwise().minCoeff()).norm();
+  EXPECT_LE((reviewed.V - expected.V).cwiseAbs().maxCoeff(), 1e-9 * size);
+  EXPECT_NEAR((reviewed.V - rest.V).rowwise().norm().maxCoeff(), 0.1, 1e-3);  // it did move
+
+  // Both eyes see the bonnet in the displacement colours: many pixels unlike the background (the top-left
+  // corner), among them the map's red (pulled 100 mm) and blue (still) ends.
+  int images = 0;
+  for (const auto& entry : fs::directory_iterator(dir / "capture")) {
+    const auto image = pushpull::renderer::read_png(entry.path());
+    ++images;
+    const uint8_t* bg = image.pixels.data();
+    size_t model = 0, red = 0, blue = 0;
+    for (size_t i = 0; i < image.pixels.size(); i += 4) {
+      const int r = image.pixels[i], g = image.pixels[i + 1], b = image.pixels[i + 2];
+      if (std::abs(r - bg[0]) + std::abs(g - bg[1]) + std::abs(b - bg[2]) > 30) ++model;
+      if (r > g + 80 && r > b + 80) ++red;
+      if (b > r + 80 && b > g + 40) ++blue;
+    }
+    const size_t pixels = image.pixels.size() / 4;
+    EXPECT_GT(model, pixels / 20) << entry.path();
+    EXPECT_GT(red, 50u) << entry.path();
+    EXPECT_GT(blue, 50u) << entry.path();
+  }
+  EXPECT_EQ(images, 2) << "one capture, both eyes";
+}
+
+TEST(ReviewXr, SessionLostMidDragLeavesTheModelAsBeforeTheDrag) {
+  const fs::path dir = test_dir();
+  const ReviewRun run = run_review(dir, script_start() + R"({"t":0.8,"event":"loss"}
+{"t":3.0,"event":"exit"}
+)",
+                                   "--out " + (dir / "review.off").string());
+  ASSERT_EQ(run.result.status, 0) << run.result.output;
+  EXPECT_EQ(run.of("press").size(), 1u) << run.result.output;
+  EXPECT_EQ(run.of("commit").size(), 0u) << run.result.output;
+  EXPECT_EQ(run.of("cancel").size(), 1u) << run.result.output;
+  EXPECT_EQ(run.of("lost").size(), 1u) << run.result.output;
+  EXPECT_NE(run.result.output.find("session was lost"), std::string::npos) << run.result.output;
+  const auto rest = pushpull::deform::read_mesh(kHood);
+  const auto reviewed = pushpull::deform::read_mesh(dir / "review.off");
+  ASSERT_EQ(reviewed.V.rows(), rest.V.rows());
+  EXPECT_EQ((reviewed.V - rest.V).cwiseAbs().maxCoeff(), 0.0);
+}
+
+TEST(ReviewXr, UndoRestoresTheModelAndRedoReappliesIt) {
+  const fs::path dir = test_dir();
+  const std::string release = R"({"t":1.4,"path":"/user/hand/right/input/trigger/value","value":1.0}
+{"t":1.5,"path":"/user/hand/right/input/trigger/value","value":0.0}
+)";
+  // X (left) = undo at 2.0 s; Y (left) = redo at 2.5 s; undo again at 3.0 s: the model ends as loaded.
+  const ReviewRun run = run_review(dir, script_start() + release + R"({"t":2.0,"path":"/user/hand/left/input/x/click","value":true}
+{"t":2.1,"path":"/user/hand/left/input/x/click","value":false}
+{"t":2.5,"path":"/user/hand/left/input/y/click","value":true}
+{"t":2.6,"path":"/user/hand/left/input/y/click","value":false}
+{"t":3.0,"path":"/user/hand/left/input/x/click","value":true}
+{"t":3.1,"path":"/user/hand/left/input/x/click","value":false}
+{"t":3.5,"event":"exit"}
+)",
+                                   "--out " + (dir / "review.off").string());
+  ASSERT_EQ(run.result.status, 0) << run.result.output;
+  EXPECT_EQ(run.of("commit").size(), 1u) << run.result.output;
+  EXPECT_EQ(run.of("undo").size(), 2u) << run.result.output;
+  EXPECT_EQ(run.of("redo").size(), 1u) << run.result.output;
+  const auto rest = pushpull::deform::read_mesh(kHood);
+  const auto reviewed = pushpull::deform::read_mesh(dir / "review.off");
+  EXPECT_EQ((reviewed.V - rest.V).cwiseAbs().maxCoeff(), 0.0);
+}
+
+TEST(ReviewXr, WithoutARuntimeSaysWhichOneItLookedForAndHowToPointAtOne) {
+  const auto result = run_command("env XR_RUNTIME_JSON=/nonexistent/runtime.json " +
+                                  std::string(PUSHPULL_EXECUTABLE) + " review " + kHood);
+  EXPECT_NE(result.status, 0);
+  EXPECT_NE(result.output.find("pushpull: error: no OpenXR runtime: looked for the runtime in "
+                               "XR_RUNTIME_JSON=/nonexistent/runtime.json"),
+            std::string::npos)
+      << result.output;
+  EXPECT_NE(result.output.find("XR_RUNTIME_JSON=build/xr/sim/pushpull_xr_sim.json"), std::string::npos)
+      << result.output;
+}
+
+}  // namespace
