@@ -189,7 +189,7 @@ TEST(ReviewXr, WithoutARuntimeSaysWhichOneItLookedForAndHowToPointAtOne) {
   const auto result = run_command("env XR_RUNTIME_JSON=/nonexistent/runtime.json " +
                                   std::string(PUSHPULL_EXECUTABLE) + " review " + kHood);
   EXPECT_NE(result.status, 0);
-  EXPECT_NE(result.output.find("pushpull: error: no OpenXR runtime: looked for the runtime in "
+  EXPECT_NE(result.output.find("pushpull: error: no usable OpenXR runtime: looked for the runtime in "
                                "XR_RUNTIME_JSON=/nonexistent/runtime.json"),
             std::string::npos)
       << result.output;

@@ -69,8 +69,8 @@ struct Session::Impl {
       const std::string why = r == XR_ERROR_EXTENSION_NOT_PRESENT
                                   ? "it does not offer XR_KHR_vulkan_enable2"
                                   : "xrCreateInstance failed with " + result_name(XR_NULL_HANDLE, r);
-      throw RuntimeUnavailable("no OpenXR runtime: looked for " + runtime_looked_for() + ", " + why + "; " +
-                                   kPointAtRuntime,
+      throw RuntimeUnavailable("no usable OpenXR runtime: looked for " + runtime_looked_for() + ", " + why +
+                                   " (the loader's and runtime's messages above say more); " + kPointAtRuntime,
                                r);
     }
     XrInstanceProperties properties{XR_TYPE_INSTANCE_PROPERTIES};
