@@ -19,7 +19,9 @@
 // compute pass would avoid the CPU cost but needs the vertex-face adjacency on the GPU; not done.
 //
 // Targets: images owned by someone else (OffscreenTarget, XR swapchain images, a window swapchain).
-// The renderer owns the depth and multisample buffers and recreates them when the extent changes.
+// The renderer owns the depth and multisample buffers: one set per target size and format in use (up to
+// four; eyes and a mirror window of another size alternate without a GPU wait), the least recently used
+// dropped (after vkDeviceWaitIdle) when a fifth size appears.
 //
 // Ownership: borrows the Context (must outlive the Renderer). Thread-safety: not thread-safe; every
 // call must come from the thread that constructed it (asserted).
