@@ -2,6 +2,7 @@
 
 #include <glm/vec3.hpp>
 
+#include <algorithm>
 #include <utility>
 
 namespace pushpull::app {
@@ -106,6 +107,13 @@ std::vector<InteractionEvent> ReviewInteraction::update(const std::array<HandSam
     }
   }
   return events;
+}
+
+void ReviewInteraction::scale_sizes(double handle_factor, double region_factor) {
+  if (dragging() || !(handle_factor > 0.0) || !(region_factor > 0.0)) return;
+  const double lo = 1e-3 / options_.scale, hi = 10.0 / options_.scale;
+  options_.handle_radius = std::clamp(options_.handle_radius * handle_factor, lo, hi);
+  options_.roi_radius = std::clamp(options_.roi_radius * region_factor, lo, hi);
 }
 
 std::optional<InteractionEvent> ReviewInteraction::cancel() {

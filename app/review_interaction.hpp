@@ -57,6 +57,11 @@ class ReviewInteraction {
 
   // One frame: both hands. Returns what happened (press, commit, cancel), in order.
   std::vector<InteractionEvent> update(const std::array<HandSample, 2>& hands);
+  // Thumbstick between drags: scales the handle radius and the region radius by these factors (> 0), within
+  // [1 mm, 10 m] at life size. Ignored while dragging (a drag keeps its setup).
+  void scale_sizes(double handle_factor, double region_factor);
+  [[nodiscard]] double handle_radius() const { return options_.handle_radius; }
+  [[nodiscard]] double roi_radius() const { return options_.roi_radius; }
   // Drops a drag in progress (session lost, focus lost): the service shows the committed state again.
   std::optional<InteractionEvent> cancel();
   // The committed shape changed (newest snapshot's rest): refits the BVH when its revision is new.

@@ -18,6 +18,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -186,6 +187,7 @@ void run_review(const ReviewCommandOptions& o) {
     ReviewInteraction interaction(service, *rest, placement, interaction_options);
     xr::Input input(xr.instance(), xr.handle(), xr.stage_space());
     FrameStats stats;
+    bool sizes_changed = false;
 
     auto log_event = [&](const InteractionEvent& e) {
       static const char* names[] = {"press", "commit", "cancel"};
@@ -226,6 +228,24 @@ void run_review(const ReviewCommandOptions& o) {
             log.write({{"event", "redo"}});
           }
           if (in.menu_pressed) scene.set_colour(next_colour(scene.colour()));
+        }
+        // Right thumbstick between drags: up/down grows/shrinks the handle, right/left the region (x2 per
+        // second at full deflection; a dead zone keeps a resting thumb from drifting them).
+        {
+          const XrVector2f stick = input.hand(xr::Hand::Right).thumbstick;
+          const double dt = double(frame.predicted_display_period) * 1e-9;
+          auto factor = [&](float v) { return std::abs(v) < 0.2f ? 1.0 : std::exp2(double(v) * dt); };
+          const double before = interaction.handle_radius() + interaction.roi_radius();
+          interaction.scale_sizes(factor(stick.y), factor(stick.x));
+          sizes_changed = sizes_changed || interaction.handle_radius() + interaction.roi_radius() != before;
+          if (sizes_changed && std::abs(stick.x) < 0.2f && std::abs(stick.y) < 0.2f) {
+            sizes_changed = false;
+            log.write({{"event", "sizes"},
+                       {"handle_radius", interaction.handle_radius()},
+                       {"roi_radius", interaction.roi_radius()}});
+            std::printf("pushpull review: handle radius %.0f mm, region %.0f mm\n",
+                        life.to_mm(interaction.handle_radius()), life.to_mm(interaction.roi_radius()));
+          }
         }
         const std::shared_ptr<const deform::Snapshot> snapshot = service.latest();
         const bool solving = interaction.dragging() || !snapshot->final;

@@ -185,6 +185,23 @@ TEST(ReviewXr, UndoRestoresTheModelAndRedoReappliesIt) {
   EXPECT_EQ((reviewed.V - rest.V).cwiseAbs().maxCoeff(), 0.0);
 }
 
+TEST(ReviewXr, ThumbstickBetweenDragsScalesHandleAndRegion) {
+  const fs::path dir = test_dir();
+  // Full up for 1 s (handle x2), then full left for 1 s (region / 2), then centred.
+  const ReviewRun run = run_review(dir, R"({"t":0.0,"path":"/user/hand/right/input/thumbstick","value":[0.0,0.0]}
+{"t":0.5,"path":"/user/hand/right/input/thumbstick","value":[0.0,1.0]}
+{"t":1.5,"path":"/user/hand/right/input/thumbstick","value":[-1.0,0.0]}
+{"t":2.5,"path":"/user/hand/right/input/thumbstick","value":[0.0,0.0]}
+{"t":3.0,"event":"exit"}
+)",
+                                   "");
+  ASSERT_EQ(run.result.status, 0) << run.result.output;
+  const auto sizes = run.of("sizes");
+  ASSERT_EQ(sizes.size(), 1u) << run.result.output;
+  EXPECT_NEAR(double(sizes[0].at("handle_radius")), 0.5, 0.05);  // 0.25 m doubled
+  EXPECT_NEAR(double(sizes[0].at("roi_radius")), 0.45, 0.05);    // 0.9 m halved
+}
+
 TEST(ReviewXr, WithoutARuntimeSaysWhichOneItLookedForAndHowToPointAtOne) {
   const auto result = run_command("env XR_RUNTIME_JSON=/nonexistent/runtime.json " +
                                   std::string(PUSHPULL_EXECUTABLE) + " review " + kHood);
