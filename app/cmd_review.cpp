@@ -43,6 +43,10 @@ void add_review_command(CLI::App& root) {
   cmd->add_option("--events", o->events,
                   "Write the session's events (press, commit, cancel, undo, redo, lost) as JSON Lines, with p0 and "
                   "d in model units");
+  cmd->add_flag("--mirror", o->mirror,
+                "Open the supervisor's mirror window (keys: V view headset eye / smoothed first person, C colour "
+                "map, M method of the next drag, Esc end the session; the title shows method, |d|, iterations)");
+  cmd->add_option("--mirror-size", o->mirror_size, "Mirror window size W H")->expected(2)->check(CLI::Range(16, 16384));
   cmd->add_flag("--benchmark", o->benchmark, "Print the frame time, idle versus with the solver running");
   add_life_size_options(*cmd, o->life_size);
   cmd->callback([o] { run_review(*o); });

@@ -116,6 +116,10 @@ void ReviewInteraction::scale_sizes(double handle_factor, double region_factor) 
   options_.roi_radius = std::clamp(options_.roi_radius * region_factor, lo, hi);
 }
 
+void ReviewInteraction::set_method(deform::Method method) {
+  if (!dragging()) options_.solver.method = method;
+}
+
 std::optional<InteractionEvent> ReviewInteraction::cancel() {
   if (drag_hand_ < 0) return std::nullopt;
   InteractionEvent out;

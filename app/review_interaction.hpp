@@ -60,6 +60,9 @@ class ReviewInteraction {
   // Thumbstick between drags: scales the handle radius and the region radius by these factors (> 0), within
   // [1 mm, 10 m] at life size. Ignored while dragging (a drag keeps its setup).
   void scale_sizes(double handle_factor, double region_factor);
+  // The method of the next drag (a drag keeps its method). Ignored while dragging.
+  void set_method(deform::Method method);
+  [[nodiscard]] deform::Method method() const { return options_.solver.method; }
   [[nodiscard]] double handle_radius() const { return options_.handle_radius; }
   [[nodiscard]] double roi_radius() const { return options_.roi_radius; }
   // Drops a drag in progress (session lost, focus lost): the service shows the committed state again.

@@ -1,6 +1,7 @@
 #include "review_loop.hpp"
 
 #include "commands.hpp"
+#include "mirror_view.hpp"
 #include "review_interaction.hpp"
 #include "review_scene.hpp"
 #include "stage_placement.hpp"
@@ -10,6 +11,7 @@
 #include "pushpull/deform/mesh_io.hpp"
 #include "pushpull/deform/service.hpp"
 #include "pushpull/renderer/context.hpp"
+#include "pushpull/renderer/mirror_window.hpp"
 #include "pushpull/renderer/renderer.hpp"
 #include "pushpull/xr/input.hpp"
 #include "pushpull/xr/session.hpp"
@@ -148,6 +150,14 @@ void run_review(const ReviewCommandOptions& o) {
     session_options.eye_width = uint32_t(o.eye_size[0]);
     session_options.eye_height = uint32_t(o.eye_size[1]);
   }
+  if (o.mirror) {
+    try {
+      session_options.vulkan_instance_extensions = renderer::MirrorWindow::required_instance_extensions();
+    } catch (const std::exception& e) {
+      throw CommandError(std::string("--mirror: ") + e.what());
+    }
+    session_options.vulkan_device_extensions.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
+  }
   std::optional<xr::Session> session;
   try {
     session.emplace(session_options);
@@ -180,7 +190,16 @@ void run_review(const ReviewCommandOptions& o) {
         {vk.instance, vk.physical_device, vk.device, vk.queue_family_index, vk.queue});
     renderer::RendererOptions renderer_options;
     renderer_options.samples = VkSampleCountFlagBits(o.samples);
+    // render() calls per loop frame: eyes, and the mirror; two loop frames in flight either way.
+    renderer_options.frames_in_flight = o.mirror ? 4 : 2;
     renderer::Renderer renderer(context, renderer_options);
+    std::optional<renderer::MirrorWindow> mirror;
+    if (o.mirror) mirror.emplace(context, uint32_t(o.mirror_size[0]), uint32_t(o.mirror_size[1]), "pushpull review");
+    MirrorView mirror_view;
+    std::optional<std::array<xr::EyeView, 2>> last_eyes;
+    std::string mirror_title;
+    size_t mirror_frames = 0;
+    auto last_mirror = Clock::now();
     ReviewScene scene(renderer, model, placement, colour, life.scale());
     EyeTargets eyes(vk.device, xr.eye(0), xr.eye(1));
     deform::Service service(rest);
@@ -260,6 +279,42 @@ void run_review(const ReviewCommandOptions& o) {
           rendered = true;
         }
         xr.end_frame(frame, rendered);
+        if (frame.should_render) last_eyes = frame.eyes;
+        if (mirror) {
+          mirror->poll_events();
+          for (int key : mirror->take_key_presses()) {
+            if (key == 'C') scene.set_colour(next_colour(scene.colour()));
+            if (key == 'V')
+              mirror_view.set_mode(mirror_view.mode() == MirrorMode::HeadsetEye ? MirrorMode::SmoothedFirstPerson
+                                                                                 : MirrorMode::HeadsetEye);
+            if (key == 'M') {
+              const auto& all = deform::kAllMethods;
+              const auto it = std::find(all.begin(), all.end(), interaction.method());
+              interaction.set_method(it + 1 == all.end() || it == all.end() ? all.front() : *(it + 1));
+            }
+            if (key == 256 /* GLFW_KEY_ESCAPE */) xr.request_exit();
+          }
+          if (mirror->should_close()) xr.request_exit();
+          const auto now = Clock::now();
+          const double dt = std::chrono::duration<double>(now - last_mirror).count();
+          last_mirror = now;
+          if (last_eyes) {
+            if (auto target = mirror->acquire()) {
+              const VkExtent2D e = target->targets.extent;
+              const renderer::View view = mirror_view.update(*last_eyes, dt, float(e.width) / float(e.height));
+              renderer.render(std::span(&view, 1), scene.draws(), scene.settings(), target->targets, target->sync);
+              mirror->present(*target);
+              ++mirror_frames;
+            }
+          }
+          char title[256];
+          std::snprintf(title, sizeof title, "pushpull review | %s%s | |d| %.1f mm | %d it %s | %s | %s",
+                        std::string(deform::method_name(interaction.method())).c_str(),
+                        interaction.dragging() ? " (dragging)" : "", life.to_mm(snapshot->d.norm()),
+                        snapshot->iteration, snapshot->converged ? "converged" : "not converged",
+                        colour_name(scene.colour()), mirror_mode_name(mirror_view.mode()));
+          if (mirror_title != title) mirror->set_title(mirror_title = title);
+        }
         const double ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
         (solving ? stats.solving_ms : stats.idle_ms).push_back(ms);
       } catch (const xr::XrError& e) {
@@ -287,6 +342,7 @@ void run_review(const ReviewCommandOptions& o) {
       std::printf("pushpull review: wrote %s (%zu committed push/pull(s))\n", o.out.c_str(),
                   service.history_position());
     }
+    if (mirror) std::printf("pushpull review: mirror window presented %zu frames\n", mirror_frames);
     if (o.benchmark) stats.print();
   }
 }

@@ -29,6 +29,8 @@ struct ReviewCommandOptions {
   std::string out;
   std::string events;
   bool benchmark = false;
+  bool mirror = false;  // the supervisor's GLFW window
+  std::vector<int> mirror_size{960, 540};
   LifeSizeOptions life_size;
 };
 

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -200,6 +201,27 @@ TEST(ReviewXr, ThumbstickBetweenDragsScalesHandleAndRegion) {
   ASSERT_EQ(sizes.size(), 1u) << run.result.output;
   EXPECT_NEAR(double(sizes[0].at("handle_radius")), 0.5, 0.05);  // 0.25 m doubled
   EXPECT_NEAR(double(sizes[0].at("roi_radius")), 0.45, 0.05);    // 0.9 m halved
+}
+
+// Runs under xvfb-run (ctest: review_xr_mirror_xvfb); skipped where there is no display.
+TEST(ReviewXrMirror, MirrorWindowPresentsFramesAndLeavesTheCommitUnchanged) {
+  if (std::getenv("DISPLAY") == nullptr) GTEST_SKIP() << "no DISPLAY (ctest runs this under xvfb-run)";
+  const fs::path dir = test_dir();
+  const std::string script = script_start() + R"({"t":1.4,"path":"/user/hand/right/input/trigger/value","value":1.0}
+{"t":1.5,"path":"/user/hand/right/input/trigger/value","value":0.0}
+{"t":2.5,"event":"exit"}
+)";
+  const ReviewRun plain = run_review(dir, script, "--out " + (dir / "plain.off").string());
+  ASSERT_EQ(plain.result.status, 0) << plain.result.output;
+  const ReviewRun mirrored =
+      run_review(dir, script, "--mirror --mirror-size 320 240 --out " + (dir / "mirrored.off").string());
+  ASSERT_EQ(mirrored.result.status, 0) << mirrored.result.output;
+  const auto at = mirrored.result.output.find("mirror window presented ");
+  ASSERT_NE(at, std::string::npos) << mirrored.result.output;
+  EXPECT_GT(std::stoi(mirrored.result.output.substr(at + 24)), 30) << mirrored.result.output;
+  const auto a = pushpull::deform::read_mesh(dir / "plain.off");
+  const auto b = pushpull::deform::read_mesh(dir / "mirrored.off");
+  EXPECT_EQ((a.V - b.V).cwiseAbs().maxCoeff(), 0.0);
 }
 
 TEST(ReviewXr, WithoutARuntimeSaysWhichOneItLookedForAndHowToPointAtOne) {

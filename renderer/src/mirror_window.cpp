@@ -7,6 +7,7 @@
 #include <GLFW/glfw3.h>
 
 #include <algorithm>
+#include <utility>
 
 namespace pushpull::renderer {
 
@@ -35,6 +36,7 @@ struct MirrorWindow::Impl {
   std::vector<UniqueSemaphore> rendered;  // one per swapchain image
   uint32_t next_acquire = 0;
   bool needs_recreate = false;
+  std::vector<int> key_presses;
 
   explicit Impl(const Context& c) : context(c) {}
 
@@ -142,6 +144,11 @@ MirrorWindow::MirrorWindow(const Context& context, uint32_t width, uint32_t heig
   glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
   impl_->window = glfwCreateWindow(int(width), int(height), title.c_str(), nullptr, nullptr);
   if (impl_->window == nullptr) throw VulkanError(VK_ERROR_INITIALIZATION_FAILED, "glfwCreateWindow failed");
+  glfwSetWindowUserPointer(impl_->window, impl_.get());
+  glfwSetKeyCallback(impl_->window, [](GLFWwindow* window, int key, int, int action, int) {
+    if (action == GLFW_PRESS)
+      static_cast<Impl*>(glfwGetWindowUserPointer(window))->key_presses.push_back(key);
+  });
   PP_VK_CHECK(glfwCreateWindowSurface(context.instance(), impl_->window, nullptr, &impl_->surface));
   impl_->create_swapchain();
 }
@@ -208,6 +215,12 @@ bool MirrorWindow::should_close() const {
 }
 void MirrorWindow::poll_events() {
   glfwPollEvents();
+}
+std::vector<int> MirrorWindow::take_key_presses() {
+  return std::exchange(impl_->key_presses, {});
+}
+void MirrorWindow::set_title(const std::string& title) {
+  glfwSetWindowTitle(impl_->window, title.c_str());
 }
 VkExtent2D MirrorWindow::extent() const {
   return impl_->extent;

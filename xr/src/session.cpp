@@ -112,6 +112,10 @@ struct Session::Impl {
     VkInstanceCreateInfo vci{};
     vci.sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO;
     vci.pApplicationInfo = &app;
+    std::vector<const char*> instance_extensions;
+    for (const auto& e : options.vulkan_instance_extensions) instance_extensions.push_back(e.c_str());
+    vci.enabledExtensionCount = uint32_t(instance_extensions.size());
+    vci.ppEnabledExtensionNames = instance_extensions.data();
     XrVulkanInstanceCreateInfoKHR xci{XR_TYPE_VULKAN_INSTANCE_CREATE_INFO_KHR};
     xci.systemId = system;
     xci.pfnGetInstanceProcAddr = &vkGetInstanceProcAddr;
@@ -152,6 +156,10 @@ struct Session::Impl {
     dci.pNext = &features13;
     dci.queueCreateInfoCount = 1;
     dci.pQueueCreateInfos = &qci;
+    std::vector<const char*> device_extensions;
+    for (const auto& e : options.vulkan_device_extensions) device_extensions.push_back(e.c_str());
+    dci.enabledExtensionCount = uint32_t(device_extensions.size());
+    dci.ppEnabledExtensionNames = device_extensions.data();
     XrVulkanDeviceCreateInfoKHR xdci{XR_TYPE_VULKAN_DEVICE_CREATE_INFO_KHR};
     xdci.systemId = system;
     xdci.pfnGetInstanceProcAddr = &vkGetInstanceProcAddr;

@@ -45,6 +45,10 @@ class MirrorWindow {
 
   [[nodiscard]] bool should_close() const;
   void poll_events();
+  // Keys pressed since the last call, in order, as GLFW key codes (letters and digits are their ASCII
+  // upper-case characters, e.g. 'C'; GLFW_KEY_ESCAPE = 256). Filled by poll_events().
+  std::vector<int> take_key_presses();
+  void set_title(const std::string& title);
   [[nodiscard]] VkExtent2D extent() const;
 
  private:

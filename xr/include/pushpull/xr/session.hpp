@@ -44,6 +44,10 @@ struct SessionOptions {
   // Called before the runtime creates the Vulkan device, on the Vulkan 1.3 feature struct chained into
   // VkDeviceCreateInfo (the renderer's Context::require_features).
   std::function<void(VkPhysicalDeviceVulkan13Features&)> require_vulkan13_features;
+  // Vulkan extensions beyond the runtime's own (e.g. a mirror window's surface extensions and
+  // VK_KHR_swapchain): added to the create infos handed to xrCreateVulkanInstanceKHR / xrCreateVulkanDeviceKHR.
+  std::vector<std::string> vulkan_instance_extensions;
+  std::vector<std::string> vulkan_device_extensions;
   // Per-eye image size; 0 = the runtime's recommended size.
   uint32_t eye_width = 0, eye_height = 0;
   // Extensions the session must enable beyond XR_KHR_vulkan_enable2 (e.g. for tests); unknown ones fail.
