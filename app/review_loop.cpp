@@ -5,6 +5,7 @@
 #include "review_interaction.hpp"
 #include "review_scene.hpp"
 #include "stage_placement.hpp"
+#include "vulkan_validation.hpp"
 
 #include "pushpull/assets/model.hpp"
 #include "pushpull/assets/write.hpp"
@@ -158,6 +159,10 @@ void run_review(const ReviewCommandOptions& o) {
     }
     session_options.vulkan_device_extensions.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
   }
+  if (o.validation) {
+    session_options.vulkan_layers = validation_layers();
+    for (const auto& e : validation_extensions()) session_options.vulkan_instance_extensions.push_back(e);
+  }
   std::optional<xr::Session> session;
   try {
     session.emplace(session_options);
@@ -184,6 +189,8 @@ void run_review(const ReviewCommandOptions& o) {
   }
 
   bool lost = false;
+  std::optional<VulkanValidation> validation;
+  if (o.validation) validation.emplace(xr.vulkan().instance);
   {
     const xr::VulkanDevice& vk = xr.vulkan();
     renderer::Context context = renderer::Context::wrap(
@@ -342,6 +349,9 @@ void run_review(const ReviewCommandOptions& o) {
       std::printf("pushpull review: wrote %s (%zu committed push/pull(s))\n", o.out.c_str(),
                   service.history_position());
     }
+    if (validation && validation->message_count() > 0)
+      throw CommandError("Vulkan validation reported " + std::to_string(validation->message_count()) +
+                         " message(s) (printed above)");
     if (mirror) std::printf("pushpull review: mirror window presented %zu frames\n", mirror_frames);
     if (o.benchmark) stats.print();
   }

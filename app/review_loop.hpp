@@ -29,6 +29,7 @@ struct ReviewCommandOptions {
   std::string out;
   std::string events;
   bool benchmark = false;
+  bool validation = false;  // Vulkan validation layer on the runtime's instance; any message fails the run
   bool mirror = false;  // the supervisor's GLFW window
   std::vector<int> mirror_size{960, 540};
   LifeSizeOptions life_size;

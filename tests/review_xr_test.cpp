@@ -95,9 +95,23 @@ TEST(ReviewXr, DragCommitsWhatDeformComputesForTheSameP0AndD) {
 {"t":2.0,"event":"capture"}
 {"t":2.5,"event":"exit"}
 )",
-                                   "--out " + (dir / "review.off").string());
+                                   "--out " + (dir / "review.off").string(),
+                                   "PUSHPULL_XR_SIM_HAPTICS=" + (dir / "haptics.jsonl").string());
   ASSERT_EQ(run.result.status, 0) << run.result.output;
   ASSERT_EQ(run.of("press").size(), 1u) << run.result.output;
+  // A haptic pulse on the dragging (right) hand at the press (0.5 s) and at the release (1.5 s).
+  {
+    std::ifstream haptics(dir / "haptics.jsonl");
+    std::vector<nlohmann::json> pulses;
+    for (std::string line; std::getline(haptics, line);)
+      if (!line.empty()) pulses.push_back(nlohmann::json::parse(line));
+    ASSERT_EQ(pulses.size(), 2u);
+    for (size_t i = 0; i < 2; ++i) {
+      EXPECT_EQ(pulses[i].at("path"), "/user/hand/right/output/haptic");
+      EXPECT_NEAR(double(pulses[i].at("t")), i == 0 ? 0.5 : 1.5, 0.05);
+      EXPECT_GT(double(pulses[i].at("amplitude")), 0.0);
+    }
+  }
   ASSERT_EQ(run.of("commit").size(), 1u) << run.result.output;
   const nlohmann::json commit = run.of("commit")[0];
   const std::vector<double> p0 = commit.at("p0"), d = commit.at("d");
@@ -160,6 +174,26 @@ TEST(ReviewXr, SessionLostMidDragLeavesTheModelAsBeforeTheDrag) {
   const auto reviewed = pushpull::deform::read_mesh(dir / "review.off");
   ASSERT_EQ(reviewed.V.rows(), rest.V.rows());
   EXPECT_EQ((reviewed.V - rest.V).cwiseAbs().maxCoeff(), 0.0);
+}
+
+// The OpenXR core validation layer (between the app and the runtime) and VK_LAYER_KHRONOS_validation (on the
+// runtime's instance, --validation fails the run on any message) see a whole push/pull without complaint.
+TEST(ReviewXr, ValidationLayersReportNothingForAPushPull) {
+  const fs::path dir = test_dir();
+  const ReviewRun run = run_review(dir,
+                                   script_start() +
+                                       R"({"t":1.4,"path":"/user/hand/right/input/trigger/value","value":1.0}
+{"t":1.5,"path":"/user/hand/right/input/trigger/value","value":0.0}
+{"t":2.0,"event":"exit"}
+)",
+                                   "--validation", "XR_ENABLE_API_LAYERS=XR_APILAYER_LUNARG_core_validation");
+  ASSERT_EQ(run.result.status, 0) << run.result.output;
+  EXPECT_EQ(run.of("commit").size(), 1u) << run.result.output;
+  EXPECT_NE(run.result.output.find("Core Validation"), std::string::npos) << "the core validation layer did not load";
+  std::istringstream lines(run.result.output);
+  for (std::string line; std::getline(lines, line);)
+    for (const char* bad : {"VUID", "Error", "ERROR", "Warning", "WARNING", "vulkan validation"})
+      EXPECT_EQ(line.find(bad), std::string::npos) << line;
 }
 
 TEST(ReviewXr, UndoRestoresTheModelAndRedoReappliesIt) {

@@ -116,6 +116,10 @@ struct Session::Impl {
     for (const auto& e : options.vulkan_instance_extensions) instance_extensions.push_back(e.c_str());
     vci.enabledExtensionCount = uint32_t(instance_extensions.size());
     vci.ppEnabledExtensionNames = instance_extensions.data();
+    std::vector<const char*> layers;
+    for (const auto& l : options.vulkan_layers) layers.push_back(l.c_str());
+    vci.enabledLayerCount = uint32_t(layers.size());
+    vci.ppEnabledLayerNames = layers.data();
     XrVulkanInstanceCreateInfoKHR xci{XR_TYPE_VULKAN_INSTANCE_CREATE_INFO_KHR};
     xci.systemId = system;
     xci.pfnGetInstanceProcAddr = &vkGetInstanceProcAddr;

@@ -48,6 +48,7 @@ struct SessionOptions {
   // VK_KHR_swapchain): added to the create infos handed to xrCreateVulkanInstanceKHR / xrCreateVulkanDeviceKHR.
   std::vector<std::string> vulkan_instance_extensions;
   std::vector<std::string> vulkan_device_extensions;
+  std::vector<std::string> vulkan_layers;  // instance layers, e.g. VK_LAYER_KHRONOS_validation
   // Per-eye image size; 0 = the runtime's recommended size.
   uint32_t eye_width = 0, eye_height = 0;
   // Extensions the session must enable beyond XR_KHR_vulkan_enable2 (e.g. for tests); unknown ones fail.
