@@ -25,6 +25,7 @@ ReviewInteraction::ReviewInteraction(deform::Service& service, const deform::Mes
       placement_(std::move(placement)),
       options_(std::move(options)),
       committed_V_(rest.V),
+      F_(rest.F),
       bvh_(rest.V, rest.F),
       gestures_{xr::PushPullGesture(gesture_options(options_.scale)),
                 xr::PushPullGesture(gesture_options(options_.scale))} {}
@@ -118,6 +119,50 @@ void ReviewInteraction::scale_sizes(double handle_factor, double region_factor) 
 
 void ReviewInteraction::set_method(deform::Method method) {
   if (!dragging()) options_.solver.method = method;
+}
+
+std::optional<InteractionEvent> ReviewInteraction::begin_drag(int hand, const deform::TriangleBvh::Hit& hit) {
+  if (dragging()) return std::nullopt;
+  drag_hand_ = hand;
+  ++drag_id_;
+  submitted_ = false;
+  last_d_.setZero();
+  p0_ = {hit.face, hit.point};
+  InteractionEvent out;
+  out.kind = InteractionEvent::Kind::Pressed;
+  out.hand = hand;
+  out.face = p0_.face;
+  out.p0 = p0_.point;
+  return out;
+}
+
+void ReviewInteraction::drag(const Eigen::Vector3d& d) {
+  if (dragging()) submit(d);
+}
+
+std::optional<InteractionEvent> ReviewInteraction::end_drag(bool commit) {
+  if (!dragging()) return std::nullopt;
+  InteractionEvent out;
+  out.hand = drag_hand_;
+  out.face = p0_.face;
+  out.p0 = p0_.point;
+  out.d = last_d_;
+  if (commit && submitted_ && last_d_.norm() * options_.scale >= 1e-4) {
+    out.kind = InteractionEvent::Kind::Committed;
+    out.request = service_.commit();
+  } else {
+    out.kind = InteractionEvent::Kind::Cancelled;
+    service_.cancel();
+  }
+  drag_hand_ = -1;
+  return out;
+}
+
+Eigen::Vector3d ReviewInteraction::face_normal(int face) const {
+  const auto& F = F_;
+  const Eigen::Vector3d a = committed_V_.row(F(face, 0)), b = committed_V_.row(F(face, 1)),
+                        c = committed_V_.row(F(face, 2));
+  return (b - a).cross(c - a).normalized();
 }
 
 std::optional<InteractionEvent> ReviewInteraction::cancel() {

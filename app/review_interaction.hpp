@@ -65,6 +65,14 @@ class ReviewInteraction {
   [[nodiscard]] deform::Method method() const { return options_.solver.method; }
   [[nodiscard]] double handle_radius() const { return options_.handle_radius; }
   [[nodiscard]] double roi_radius() const { return options_.roi_radius; }
+  // Direct drag control (desktop mode: the mouse instead of a gesture). begin_drag grabs the surface at `hit`
+  // (model space, from hit()); drag submits d (model space) when it changed; end_drag commits (true) or
+  // cancels (false). begin_drag is refused (nullopt) while a drag runs; drag/end_drag without one are no-ops.
+  std::optional<InteractionEvent> begin_drag(int hand, const deform::TriangleBvh::Hit& hit);
+  void drag(const Eigen::Vector3d& d);
+  std::optional<InteractionEvent> end_drag(bool commit);
+  // The committed shape's unit face normal (model space) of a face from hit().
+  [[nodiscard]] Eigen::Vector3d face_normal(int face) const;
   // Drops a drag in progress (session lost, focus lost): the service shows the committed state again.
   std::optional<InteractionEvent> cancel();
   // The committed shape changed (newest snapshot's rest): refits the BVH when its revision is new.
@@ -86,6 +94,7 @@ class ReviewInteraction {
   StagePlacement placement_;
   InteractionOptions options_;
   Eigen::MatrixXd committed_V_;
+  Eigen::MatrixXi F_;
   deform::TriangleBvh bvh_;
   std::uint64_t bvh_revision_ = 0;
   std::array<xr::PushPullGesture, 2> gestures_;

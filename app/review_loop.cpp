@@ -3,13 +3,12 @@
 #include "commands.hpp"
 #include "mirror_view.hpp"
 #include "review_interaction.hpp"
+#include "review_setup.hpp"
 #include "review_scene.hpp"
 #include "stage_placement.hpp"
 #include "vulkan_validation.hpp"
 
 #include "pushpull/assets/model.hpp"
-#include "pushpull/assets/write.hpp"
-#include "pushpull/deform/mesh_io.hpp"
 #include "pushpull/deform/service.hpp"
 #include "pushpull/renderer/context.hpp"
 #include "pushpull/renderer/mirror_window.hpp"
@@ -23,19 +22,13 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <numeric>
 #include <thread>
 
 namespace pushpull::app {
 namespace {
 
-namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
-
-Eigen::Vector3d vec3(const std::vector<double>& v) { return {v.at(0), v.at(1), v.at(2)}; }
-nlohmann::json to_json(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 
 // The hand's aim ray in stage space (the pose's -Z axis).
 HandSample hand_sample(const xr::HandInput& in) {
@@ -71,77 +64,16 @@ struct FrameStats {
   }
 };
 
-class EventLog {
- public:
-  explicit EventLog(const std::string& path) {
-    if (path.empty()) return;
-    file_.open(path);
-    if (!file_) throw CommandError(path + ": cannot write the event log");
-  }
-  void write(const nlohmann::json& line) {
-    if (file_.is_open()) file_ << line.dump() << '\n' << std::flush;
-  }
-
- private:
-  std::ofstream file_;
-};
-
-void write_model(const std::string& path, const assets::Model& model, const Eigen::MatrixXd& V) {
-  std::string extension = fs::path(path).extension().string();
-  for (char& c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
-  try {
-    if (extension == ".glb") {
-      for (const std::string& w : assets::write_glb(model, V, path)) std::printf("  warning: %s\n", w.c_str());
-    } else {
-      deform::write_mesh(path, deform::Mesh{V, model.deform_mesh.F});
-    }
-  } catch (const std::exception& e) {
-    throw CommandError(path + ": " + e.what());
-  }
-}
-
 }  // namespace
 
 void run_review(const ReviewCommandOptions& o) {
-  if (!fs::exists(o.model)) throw CommandError(o.model + ": model file does not exist");
-  if (!o.out.empty()) {
-    std::string extension = fs::path(o.out).extension().string();
-    if (!deform::mesh_format_from_path(o.out) && extension != ".glb")
-      throw CommandError(o.out + ": unsupported output format (expected .glb, .off, .obj or .ply)");
-  }
-  assets::Model model;
-  try {
-    model = assets::load_model(o.model);
-  } catch (const std::exception& e) {
-    throw CommandError(e.what());
-  }
-  const LifeSize life(o.life_size, model.bounds, o.model);
-  auto rest = std::make_shared<const deform::Mesh>(model.deform_mesh);
-  PlacementOptions placement_options;
-  placement_options.up_model = vec3(o.up);
-  placement_options.front_model = vec3(o.front);
-  placement_options.scale = life.scale();
-  placement_options.distance_m = o.distance_m;
-  StagePlacement placement;
-  try {
-    placement = place_on_stage(rest->V, placement_options);
-  } catch (const std::invalid_argument& e) {
-    throw CommandError(std::string("--up/--front: ") + e.what());
-  }
-
-  InteractionOptions interaction_options;
-  interaction_options.handle_radius = life.to_file_units(o.handle_radius_m);
-  interaction_options.roi_radius = life.to_file_units(o.roi_radius_m);
-  interaction_options.scale = life.scale();
-  try {
-    interaction_options.solver.method = deform::parse_method(o.method);
-  } catch (const std::invalid_argument& e) {
-    throw CommandError(std::string("--method: ") + e.what());
-  }
-  interaction_options.solver.mu = o.mu;
-  const ReviewColour colour = o.colour == "material"       ? ReviewColour::Material
-                              : o.colour == "curvature-sign" ? ReviewColour::CurvatureSign
-                                                             : ReviewColour::Displacement;
+  const ReviewSetup setup = prepare_review(o);
+  const LifeSize& life = setup.life;
+  const assets::Model& model = setup.model;
+  const std::shared_ptr<const deform::Mesh>& rest = setup.rest;
+  const StagePlacement& placement = setup.placement;
+  const InteractionOptions& interaction_options = setup.interaction;
+  const ReviewColour colour = setup.colour;
 
   xr::SessionOptions session_options;
   session_options.require_vulkan13_features = [](VkPhysicalDeviceVulkan13Features& f) {
@@ -175,18 +107,7 @@ void run_review(const ReviewCommandOptions& o) {
               xr.stage_is_local() ? "LOCAL (no STAGE)" : "STAGE");
 
   EventLog log(o.events);
-  {
-    nlohmann::json header{{"event", "start"},         {"model", o.model},
-                          {"scale", life.scale()},     {"method", o.method},
-                          {"mu", o.mu},                {"handle_radius", interaction_options.handle_radius},
-                          {"roi_radius", interaction_options.roi_radius},
-                          {"runtime", xr.runtime_name()}};
-    std::vector<double> T;
-    for (int r = 0; r < 4; ++r)
-      for (int c = 0; c < 4; ++c) T.push_back(placement.T_stage_model(r, c));
-    header["T_stage_model"] = T;  // row-major 4x4
-    log.write(header);
-  }
+  log.write_start(o, setup, xr.runtime_name());
 
   bool lost = false;
   std::optional<VulkanValidation> validation;
@@ -215,15 +136,7 @@ void run_review(const ReviewCommandOptions& o) {
     FrameStats stats;
     bool sizes_changed = false;
 
-    auto log_event = [&](const InteractionEvent& e) {
-      static const char* names[] = {"press", "commit", "cancel"};
-      nlohmann::json line{{"event", names[int(e.kind)]}, {"hand", e.hand == 0 ? "left" : "right"},
-                          {"face", e.face}, {"p0", to_json(e.p0)}, {"d", to_json(e.d)}};
-      if (e.kind == InteractionEvent::Kind::Committed) line["request"] = e.request;
-      log.write(line);
-      std::printf("pushpull review: %s at p0 = (%.4f, %.4f, %.4f), |d| = %.1f mm\n", names[int(e.kind)],
-                  e.p0.x(), e.p0.y(), e.p0.z(), life.to_mm(e.d.norm()));
-    };
+    auto log_event = [&](const InteractionEvent& e) { log.write_interaction(e, life); };
 
     while (!xr.exit_requested()) {
       try {
@@ -345,7 +258,7 @@ void run_review(const ReviewCommandOptions& o) {
                {"hash", current.hash},
                {"commits", service.history_position()}});
     if (!o.out.empty()) {
-      write_model(o.out, model, current.state->V);
+      write_review_model(o.out, model, current.state->V);
       std::printf("pushpull review: wrote %s (%zu committed push/pull(s))\n", o.out.c_str(),
                   service.history_position());
     }

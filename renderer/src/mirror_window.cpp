@@ -37,6 +37,7 @@ struct MirrorWindow::Impl {
   uint32_t next_acquire = 0;
   bool needs_recreate = false;
   std::vector<int> key_presses;
+  double scroll = 0.0;
 
   explicit Impl(const Context& c) : context(c) {}
 
@@ -149,6 +150,9 @@ MirrorWindow::MirrorWindow(const Context& context, uint32_t width, uint32_t heig
     if (action == GLFW_PRESS)
       static_cast<Impl*>(glfwGetWindowUserPointer(window))->key_presses.push_back(key);
   });
+  glfwSetScrollCallback(impl_->window, [](GLFWwindow* window, double, double dy) {
+    static_cast<Impl*>(glfwGetWindowUserPointer(window))->scroll += dy;
+  });
   PP_VK_CHECK(glfwCreateWindowSurface(context.instance(), impl_->window, nullptr, &impl_->surface));
   impl_->create_swapchain();
 }
@@ -218,6 +222,18 @@ void MirrorWindow::poll_events() {
 }
 std::vector<int> MirrorWindow::take_key_presses() {
   return std::exchange(impl_->key_presses, {});
+}
+MirrorWindow::Pointer MirrorWindow::pointer() {
+  Pointer p;
+  GLFWwindow* w = impl_->window;
+  glfwGetCursorPos(w, &p.x, &p.y);
+  glfwGetWindowSize(w, &p.window_width, &p.window_height);
+  p.left = glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+  p.right = glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
+  p.middle = glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS;
+  p.shift = glfwGetKey(w, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS || glfwGetKey(w, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS;
+  p.scroll = std::exchange(impl_->scroll, 0.0);
+  return p;
 }
 void MirrorWindow::set_title(const std::string& title) {
   glfwSetWindowTitle(impl_->window, title.c_str());
