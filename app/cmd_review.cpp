@@ -46,10 +46,15 @@ void add_review_command(CLI::App& root) {
   cmd->add_flag("--mirror", o->mirror,
                 "Open the supervisor's mirror window (keys: V view headset eye / smoothed first person, C colour "
                 "map, M method of the next drag, Esc end the session; the title shows method, |d|, iterations)");
-  cmd->add_option("--mirror-size", o->mirror_size, "Mirror window size W H")->expected(2)->check(CLI::Range(16, 16384));
+  cmd->add_option("--mirror-size", o->mirror_size, "Mirror (or desktop) window size W H")->expected(2)->check(CLI::Range(16, 16384));
   cmd->add_flag("--validation", o->validation,
                 "Enable VK_LAYER_KHRONOS_validation on the runtime's Vulkan instance; fail on any message (the "
                 "OpenXR core validation layer: XR_ENABLE_API_LAYERS=XR_APILAYER_LUNARG_core_validation)");
+  cmd->add_flag("--desktop", o->desktop,
+                "No headset: the window is the workspace (also when no OpenXR runtime or headset is found). Right "
+                "drag turns, scroll zooms, left drag on the surface pushes/pulls (Shift: along the normal); U undo, R "
+                "redo, C colour map, M method, Esc quit");
+  cmd->add_option("--frames", o->frames, "Desktop mode: stop after N frames (0: when the window closes)");
   cmd->add_flag("--benchmark", o->benchmark, "Print the frame time, idle versus with the solver running");
   add_life_size_options(*cmd, o->life_size);
   cmd->callback([o] { run_review(*o); });

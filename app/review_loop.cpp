@@ -1,6 +1,7 @@
 #include "review_loop.hpp"
 
 #include "commands.hpp"
+#include "desktop_loop.hpp"
 #include "mirror_view.hpp"
 #include "review_interaction.hpp"
 #include "review_setup.hpp"
@@ -21,6 +22,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <numeric>
 #include <thread>
@@ -74,6 +76,7 @@ void run_review(const ReviewCommandOptions& o) {
   const StagePlacement& placement = setup.placement;
   const InteractionOptions& interaction_options = setup.interaction;
   const ReviewColour colour = setup.colour;
+  if (o.desktop) return run_desktop(o, setup);
 
   xr::SessionOptions session_options;
   session_options.require_vulkan13_features = [](VkPhysicalDeviceVulkan13Features& f) {
@@ -99,7 +102,10 @@ void run_review(const ReviewCommandOptions& o) {
   try {
     session.emplace(session_options);
   } catch (const xr::RuntimeUnavailable& e) {
-    throw CommandError(e.what());
+    // No runtime or headset: one line saying so, then the desktop window where there is a display.
+    if (std::getenv("DISPLAY") == nullptr && std::getenv("WAYLAND_DISPLAY") == nullptr) throw CommandError(e.what());
+    std::fprintf(stderr, "pushpull review: %s; opening the desktop window instead\n", e.what());
+    return run_desktop(o, setup);
   }
   xr::Session& xr = *session;
   std::printf("pushpull review: %s on %s (OpenXR runtime \"%s\"), %ux%u per eye, %s space\n", o.model.c_str(),

@@ -30,7 +30,9 @@ struct ReviewCommandOptions {
   std::string events;
   bool benchmark = false;
   bool validation = false;  // Vulkan validation layer on the runtime's instance; any message fails the run
-  bool mirror = false;  // the supervisor's GLFW window
+  bool mirror = false;   // the supervisor's GLFW window
+  bool desktop = false;  // no headset: the window is the workspace (desktop_loop.hpp)
+  int frames = 0;        // desktop mode: stop after this many frames (0: when the window closes)
   std::vector<int> mirror_size{960, 540};
   LifeSizeOptions life_size;
 };

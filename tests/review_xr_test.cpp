@@ -237,8 +237,8 @@ TEST(ReviewXr, ThumbstickBetweenDragsScalesHandleAndRegion) {
   EXPECT_NEAR(double(sizes[0].at("roi_radius")), 0.45, 0.05);    // 0.9 m halved
 }
 
-// Runs under xvfb-run (ctest: review_xr_mirror_xvfb); skipped where there is no display.
-TEST(ReviewXrMirror, MirrorWindowPresentsFramesAndLeavesTheCommitUnchanged) {
+// ReviewXrWindow.*: run under xvfb-run (ctest: review_xr_window_xvfb); skipped where there is no display.
+TEST(ReviewXrWindow, MirrorWindowPresentsFramesAndLeavesTheCommitUnchanged) {
   if (std::getenv("DISPLAY") == nullptr) GTEST_SKIP() << "no DISPLAY (ctest runs this under xvfb-run)";
   const fs::path dir = test_dir();
   const std::string script = script_start() + R"({"t":1.4,"path":"/user/hand/right/input/trigger/value","value":1.0}
@@ -258,8 +258,24 @@ TEST(ReviewXrMirror, MirrorWindowPresentsFramesAndLeavesTheCommitUnchanged) {
   EXPECT_EQ((a.V - b.V).cwiseAbs().maxCoeff(), 0.0);
 }
 
+TEST(ReviewXrWindow, WithoutARuntimeItSaysSoAndOpensTheDesktopWindow) {
+  if (std::getenv("DISPLAY") == nullptr) GTEST_SKIP() << "no DISPLAY (ctest runs this under xvfb-run)";
+  const fs::path dir = test_dir();
+  const auto result = run_command("env XR_RUNTIME_JSON=/nonexistent/runtime.json " + std::string(PUSHPULL_EXECUTABLE) +
+                                  " review " + kHood + kPlacement + " --frames 10 --mirror-size 160 120 --out " +
+                                  (dir / "desktop.off").string());
+  ASSERT_EQ(result.status, 0) << result.output;
+  EXPECT_NE(result.output.find("XR_RUNTIME_JSON=/nonexistent/runtime.json"), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("opening the desktop window instead"), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("desktop window presented 10 frames"), std::string::npos) << result.output;
+  const auto rest = pushpull::deform::read_mesh(kHood);
+  const auto written = pushpull::deform::read_mesh(dir / "desktop.off");
+  EXPECT_EQ((written.V - rest.V).cwiseAbs().maxCoeff(), 0.0);  // nothing was pushed
+}
+
 TEST(ReviewXr, WithoutARuntimeSaysWhichOneItLookedForAndHowToPointAtOne) {
-  const auto result = run_command("env XR_RUNTIME_JSON=/nonexistent/runtime.json " +
+  // No display either: the command ends with the message instead of opening the desktop window.
+  const auto result = run_command("env -u DISPLAY -u WAYLAND_DISPLAY XR_RUNTIME_JSON=/nonexistent/runtime.json " +
                                   std::string(PUSHPULL_EXECUTABLE) + " review " + kHood);
   EXPECT_NE(result.status, 0);
   EXPECT_NE(result.output.find("pushpull: error: no usable OpenXR runtime: looked for the runtime in "
