@@ -2,6 +2,7 @@
 
 #include "commands.hpp"
 #include "desktop_loop.hpp"
+#include "grab_placement.hpp"
 #include "mirror_view.hpp"
 #include "review_interaction.hpp"
 #include "review_setup.hpp"
@@ -141,6 +142,7 @@ void run_review(const ReviewCommandOptions& o) {
     xr::Input input(xr.instance(), xr.handle(), xr.stage_space());
     FrameStats stats;
     bool sizes_changed = false;
+    GrabPlacement grab(placement);
 
     auto log_event = [&](const InteractionEvent& e) { log.write_interaction(e, life); };
 
@@ -158,13 +160,41 @@ void run_review(const ReviewCommandOptions& o) {
         input.sync(frame.predicted_display_time);
         std::array<HandSample, 2> hands{hand_sample(input.hand(xr::Hand::Left)),
                                         hand_sample(input.hand(xr::Hand::Right))};
+        // Grip (between drags): grab and move the model; both grips also scale it.
+        if (!interaction.dragging()) {
+          std::array<std::optional<GrabHand>, 2> grabbing;
+          for (int h = 0; h < 2; ++h)
+            if (input.hand(xr::Hand(h)).grip > 0.5f && hands[size_t(h)].tracked) {
+              const Eigen::Vector3d& f = hands[size_t(h)].direction_stage;
+              grabbing[size_t(h)] = GrabHand{hands[size_t(h)].origin_stage, std::atan2(-f.x(), -f.z())};
+            }
+          const bool was_grabbing = grab.grabbing();
+          if (grab.update(grabbing)) {
+            interaction.set_placement(grab.placement());
+            scene.set_placement(grab.placement());
+          }
+          if (was_grabbing && !grab.grabbing()) {
+            std::vector<double> T;
+            for (int r = 0; r < 4; ++r)
+              for (int c = 0; c < 4; ++c) T.push_back(grab.placement().T_stage_model(r, c));
+            log.write({{"event", "placement"}, {"T_stage_model", T}, {"relative_scale", grab.relative_scale()}});
+            std::printf("pushpull review: model moved (%.0f%% of life size)\n", 100.0 * grab.relative_scale());
+          }
+          if (grab.grabbing())
+            for (auto& hand : hands) hand.trigger = 0.0f;  // no push/pull while holding the model
+        }
         for (const InteractionEvent& e : interaction.update(hands)) {
           log_event(e);
           if (e.kind != InteractionEvent::Kind::Cancelled) input.haptic_pulse(xr::Hand(e.hand), 0.6f, 0.03);
         }
         for (int h = 0; h < 2 && !interaction.dragging(); ++h) {
           const xr::HandInput& in = input.hand(xr::Hand(h));
-          if (in.undo_pressed) {
+          if (in.undo_pressed && grab.grabbing()) {  // undo while holding the model: back to life size
+            grab.reset();
+            interaction.set_placement(grab.placement());
+            scene.set_placement(grab.placement());
+            log.write({{"event", "placement reset"}});
+          } else if (in.undo_pressed) {
             service.undo();
             log.write({{"event", "undo"}});
           }

@@ -56,6 +56,10 @@ ReviewScene::ReviewScene(renderer::Renderer& renderer, const assets::Model& mode
   mesh.scalars.assign(mesh.vertex_count(), 0.0f);
   for (auto& sub : mesh.submeshes) sub.material = sub.material >= 0 ? material_ids[size_t(sub.material)] : -1;
   mesh_ = renderer_.add_mesh(mesh, /*streamed=*/true);
+  set_placement(placement);
+}
+
+void ReviewScene::set_placement(const StagePlacement& placement) {
   for (int r = 0; r < 4; ++r)
     for (int c = 0; c < 4; ++c) T_stage_model_[c][r] = float(placement.T_stage_model(r, c));
 }

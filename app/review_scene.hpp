@@ -35,6 +35,7 @@ class ReviewScene {
   // the calling thread: render positions, normals, scalars.
   void update(const std::shared_ptr<const deform::Snapshot>& snapshot);
   void set_colour(ReviewColour colour);
+  void set_placement(const StagePlacement& placement);
   [[nodiscard]] ReviewColour colour() const { return colour_; }
 
   [[nodiscard]] std::vector<renderer::Draw> draws() const;

@@ -14,6 +14,17 @@ Eigen::Vector3d StagePlacement::to_stage_point(const Eigen::Vector3d& p) const {
   return T_stage_model.topLeftCorner<3, 3>() * p + T_stage_model.topRightCorner<3, 1>();
 }
 
+StagePlacement placement_from(const Eigen::Matrix4d& T) {
+  StagePlacement p;
+  p.T_stage_model = T;
+  const Eigen::Matrix3d A = T.topLeftCorner<3, 3>();
+  const double s2 = A.col(0).squaredNorm();  // uniform scale squared
+  const Eigen::Matrix3d A_inv = A.transpose() / s2;
+  p.T_model_stage.topLeftCorner<3, 3>() = A_inv;
+  p.T_model_stage.topRightCorner<3, 1>() = -A_inv * T.topRightCorner<3, 1>();
+  return p;
+}
+
 StagePlacement place_on_stage(const Eigen::MatrixXd& V, const PlacementOptions& o) {
   if (V.rows() == 0) throw std::invalid_argument("place_on_stage: the model has no vertices");
   if (!(o.scale > 0.0)) throw std::invalid_argument("place_on_stage: the scale must be > 0");

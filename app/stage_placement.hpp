@@ -29,6 +29,9 @@ struct StagePlacement {
   [[nodiscard]] Eigen::Vector3d to_stage_point(const Eigen::Vector3d& p_model) const;
 };
 
+// A placement from T_stage_model (rotation * uniform scale > 0, translation); computes the inverse.
+StagePlacement placement_from(const Eigen::Matrix4d& T_stage_model);
+
 // V: #V by 3 model positions (file units). Throws std::invalid_argument when V is empty, scale <= 0, or up
 // and front are zero or parallel.
 StagePlacement place_on_stage(const Eigen::MatrixXd& V, const PlacementOptions& options);

@@ -220,6 +220,41 @@ TEST(ReviewXr, UndoRestoresTheModelAndRedoReappliesIt) {
   EXPECT_EQ((reviewed.V - rest.V).cwiseAbs().maxCoeff(), 0.0);
 }
 
+// Grip moves the model: 0.5 m towards the reviewer; a later push/pull aimed at where the bonnet's front now
+// is grabs the same model point as before the move and moves it by the same model-space d.
+TEST(ReviewXr, GripMovesTheModelAndLaterPushPullsFollowIt) {
+  const fs::path dir = test_dir();
+  const std::string down = R"("q":[-0.70710678,0,0,0.70710678])";
+  const std::string aim = "/user/hand/right/input/aim/pose", trigger = "/user/hand/right/input/trigger/value",
+                    grip = "/user/hand/right/input/squeeze/value";
+  auto pose = [&](double t, double z) {
+    return R"({"t":)" + number(t) + R"(,"path":")" + aim + R"(","pose":{"p":[0.0123,0.5,)" + number(z) + "]," +
+           down + "}}\n";
+  };
+  auto value = [&](double t, const std::string& path, double v) {
+    return R"({"t":)" + number(t) + R"(,"path":")" + path + R"(","value":)" + number(v) + "}\n";
+  };
+  const std::string script = R"({"t":0.0,"path":"/user/head","pose":{"p":[0,1.0,0.5],"q":[-0.32557,0,0,0.94552]}}
+)" + pose(0.0, -0.65) + value(0.0, trigger, 0.0) + value(0.0, grip, 0.0) + value(0.3, grip, 1.0) +
+                             pose(0.3, -0.65) + pose(0.8, -0.15) + value(0.9, grip, 1.0) + value(1.0, grip, 0.0) +
+                             value(1.4, trigger, 0.0) + value(1.5, trigger, 1.0) + pose(1.5, -0.15) +
+                             pose(2.0, -0.05) + value(2.4, trigger, 1.0) + value(2.5, trigger, 0.0) +
+                             R"({"t":3.0,"event":"exit"}
+)";
+  const ReviewRun run = run_review(dir, script, "");
+  ASSERT_EQ(run.result.status, 0) << run.result.output;
+  const auto moved = run.of("placement");
+  ASSERT_EQ(moved.size(), 1u) << run.result.output;
+  const std::vector<double> T = moved[0].at("T_stage_model");
+  EXPECT_NEAR(T[11], -0.6 + 0.5, 1e-5);  // the translation's z: 0.5 m closer
+  EXPECT_NEAR(double(moved[0].at("relative_scale")), 1.0, 1e-9);
+  ASSERT_EQ(run.of("commit").size(), 1u) << run.result.output;
+  const std::vector<double> p0 = run.of("commit")[0].at("p0"), d = run.of("commit")[0].at("d");
+  EXPECT_NEAR(p0[0], 0.0123, 1e-5);
+  EXPECT_NEAR(p0[1], 0.05, 1e-5);
+  EXPECT_NEAR(d[1], -0.1, 1e-5);
+}
+
 TEST(ReviewXr, ThumbstickBetweenDragsScalesHandleAndRegion) {
   const fs::path dir = test_dir();
   // Full up for 1 s (handle x2), then full left for 1 s (region / 2), then centred.
