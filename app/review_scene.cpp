@@ -98,7 +98,26 @@ void ReviewScene::upload(const deform::Snapshot& snapshot) {
   } else {
     scalars.assign(positions.size() / 3, 0.0f);
   }
-  renderer_.update_vertices(mesh_, positions, normals, scalars);
+  // The drag's region while its previews show; nothing once committed, cancelled or undone.
+  const bool show = snapshot.kind == deform::Snapshot::Kind::Preview && snapshot.region != nullptr;
+  std::vector<renderer::OverlayWeights> overlays;
+  if (show ? snapshot.region != shown_region_ : overlays_shown_) {
+    overlays.assign(positions.size() / 3, renderer::OverlayWeights{});
+    if (show) {
+      const auto& role = snapshot.region->role;
+      for (size_t r = 0; r < overlays.size(); ++r) {
+        const int d = render_.deform_vertex[r];
+        if (d < 0) continue;
+        const deform::VertexRole vr = role[size_t(d)];
+        overlays[r].roi = vr != deform::VertexRole::Outside ? 1.0f : 0.0f;
+        overlays[r].handle = vr == deform::VertexRole::Handle ? 1.0f : 0.0f;
+        overlays[r].fixed = vr == deform::VertexRole::Fixed ? 1.0f : 0.0f;
+      }
+    }
+    shown_region_ = show ? snapshot.region : nullptr;
+    overlays_shown_ = show;
+  }
+  renderer_.update_vertices(mesh_, positions, normals, scalars, overlays);
 }
 
 std::vector<renderer::Draw> ReviewScene::draws() const { return {renderer::Draw{mesh_, T_stage_model_}}; }

@@ -1,6 +1,7 @@
 // What the review draws: the model (materials, textures, one streamed mesh) placed on the stage by
 // T_stage_model, recoloured from the newest deform::Snapshot (positions, normals, displacement or
-// curvature-sign scalars), and the eye views of an XR frame.
+// curvature-sign scalars; while a drag's previews show, its handle red, fixed border blue and region
+// tinted), and the eye views of an XR frame.
 //
 // Frames: the mesh is in model space (file units); draws place it with T_stage_model; views come from
 // T_stage_eye poses (stage metres). Shapes: snapshot positions are #Vd by 3 (the welded deform mesh);
@@ -54,6 +55,8 @@ class ReviewScene {
   double scale_ = 1.0;
   double scalar_max_ = 0.0;
   std::uint64_t generation_ = 0;
+  std::shared_ptr<const deform::RegionOfInterest> shown_region_;  // whose roles the overlays show
+  bool overlays_shown_ = false;
   std::shared_ptr<const deform::Snapshot> last_;
 };
 

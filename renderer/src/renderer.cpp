@@ -300,13 +300,13 @@ MeshId Renderer::add_mesh(const RenderMesh& mesh, bool streamed) {
 }
 
 void Renderer::update_vertices(MeshId mesh, std::span<const float> positions, std::span<const float> normals,
-                               std::span<const float> scalars) {
+                               std::span<const float> scalars, std::span<const OverlayWeights> overlays) {
   Impl& r = *impl_;
   r.assert_owner();
   if (mesh >= r.meshes.size()) throw std::invalid_argument("update_vertices: unknown mesh id");
   const uint32_t slot = r.slot_index();
   r.wait_slot(slot);  // the frame that used this staging slot N frames ago, not the one in flight
-  r.meshes[mesh].stage(slot, positions, normals, scalars);
+  r.meshes[mesh].stage(slot, positions, normals, scalars, overlays);
 }
 
 void Renderer::set_legend(std::optional<TextureRGBA8> legend, glm::vec4 rect) {

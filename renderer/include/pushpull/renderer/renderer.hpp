@@ -97,10 +97,11 @@ class Renderer {
   MeshId add_mesh(const RenderMesh& mesh, bool streamed = false);
 
   // New vertex data for a streamed mesh, applied by the next render(). positions: #V*3; normals:
-  // #V*3 or empty (keep); scalars: #V or empty (keep). Throws std::invalid_argument on a size
+  // #V*3 or empty (keep); scalars: #V or empty (keep); overlays: #V or empty (keep). Throws
+  // std::invalid_argument on a size
   // mismatch or a mesh not created streamed.
   void update_vertices(MeshId mesh, std::span<const float> positions, std::span<const float> normals = {},
-                       std::span<const float> scalars = {});
+                       std::span<const float> scalars = {}, std::span<const OverlayWeights> overlays = {});
 
   // A screen-space legend (e.g. make_displacement_legend) drawn in every view at rect (x0, y0, x1,
   // y1 in 0..1, y down); std::nullopt removes it.
