@@ -97,8 +97,14 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
         if (key == 256 /* GLFW_KEY_ESCAPE */) quit = true;
         if (key == 'C') scene.set_colour(next_colour(scene.colour()));
         if (!interaction.dragging()) {
-          if (key == 'U') service.undo(), log.write({{"event", "undo"}});
-          if (key == 'R') service.redo(), log.write({{"event", "redo"}});
+          if (key == 'U') {
+            service.undo();
+            log.write({{"event", "undo"}});
+          }
+          if (key == 'R') {
+            service.redo();
+            log.write({{"event", "redo"}});
+          }
           if (key == 'M') {
             const auto& all = deform::kAllMethods;
             const auto it = std::find(all.begin(), all.end(), interaction.method());

@@ -70,38 +70,19 @@ std::vector<InteractionEvent> ReviewInteraction::update(const std::array<HandSam
     sample.hand_position = to_glm(placement_.to_model_point(in.origin_stage));
     if (hovers_[size_t(h)]) sample.surface_hit = to_glm(hovers_[size_t(h)]->point);
     const xr::GestureEvent e = gestures_[size_t(h)].update(sample);
-    InteractionEvent out;
-    out.hand = h;
-    out.p0 = to_eigen(e.p0);
-    out.face = p0_.face;
     switch (e.kind) {
       case xr::GestureEventKind::Pressed:
-        drag_hand_ = h;
-        ++drag_id_;
-        submitted_ = false;
-        last_d_.setZero();
-        p0_ = {hovers_[size_t(h)]->face, hovers_[size_t(h)]->point};
-        out.kind = InteractionEvent::Kind::Pressed;
-        out.face = p0_.face;
-        events.push_back(out);
+        if (const auto pressed = begin_drag(h, *hovers_[size_t(h)])) events.push_back(*pressed);
         break;
       case xr::GestureEventKind::Dragged:
         submit(to_eigen(e.displacement()));
         break;
       case xr::GestureEventKind::Released:
         submit(to_eigen(e.displacement()));
-        out.kind = InteractionEvent::Kind::Committed;
-        out.d = last_d_;
-        out.request = service_.commit();
-        drag_hand_ = -1;
-        events.push_back(out);
+        events.push_back(finish(true));
         break;
       case xr::GestureEventKind::Cancelled:
-        service_.cancel();
-        out.kind = InteractionEvent::Kind::Cancelled;
-        out.d = last_d_;
-        drag_hand_ = -1;
-        events.push_back(out);
+        events.push_back(finish(false));
         break;
       case xr::GestureEventKind::None:
         break;
@@ -142,12 +123,17 @@ void ReviewInteraction::drag(const Eigen::Vector3d& d) {
 
 std::optional<InteractionEvent> ReviewInteraction::end_drag(bool commit) {
   if (!dragging()) return std::nullopt;
+  // As the gesture: a release closer than 0.1 mm (life size) to p0 is a click, not a push/pull.
+  return finish(commit && submitted_ && last_d_.norm() * options_.scale >= 1e-4);
+}
+
+InteractionEvent ReviewInteraction::finish(bool commit) {
   InteractionEvent out;
   out.hand = drag_hand_;
   out.face = p0_.face;
   out.p0 = p0_.point;
   out.d = last_d_;
-  if (commit && submitted_ && last_d_.norm() * options_.scale >= 1e-4) {
+  if (commit) {
     out.kind = InteractionEvent::Kind::Committed;
     out.request = service_.commit();
   } else {
@@ -159,27 +145,18 @@ std::optional<InteractionEvent> ReviewInteraction::end_drag(bool commit) {
 }
 
 Eigen::Vector3d ReviewInteraction::face_normal(int face) const {
-  const auto& F = F_;
-  const Eigen::Vector3d a = committed_V_.row(F(face, 0)), b = committed_V_.row(F(face, 1)),
-                        c = committed_V_.row(F(face, 2));
+  const Eigen::Vector3d a = committed_V_.row(F_(face, 0)), b = committed_V_.row(F_(face, 1)),
+                        c = committed_V_.row(F_(face, 2));
   return (b - a).cross(c - a).normalized();
 }
 
 std::optional<InteractionEvent> ReviewInteraction::cancel() {
   if (drag_hand_ < 0) return std::nullopt;
-  InteractionEvent out;
-  out.kind = InteractionEvent::Kind::Cancelled;
-  out.hand = drag_hand_;
-  out.face = p0_.face;
-  out.p0 = p0_.point;
-  out.d = last_d_;
-  service_.cancel();
-  // Reset the gesture: a sample with the trigger up and tracking lost ends its drag.
-  xr::ControllerSample released;
-  released.tracked = false;
-  gestures_[size_t(drag_hand_)].update(released);
-  drag_hand_ = -1;
-  return out;
+  // Reset the gesture: a sample with tracking lost ends its drag.
+  xr::ControllerSample lost;
+  lost.tracked = false;
+  gestures_[size_t(drag_hand_)].update(lost);
+  return finish(false);
 }
 
 }  // namespace pushpull::app

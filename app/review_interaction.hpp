@@ -91,6 +91,7 @@ class ReviewInteraction {
 
  private:
   void submit(const Eigen::Vector3d& d);
+  InteractionEvent finish(bool commit);  // commit or cancel the running drag
 
   deform::Service& service_;
   StagePlacement placement_;
