@@ -50,6 +50,9 @@ HandSample hand_sample(const xr::HandInput& in) {
 // Frame work (from xrWaitFrame's return to xrEndFrame's return), split by whether the solver was busy.
 struct FrameStats {
   std::vector<double> idle_ms, solving_ms;
+  size_t region_vertices = 0;  // the largest region solved meanwhile
+  double snapshot_ms = 0.0;    // total time spent turning new snapshots into vertex data (frame thread)
+  size_t snapshots = 0;
   static double mean(const std::vector<double>& v) {
     return v.empty() ? 0.0 : std::accumulate(v.begin(), v.end(), 0.0) / double(v.size());
   }
@@ -64,6 +67,9 @@ struct FrameStats {
                 mean(idle_ms), percentile(idle_ms, 0.95), idle_ms.size(), mean(solving_ms),
                 percentile(solving_ms, 0.95), solving_ms.size(),
                 mean(idle_ms) > 0.0 ? mean(solving_ms) / mean(idle_ms) : 0.0);
+    std::printf("largest region solved: %zu vertices; %zu new snapshots drawn, %.2f ms CPU each to turn into "
+                "vertex data on the frame thread (positions, normals, colour-map scalars, overlays)\n",
+                region_vertices, snapshots, snapshots ? snapshot_ms / double(snapshots) : 0.0);
   }
 };
 
@@ -224,8 +230,16 @@ void run_review(const ReviewCommandOptions& o) {
         }
         const std::shared_ptr<const deform::Snapshot> snapshot = service.latest();
         const bool solving = interaction.dragging() || !snapshot->final;
+        if (snapshot->region) stats.region_vertices = std::max(stats.region_vertices, snapshot->region->size());
         interaction.sync_committed(*snapshot);
-        scene.update(snapshot);
+        {
+          const std::uint64_t generation = scene.generation();
+          scene.update(snapshot);
+          if (scene.generation() != generation) {
+            stats.snapshot_ms += scene.last_cpu_ms();
+            ++stats.snapshots;
+          }
+        }
         bool rendered = false;
         if (frame.should_render) {
           const uint32_t left = xr.eye(0).acquire();
