@@ -164,6 +164,10 @@ void run_review(const ReviewCommandOptions& o) {
         if (xr.lost()) break;
         const auto start = Clock::now();
         input.sync(frame.predicted_display_time);
+        // Focus lost mid-drag (a system menu, another app): the inputs read as released, which the gesture
+        // would take as a release; the drag is cancelled instead, the model stays as before it.
+        if (!xr.focused() && interaction.dragging())
+          if (const auto e = interaction.cancel()) log_event(*e);
         std::array<HandSample, 2> hands{hand_sample(input.hand(xr::Hand::Left)),
                                         hand_sample(input.hand(xr::Hand::Right))};
         // Grip (between drags): grab and move the model; both grips also scale it.
