@@ -34,6 +34,14 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 // The hand's aim ray in stage space (the pose's -Z axis).
+// The controller's heading about stage +Y: where its ray points, or, when it points nearly straight up or down,
+// where its top (+Y) faces (the ray's heading is noise there).
+double heading(const HandSample& s) {
+  const Eigen::Vector3d& f = s.direction_stage;
+  const Eigen::Vector3d h = std::hypot(f.x(), f.z()) > 0.3 ? f : (f.y() < 0.0 ? s.up_stage : Eigen::Vector3d(-s.up_stage));
+  return std::atan2(-h.x(), -h.z());
+}
+
 HandSample hand_sample(const xr::HandInput& in) {
   HandSample s;
   s.trigger = in.trigger;
@@ -43,6 +51,7 @@ HandSample hand_sample(const xr::HandInput& in) {
     const Eigen::Quaterniond q(p.orientation.w, p.orientation.x, p.orientation.y, p.orientation.z);
     s.origin_stage = {p.position.x, p.position.y, p.position.z};
     s.direction_stage = q.normalized() * Eigen::Vector3d(0.0, 0.0, -1.0);
+    s.up_stage = q.normalized() * Eigen::Vector3d(0.0, 1.0, 0.0);
   }
   return s;
 }
@@ -174,10 +183,8 @@ void run_review(const ReviewCommandOptions& o) {
         if (!interaction.dragging()) {
           std::array<std::optional<GrabHand>, 2> grabbing;
           for (int h = 0; h < 2; ++h)
-            if (input.hand(xr::Hand(h)).grip > 0.5f && hands[size_t(h)].tracked) {
-              const Eigen::Vector3d& f = hands[size_t(h)].direction_stage;
-              grabbing[size_t(h)] = GrabHand{hands[size_t(h)].origin_stage, std::atan2(-f.x(), -f.z())};
-            }
+            if (input.hand(xr::Hand(h)).grip > 0.5f && hands[size_t(h)].tracked)
+              grabbing[size_t(h)] = GrabHand{hands[size_t(h)].origin_stage, heading(hands[size_t(h)])};
           const bool was_grabbing = grab.grabbing();
           if (grab.update(grabbing)) {
             interaction.set_placement(grab.placement());
