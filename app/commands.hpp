@@ -20,5 +20,6 @@ struct CommandError : std::runtime_error {
 void add_deform_command(CLI::App& root);  // pushpull deform: one push/pull on a model
 void add_info_command(CLI::App& root);    // pushpull info: what is in a model
 void add_render_command(CLI::App& root);  // pushpull render: a PNG of a model or result
+void add_review_command(CLI::App& root);  // pushpull review: push/pull in an OpenXR headset
 
 }  // namespace pushpull::app

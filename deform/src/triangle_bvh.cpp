@@ -187,7 +187,10 @@ std::optional<TriangleBvh::Hit> TriangleBvh::ray_hit(const Eigen::MatrixXd& V, c
   stack[top++] = 0;
   while (top > 0) {
     const Node& n = nodes_[static_cast<std::size_t>(stack[--top])];
-    if (!(box_entry(origin, inverse, n.lo, n.hi, best_t) <= best_t)) continue;
+    // A missed box has entry +inf, which is <= best_t while nothing is hit yet (best_t = max_t = +inf):
+    // without the finiteness check a ray that has not hit yet visits every box.
+    const double entry = box_entry(origin, inverse, n.lo, n.hi, best_t);
+    if (!(entry < std::numeric_limits<double>::infinity() && entry <= best_t)) continue;
     if (n.count > 0) {
       for (int k = n.first; k < n.first + n.count; ++k) {
         // Moeller-Trumbore, both sides.

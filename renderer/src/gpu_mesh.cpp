@@ -74,19 +74,20 @@ GpuMesh GpuMesh::create(const Context& context, const RenderMesh& mesh, bool str
   if (streamed) {
     gpu.staging_.resize(slots);
     for (Staging& s : gpu.staging_)
-      s.buffer = create_buffer(context, std::max<VkDeviceSize>(16, 7 * v * sizeof(float)),
+      s.buffer = create_buffer(context, std::max<VkDeviceSize>(16, 10 * v * sizeof(float)),
                                VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
   }
   return gpu;
 }
 
 void GpuMesh::stage(uint32_t slot, std::span<const float> positions, std::span<const float> normals,
-                    std::span<const float> scalars) {
+                    std::span<const float> scalars, std::span<const OverlayWeights> overlays) {
   if (staging_.empty()) throw std::invalid_argument("update_vertices: the mesh was not created streamed");
   const size_t v = vertex_count;
   if (!positions.empty()) check_size("positions", positions.size(), 3 * v);
   if (!normals.empty()) check_size("normals", normals.size(), 3 * v);
   if (!scalars.empty()) check_size("scalars", scalars.size(), v);
+  if (!overlays.empty()) check_size("overlays", overlays.size(), v);
   Staging& s = staging_[slot];
   auto* base = static_cast<float*>(s.buffer.mapped);
   if (!positions.empty()) {
@@ -101,12 +102,16 @@ void GpuMesh::stage(uint32_t slot, std::span<const float> positions, std::span<c
     std::memcpy(base + 6 * v, scalars.data(), scalars.size_bytes());
     s.scalars = true;
   }
+  if (!overlays.empty()) {
+    std::memcpy(base + 7 * v, overlays.data(), overlays.size_bytes());
+    s.overlays = true;
+  }
 }
 
 uint64_t GpuMesh::record_pending_uploads(VkCommandBuffer cmd, uint32_t slot) {
   if (staging_.empty()) return 0;
   Staging& s = staging_[slot];
-  if (!s.positions && !s.normals && !s.scalars) return 0;
+  if (!s.positions && !s.normals && !s.scalars && !s.overlays) return 0;
   const VkDeviceSize v = vertex_count;
   struct Copy {
     bool pending;
@@ -114,10 +119,11 @@ uint64_t GpuMesh::record_pending_uploads(VkCommandBuffer cmd, uint32_t slot) {
     VkDeviceSize src_offset;
     VkDeviceSize bytes;
   };
-  const std::array<Copy, 3> copies{
+  const std::array<Copy, 4> copies{
       Copy{s.positions, positions_.buffer.get(), 0, 3 * v * sizeof(float)},
       Copy{s.normals, normals_.buffer.get(), 3 * v * sizeof(float), 3 * v * sizeof(float)},
-      Copy{s.scalars, scalars_.buffer.get(), 6 * v * sizeof(float), v * sizeof(float)}};
+      Copy{s.scalars, scalars_.buffer.get(), 6 * v * sizeof(float), v * sizeof(float)},
+      Copy{s.overlays, overlays_.buffer.get(), 7 * v * sizeof(float), 3 * v * sizeof(float)}};
   // Earlier frames on this queue may still read these vertex buffers: copy after they are done (WAR),
   // and make the copy visible to this frame's vertex fetch.
   VkMemoryBarrier2 before{};
@@ -145,7 +151,7 @@ uint64_t GpuMesh::record_pending_uploads(VkCommandBuffer cmd, uint32_t slot) {
   after.dstAccessMask = VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT;
   dep.pMemoryBarriers = &after;
   vkCmdPipelineBarrier2(cmd, &dep);
-  s.positions = s.normals = s.scalars = false;
+  s.positions = s.normals = s.scalars = s.overlays = false;
   return bytes;
 }
 

@@ -16,7 +16,7 @@ class GpuMesh {
 
   // Copies new data into staging slot `slot` (the caller has waited for that slot's fence).
   void stage(uint32_t slot, std::span<const float> positions, std::span<const float> normals,
-             std::span<const float> scalars);
+             std::span<const float> scalars, std::span<const OverlayWeights> overlays = {});
   // Records the copies staged in `slot` with their barriers; returns the bytes copied.
   uint64_t record_pending_uploads(VkCommandBuffer cmd, uint32_t slot);
   void bind(VkCommandBuffer cmd) const;
@@ -26,10 +26,11 @@ class GpuMesh {
 
  private:
   struct Staging {
-    Buffer buffer;  // positions (#V*3) | normals (#V*3) | scalars (#V) floats
+    Buffer buffer;  // positions (#V*3) | normals (#V*3) | scalars (#V) | overlays (#V*3) floats
     bool positions = false;
     bool normals = false;
     bool scalars = false;
+    bool overlays = false;
   };
   Buffer positions_;
   Buffer normals_;

@@ -7,6 +7,7 @@
 #include <GLFW/glfw3.h>
 
 #include <algorithm>
+#include <utility>
 
 namespace pushpull::renderer {
 
@@ -35,6 +36,8 @@ struct MirrorWindow::Impl {
   std::vector<UniqueSemaphore> rendered;  // one per swapchain image
   uint32_t next_acquire = 0;
   bool needs_recreate = false;
+  std::vector<int> key_presses;
+  double scroll = 0.0;
 
   explicit Impl(const Context& c) : context(c) {}
 
@@ -142,6 +145,14 @@ MirrorWindow::MirrorWindow(const Context& context, uint32_t width, uint32_t heig
   glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
   impl_->window = glfwCreateWindow(int(width), int(height), title.c_str(), nullptr, nullptr);
   if (impl_->window == nullptr) throw VulkanError(VK_ERROR_INITIALIZATION_FAILED, "glfwCreateWindow failed");
+  glfwSetWindowUserPointer(impl_->window, impl_.get());
+  glfwSetKeyCallback(impl_->window, [](GLFWwindow* window, int key, int, int action, int) {
+    if (action == GLFW_PRESS)
+      static_cast<Impl*>(glfwGetWindowUserPointer(window))->key_presses.push_back(key);
+  });
+  glfwSetScrollCallback(impl_->window, [](GLFWwindow* window, double, double dy) {
+    static_cast<Impl*>(glfwGetWindowUserPointer(window))->scroll += dy;
+  });
   PP_VK_CHECK(glfwCreateWindowSurface(context.instance(), impl_->window, nullptr, &impl_->surface));
   impl_->create_swapchain();
 }
@@ -208,6 +219,24 @@ bool MirrorWindow::should_close() const {
 }
 void MirrorWindow::poll_events() {
   glfwPollEvents();
+}
+std::vector<int> MirrorWindow::take_key_presses() {
+  return std::exchange(impl_->key_presses, {});
+}
+MirrorWindow::Pointer MirrorWindow::pointer() {
+  Pointer p;
+  GLFWwindow* w = impl_->window;
+  glfwGetCursorPos(w, &p.x, &p.y);
+  glfwGetWindowSize(w, &p.window_width, &p.window_height);
+  p.left = glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+  p.right = glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
+  p.middle = glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS;
+  p.shift = glfwGetKey(w, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS || glfwGetKey(w, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS;
+  p.scroll = std::exchange(impl_->scroll, 0.0);
+  return p;
+}
+void MirrorWindow::set_title(const std::string& title) {
+  glfwSetWindowTitle(impl_->window, title.c_str());
 }
 VkExtent2D MirrorWindow::extent() const {
   return impl_->extent;

@@ -10,10 +10,12 @@
 
 #include <glm/gtc/matrix_inverse.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cassert>
 #include <cstring>
 #include <map>
+#include <memory>
 #include <stdexcept>
 #include <thread>
 
@@ -73,7 +75,7 @@ struct Renderer::Impl {
   std::vector<GpuMaterial> materials;
   MaterialId default_material = 0;
   std::vector<GpuMesh> meshes;
-  Attachments attachments;
+  std::vector<std::unique_ptr<Attachments>> attachment_sets;  // most recently used first
 
   std::optional<Image> legend;
   VkDescriptorSet legend_set = VK_NULL_HANDLE;
@@ -116,12 +118,25 @@ struct Renderer::Impl {
     return pipelines.emplace(format, std::move(pair)).first->second;
   }
 
-  void ensure_attachments(VkExtent2D extent, VkFormat colour_format) {
-    if (attachments.extent.width == extent.width && attachments.extent.height == extent.height &&
-        attachments.colour_format == colour_format && attachments.depth.image)
-      return;
-    PP_VK_CHECK(vkDeviceWaitIdle(context.device()));  // the old ones may still be in use
-    attachments = {};
+  // One depth (+ MSAA colour) set per target size and format, kept while in use: a loop that draws the eyes
+  // and a mirror window of another size switches sets without waiting for the GPU. Only when more than
+  // kMaxAttachmentSets sizes are in play (a window being resized) is the least recently used set dropped,
+  // after waiting for the GPU to finish with it.
+  static constexpr size_t kMaxAttachmentSets = 4;
+  Attachments& ensure_attachments(VkExtent2D extent, VkFormat colour_format) {
+    for (size_t i = 0; i < attachment_sets.size(); ++i) {
+      Attachments& a = *attachment_sets[i];
+      if (a.extent.width == extent.width && a.extent.height == extent.height && a.colour_format == colour_format) {
+        std::rotate(attachment_sets.begin(), attachment_sets.begin() + long(i), attachment_sets.begin() + long(i) + 1);
+        return *attachment_sets.front();  // most recently used first
+      }
+    }
+    if (attachment_sets.size() >= kMaxAttachmentSets) {
+      PP_VK_CHECK(vkDeviceWaitIdle(context.device()));  // the dropped set may still be in use
+      attachment_sets.pop_back();
+    }
+    auto created = std::make_unique<Attachments>();
+    Attachments& attachments = *created;
     attachments.extent = extent;
     attachments.colour_format = colour_format;
     ImageDesc depth;
@@ -139,6 +154,8 @@ struct Renderer::Impl {
       colour.samples = options.samples;
       attachments.msaa_colour = create_image(context, colour);
     }
+    attachment_sets.insert(attachment_sets.begin(), std::move(created));
+    return attachments;
   }
 
   void write_material_set(GpuMaterial& gpu, const Material& material) {
@@ -181,7 +198,7 @@ struct Renderer::Impl {
 
   void record_view(VkCommandBuffer cmd, const PipelinePair& pipes, const ColorTarget& target,
                    VkExtent2D extent, uint32_t view_index, std::span<const Draw> draws,
-                   const FrameSettings& settings, VkDescriptorSet frame_set);
+                   const FrameSettings& settings, VkDescriptorSet frame_set, const Attachments& attachments);
 };
 
 Renderer::Renderer(const Context& context, const RendererOptions& options)
@@ -283,13 +300,13 @@ MeshId Renderer::add_mesh(const RenderMesh& mesh, bool streamed) {
 }
 
 void Renderer::update_vertices(MeshId mesh, std::span<const float> positions, std::span<const float> normals,
-                               std::span<const float> scalars) {
+                               std::span<const float> scalars, std::span<const OverlayWeights> overlays) {
   Impl& r = *impl_;
   r.assert_owner();
   if (mesh >= r.meshes.size()) throw std::invalid_argument("update_vertices: unknown mesh id");
   const uint32_t slot = r.slot_index();
   r.wait_slot(slot);  // the frame that used this staging slot N frames ago, not the one in flight
-  r.meshes[mesh].stage(slot, positions, normals, scalars);
+  r.meshes[mesh].stage(slot, positions, normals, scalars, overlays);
 }
 
 void Renderer::set_legend(std::optional<TextureRGBA8> legend, glm::vec4 rect) {
@@ -319,7 +336,8 @@ void Renderer::set_legend(std::optional<TextureRGBA8> legend, glm::vec4 rect) {
 
 void Renderer::Impl::record_view(VkCommandBuffer cmd, const PipelinePair& pipes, const ColorTarget& target,
                                  VkExtent2D extent, uint32_t view_index, std::span<const Draw> draws,
-                                 const FrameSettings& settings, VkDescriptorSet frame_set) {
+                                 const FrameSettings& settings, VkDescriptorSet frame_set,
+                                 const Attachments& attachments) {
   const bool msaa = options.samples != VK_SAMPLE_COUNT_1_BIT;
   // Mesa 22.3 lavapipe resolves into layer 0 whatever the resolve view's base layer: resolve into
   // layers > 0 with vkCmdResolveImage after the pass (such targets need TRANSFER_DST usage).
@@ -474,7 +492,7 @@ void Renderer::render(std::span<const View> views, std::span<const Draw> draws, 
   const uint32_t slot_id = r.slot_index();
   FrameSlot& slot = r.slots[slot_id];
   r.wait_slot(slot_id);
-  r.ensure_attachments(targets.extent, targets.format);
+  const Attachments& attachments = r.ensure_attachments(targets.extent, targets.format);
   PipelinePair& pipes = r.pipelines_for(targets.format);
 
   FrameDataGpu data{};
@@ -502,7 +520,7 @@ void Renderer::render(std::span<const View> views, std::span<const Draw> draws, 
   r.last_upload_bytes = 0;
   for (GpuMesh& mesh : r.meshes) r.last_upload_bytes += mesh.record_pending_uploads(cmd, slot_id);
   for (uint32_t v = 0; v < views.size(); ++v)
-    r.record_view(cmd, pipes, targets.views[v], targets.extent, v, draws, settings, slot.frame_set);
+    r.record_view(cmd, pipes, targets.views[v], targets.extent, v, draws, settings, slot.frame_set, attachments);
   PP_VK_CHECK(vkEndCommandBuffer(cmd));
 
   VkFence fence = slot.fence.get();

@@ -273,6 +273,73 @@ TEST(Renderer, StreamedPositionsMatchAStaticUploadOfTheSameMesh) {
   EXPECT_EQ(context.validation_message_count(), 0u);
 }
 
+// Eyes and a mirror window of another size in one loop: the renderer keeps a depth/MSAA set per size, so
+// alternating targets (and more sizes than it keeps, which drops the least recently used) gives exactly the
+// images each target gets alone.
+TEST(Renderer, TargetsOfSeveralSizesAlternateAndEachMatchesItsImageAlone) {
+  Context context = make_context();
+  {
+    const std::array<uint32_t, 6> sizes{256, 160, 96, 200, 128, 72};
+    std::vector<TextureRGBA8> alone;
+    const View view = sphere_view();
+    {
+      Renderer renderer(context);
+      const MeshId sphere = renderer.add_mesh(make_sphere(1.0f, 24, 48));
+      const Draw draw{sphere, glm::mat4(1.0f)};
+      for (uint32_t size : sizes) {
+        Renderer single(context);
+        const MeshId own = single.add_mesh(make_sphere(1.0f, 24, 48));
+        const Draw own_draw{own, glm::mat4(1.0f)};
+        OffscreenTarget target(context, size, size);
+        single.render(std::span(&view, 1), std::span(&own_draw, 1), FrameSettings{}, target.targets());
+        alone.push_back(target.read_back());
+      }
+      std::vector<OffscreenTarget> targets;
+      for (uint32_t size : sizes) targets.emplace_back(context, size, size);
+      for (int round = 0; round < 2; ++round)
+        for (size_t i = 0; i < sizes.size(); ++i)
+          renderer.render(std::span(&view, 1), std::span(&draw, 1), FrameSettings{}, targets[i].targets());
+      for (size_t i = 0; i < sizes.size(); ++i)
+        EXPECT_EQ(compare_images(targets[i].read_back(), alone[i], 0).differing_pixels, 0u) << sizes[i];
+    }
+  }
+  EXPECT_EQ(context.validation_message_count(), 0u);
+}
+
+// The review's handle / region / fixed highlight changes with every drag: overlays streamed into a mesh
+// draw exactly like the same overlays uploaded with the mesh.
+TEST(Renderer, StreamedOverlaysMatchAStaticUploadOfTheSameOverlays) {
+  Context context = make_context();
+  {
+    Renderer renderer(context);
+    RenderMesh plain = make_sheet(32);
+    RenderMesh marked = plain;
+    marked.overlays.resize(marked.vertex_count());
+    for (size_t v = 0; v < marked.vertex_count(); ++v) {
+      const float x = marked.positions[3 * v];
+      marked.overlays[v] = {1.0f, x > 0.5f ? 1.0f : 0.0f, std::abs(x) < 0.2f ? 1.0f : 0.0f};
+    }
+    const MeshId streamed = renderer.add_mesh(plain, true);
+    const MeshId reference = renderer.add_mesh(marked, false);
+    OffscreenTarget target(context, kSize, kSize);
+    View view = testing::sheet_camera();
+    FrameSettings settings;
+    settings.up = {0.0f, 0.0f, 1.0f};
+    const Draw before{streamed, glm::mat4(1.0f)};
+    renderer.render(std::span(&view, 1), std::span(&before, 1), settings, target.targets());
+    const TextureRGBA8 unmarked = target.read_back();
+    renderer.update_vertices(streamed, plain.positions, {}, {}, marked.overlays);
+    renderer.render(std::span(&view, 1), std::span(&before, 1), settings, target.targets());
+    EXPECT_EQ(renderer.last_upload_bytes(), 6u * marked.vertex_count() * sizeof(float));  // positions + overlays
+    const TextureRGBA8 streamed_image = target.read_back();
+    const Draw draw{reference, glm::mat4(1.0f)};
+    renderer.render(std::span(&view, 1), std::span(&draw, 1), settings, target.targets());
+    EXPECT_EQ(compare_images(streamed_image, target.read_back(), 0).differing_pixels, 0u);
+    EXPECT_GT(compare_images(streamed_image, unmarked, 8).differing_pixels, 1000u);  // the overlays show
+  }
+  EXPECT_EQ(context.validation_message_count(), 0u);
+}
+
 TEST(Renderer, LegendIsDrawnInTheCorner) {
   Context context = make_context();
   {

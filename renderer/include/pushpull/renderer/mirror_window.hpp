@@ -45,6 +45,21 @@ class MirrorWindow {
 
   [[nodiscard]] bool should_close() const;
   void poll_events();
+  // Keys pressed since the last call, in order, as GLFW key codes (letters and digits are their ASCII
+  // upper-case characters, e.g. 'C'; GLFW_KEY_ESCAPE = 256). Filled by poll_events().
+  std::vector<int> take_key_presses();
+  void set_title(const std::string& title);
+
+  // The mouse, as of the last poll_events(): cursor in window coordinates (pixels from the top-left corner,
+  // window_width x window_height, which may differ from extent() on scaled displays), buttons, the shift key,
+  // and the scroll since the previous call (lines, + = away from the user).
+  struct Pointer {
+    double x = 0.0, y = 0.0;
+    int window_width = 1, window_height = 1;
+    bool left = false, right = false, middle = false, shift = false;
+    double scroll = 0.0;
+  };
+  Pointer pointer();
   [[nodiscard]] VkExtent2D extent() const;
 
  private:

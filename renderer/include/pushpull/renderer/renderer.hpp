@@ -19,7 +19,9 @@
 // compute pass would avoid the CPU cost but needs the vertex-face adjacency on the GPU; not done.
 //
 // Targets: images owned by someone else (OffscreenTarget, XR swapchain images, a window swapchain).
-// The renderer owns the depth and multisample buffers and recreates them when the extent changes.
+// The renderer owns the depth and multisample buffers: one set per target size and format in use (up to
+// four; eyes and a mirror window of another size alternate without a GPU wait), the least recently used
+// dropped (after vkDeviceWaitIdle) when a fifth size appears.
 //
 // Ownership: borrows the Context (must outlive the Renderer). Thread-safety: not thread-safe; every
 // call must come from the thread that constructed it (asserted).
@@ -95,10 +97,11 @@ class Renderer {
   MeshId add_mesh(const RenderMesh& mesh, bool streamed = false);
 
   // New vertex data for a streamed mesh, applied by the next render(). positions: #V*3; normals:
-  // #V*3 or empty (keep); scalars: #V or empty (keep). Throws std::invalid_argument on a size
+  // #V*3 or empty (keep); scalars: #V or empty (keep); overlays: #V or empty (keep). Throws
+  // std::invalid_argument on a size
   // mismatch or a mesh not created streamed.
   void update_vertices(MeshId mesh, std::span<const float> positions, std::span<const float> normals = {},
-                       std::span<const float> scalars = {});
+                       std::span<const float> scalars = {}, std::span<const OverlayWeights> overlays = {});
 
   // A screen-space legend (e.g. make_displacement_legend) drawn in every view at rect (x0, y0, x1,
   // y1 in 0..1, y down); std::nullopt removes it.

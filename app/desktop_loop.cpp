@@ -1,0 +1,186 @@
+#include "desktop_loop.hpp"
+
+#include "commands.hpp"
+#include "review_interaction.hpp"
+#include "review_scene.hpp"
+
+#include "pushpull/deform/service.hpp"
+#include "pushpull/renderer/camera.hpp"
+#include "pushpull/renderer/context.hpp"
+#include "pushpull/renderer/mirror_window.hpp"
+#include "pushpull/renderer/renderer.hpp"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <optional>
+
+namespace pushpull::app {
+namespace {
+
+Eigen::Vector3d to_eigen(const glm::vec3& v) { return {v.x, v.y, v.z}; }
+
+// The ray through a window pixel: origin at the camera, direction into the scene (stage space).
+std::pair<Eigen::Vector3d, Eigen::Vector3d> cursor_ray(const renderer::View& view,
+                                                        const renderer::MirrorWindow::Pointer& p) {
+  const glm::mat4 inverse = glm::inverse(view.projection * view.view);
+  const float x = float(2.0 * p.x / std::max(1, p.window_width) - 1.0);
+  const float y = float(2.0 * p.y / std::max(1, p.window_height) - 1.0);  // Vulkan clip: y down like the window
+  glm::vec4 near = inverse * glm::vec4(x, y, 0.0f, 1.0f), far = inverse * glm::vec4(x, y, 1.0f, 1.0f);
+  near /= near.w;
+  far /= far.w;
+  const glm::vec3 camera = glm::vec3(glm::inverse(view.view)[3]);
+  return {to_eigen(camera), to_eigen(glm::normalize(glm::vec3(far) - glm::vec3(near)))};
+}
+
+// The point of the line p0 + s n closest to the ray o + t r (both directions unit).
+Eigen::Vector3d closest_on_line(const Eigen::Vector3d& p0, const Eigen::Vector3d& n, const Eigen::Vector3d& o,
+                                const Eigen::Vector3d& r) {
+  const Eigen::Vector3d w = p0 - o;
+  const double b = n.dot(r), d = n.dot(w), e = r.dot(w), denom = 1.0 - b * b;
+  if (denom < 1e-9) return p0;  // looking along the normal: no depth cue
+  return p0 + ((b * e - d) / denom) * n;
+}
+
+}  // namespace
+
+void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
+  renderer::ContextOptions context_options;
+  try {
+    context_options.instance_extensions = renderer::MirrorWindow::required_instance_extensions();
+  } catch (const std::exception& e) {
+    throw CommandError(std::string("desktop mode: ") + e.what());
+  }
+  context_options.swapchain = true;
+  context_options.validation = o.validation;
+  renderer::Context context = renderer::Context::create(context_options);
+  EventLog log(o.events);
+  log.write_start(o, setup, "desktop");
+  const LifeSize& life = setup.life;
+  {
+    renderer::RendererOptions renderer_options;
+    renderer_options.samples = VkSampleCountFlagBits(o.samples);
+    renderer::Renderer renderer(context, renderer_options);
+    renderer::MirrorWindow window(context, uint32_t(o.mirror_size[0]), uint32_t(o.mirror_size[1]),
+                                  "pushpull review (desktop)");
+    ReviewScene scene(renderer, setup.model, setup.placement, setup.colour, life.scale());
+    deform::Service service(setup.rest);
+    ReviewInteraction interaction(service, *setup.rest, setup.placement, setup.interaction);
+
+    // Orbit around the model's box on the stage, from the reviewer's side.
+    const Eigen::MatrixXd& V = setup.rest->V;
+    renderer::Bounds bounds;
+    {
+      Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = -lo;
+      for (Eigen::Index i = 0; i < V.rows(); ++i) {
+        const Eigen::Vector3d p = setup.placement.to_stage_point(V.row(i).transpose());
+        lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+      }
+      bounds.min = glm::vec3(lo.x(), lo.y(), lo.z());
+      bounds.max = glm::vec3(hi.x(), hi.y(), hi.z());
+    }
+    renderer::OrbitCamera orbit;
+    orbit.azimuth_deg = 30.0f;
+    orbit.elevation_deg = 25.0f;
+    renderer::MirrorWindow::Pointer last{};
+    bool dragging = false;
+    Eigen::Vector3d p0_stage = Eigen::Vector3d::Zero(), normal_stage = Eigen::Vector3d::UnitY();
+    Eigen::Vector3d plane_normal = Eigen::Vector3d::UnitZ();
+    std::string title;
+    int frames = 0;
+    while (!window.should_close() && (o.frames <= 0 || frames < o.frames)) {
+      window.poll_events();
+      bool quit = false;
+      for (int key : window.take_key_presses()) {
+        if (key == 256 /* GLFW_KEY_ESCAPE */) quit = true;
+        if (key == 'C') scene.set_colour(next_colour(scene.colour()));
+        if (!interaction.dragging()) {
+          if (key == 'U') {
+            service.undo();
+            log.write({{"event", "undo"}});
+          }
+          if (key == 'R') {
+            service.redo();
+            log.write({{"event", "redo"}});
+          }
+          if (key == 'M') {
+            const auto& all = deform::kAllMethods;
+            const auto it = std::find(all.begin(), all.end(), interaction.method());
+            interaction.set_method(it == all.end() || it + 1 == all.end() ? all.front() : *(it + 1));
+          }
+        }
+      }
+      if (quit) break;
+      const auto frame = window.acquire();
+      const VkExtent2D extent = window.extent();
+      const float aspect = float(std::max(1u, extent.width)) / float(std::max(1u, extent.height));
+      const renderer::MirrorWindow::Pointer p = window.pointer();
+      if (p.right && last.right) {
+        orbit.azimuth_deg -= float(p.x - last.x) * 0.3f;
+        orbit.elevation_deg = std::clamp(orbit.elevation_deg + float(p.y - last.y) * 0.3f, -89.0f, 89.0f);
+      }
+      orbit.distance_scale = std::clamp(orbit.distance_scale * float(std::pow(0.9, p.scroll)), 0.05f, 10.0f);
+      const renderer::View view = renderer::frame_bounds(bounds, orbit, aspect);
+      const auto [origin, direction] = cursor_ray(view, p);
+      if (p.left && !last.left && !dragging) {
+        if (const auto hit = interaction.hit(origin, direction)) {
+          if (const auto e = interaction.begin_drag(1, *hit)) {
+            log.write_interaction(*e, life);
+            dragging = true;
+            p0_stage = setup.placement.to_stage_point(hit->point);
+            const Eigen::Matrix3d A = setup.placement.T_stage_model.topLeftCorner<3, 3>();
+            normal_stage = (A * interaction.face_normal(hit->face)).normalized();
+            plane_normal = (p0_stage - origin).normalized();  // the view plane through p0
+          }
+        }
+      } else if (dragging && p.left) {
+        Eigen::Vector3d p1 = p0_stage;
+        if (p.shift) {
+          p1 = closest_on_line(p0_stage, normal_stage, origin, direction);
+        } else if (std::abs(plane_normal.dot(direction)) > 1e-9) {
+          p1 = origin + (plane_normal.dot(p0_stage - origin) / plane_normal.dot(direction)) * direction;
+        }
+        interaction.drag(setup.placement.to_model_vector(p1 - p0_stage));
+      } else if (dragging && !p.left) {
+        dragging = false;
+        if (const auto e = interaction.end_drag(true)) log.write_interaction(*e, life);
+      }
+      last = p;
+
+      const std::shared_ptr<const deform::Snapshot> snapshot = service.latest();
+      interaction.sync_committed(*snapshot);
+      scene.update(snapshot);
+      if (frame) {
+        renderer.render(std::span(&view, 1), scene.draws(), scene.settings(), frame->targets, frame->sync);
+        window.present(*frame);
+        ++frames;
+      }
+      char text[256];
+      std::snprintf(text, sizeof text, "pushpull review (desktop) | %s%s | |d| %.1f mm | %d it %s | %s",
+                    std::string(deform::method_name(interaction.method())).c_str(), dragging ? " (dragging)" : "",
+                    life.to_mm(snapshot->d.norm()), snapshot->iteration,
+                    snapshot->converged ? "converged" : "not converged", colour_name(scene.colour()));
+      if (title != text) window.set_title(title = text);
+    }
+    if (const auto e = interaction.end_drag(false)) log.write_interaction(*e, life);
+    renderer.wait_idle();
+    service.wait_idle();
+    const auto history = service.history();
+    const deform::HistoryEntry& current = history.at(service.history_position());
+    log.write({{"event", "end"}, {"revision", service.revision()}, {"hash", current.hash},
+               {"commits", service.history_position()}});
+    if (!o.out.empty()) {
+      write_review_model(o.out, setup.model, current.state->V);
+      std::printf("pushpull review: wrote %s (%zu committed push/pull(s))\n", o.out.c_str(),
+                  service.history_position());
+    }
+    std::printf("pushpull review: desktop window presented %d frames\n", frames);
+  }
+  if (o.validation && context.validation_message_count() > 0)
+    throw CommandError("Vulkan validation reported " + std::to_string(context.validation_message_count()) +
+                       " message(s) (printed above)");
+}
+
+}  // namespace pushpull::app

@@ -1,0 +1,51 @@
+#include "mirror_view.hpp"
+
+#include "pushpull/renderer/camera.hpp"
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include <cmath>
+#include <numbers>
+
+namespace pushpull::app {
+
+const char* mirror_mode_name(MirrorMode mode) {
+  return mode == MirrorMode::HeadsetEye ? "headset eye" : "smoothed first person";
+}
+
+renderer::View MirrorView::update(const std::array<xr::EyeView, 2>& eyes, double dt_s, float aspect) {
+  const xr::EyeView& left = eyes[0];
+  const float fov_y = left.fov.angleUp - left.fov.angleDown;
+  const glm::quat q(left.T_stage_eye.orientation.w, left.T_stage_eye.orientation.x, left.T_stage_eye.orientation.y,
+                    left.T_stage_eye.orientation.z);
+  const auto& p0 = eyes[0].T_stage_eye.position;
+  const auto& p1 = eyes[1].T_stage_eye.position;
+  renderer::View view;
+  view.projection = renderer::perspective(fov_y, aspect, 0.05f, 100.0f);
+  if (mode_ == MirrorMode::HeadsetEye) {
+    glm::mat4 T_stage_eye = glm::mat4_cast(q);
+    T_stage_eye[3] = glm::vec4(p0.x, p0.y, p0.z, 1.0f);
+    view.view = glm::inverse(T_stage_eye);
+    position_.reset();
+    return view;
+  }
+  const glm::dvec3 head(0.5 * (double(p0.x) + p1.x), 0.5 * (double(p0.y) + p1.y), 0.5 * (double(p0.z) + p1.z));
+  const glm::dvec3 forward = glm::dvec3(q * glm::vec3(0.0f, 0.0f, -1.0f));
+  const double yaw = std::atan2(-forward.x, -forward.z);  // 0 = looking down -Z
+  const double pitch = std::asin(std::clamp(forward.y, -1.0, 1.0));
+  const double alpha = 1.0 - std::exp(-std::max(dt_s, 0.0) / 0.5);
+  if (!position_) {
+    position_ = head;
+    yaw_ = yaw;
+  } else {
+    *position_ += alpha * (head - *position_);
+    double delta = std::remainder(yaw - yaw_, 2.0 * std::numbers::pi);  // the short way round
+    yaw_ += alpha * delta;
+  }
+  const glm::dvec3 look(-std::sin(yaw_) * std::cos(pitch), std::sin(pitch), -std::cos(yaw_) * std::cos(pitch));
+  view.view = glm::lookAt(glm::vec3(*position_), glm::vec3(*position_ + look), glm::vec3(0.0f, 1.0f, 0.0f));
+  return view;
+}
+
+}  // namespace pushpull::app

@@ -1,0 +1,162 @@
+#include "review_interaction.hpp"
+
+#include <glm/vec3.hpp>
+
+#include <algorithm>
+#include <utility>
+
+namespace pushpull::app {
+namespace {
+
+xr::GestureOptions gesture_options(double scale) {
+  xr::GestureOptions o;
+  o.min_displacement_m = 1e-4 / scale;  // the gesture sees model units
+  return o;
+}
+
+glm::dvec3 to_glm(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+Eigen::Vector3d to_eigen(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
+
+}  // namespace
+
+ReviewInteraction::ReviewInteraction(deform::Service& service, const deform::Mesh& rest, StagePlacement placement,
+                                     InteractionOptions options)
+    : service_(service),
+      placement_(std::move(placement)),
+      options_(std::move(options)),
+      committed_V_(rest.V),
+      F_(rest.F),
+      bvh_(rest.V, rest.F),
+      gestures_{xr::PushPullGesture(gesture_options(options_.scale)),
+                xr::PushPullGesture(gesture_options(options_.scale))} {}
+
+std::optional<deform::TriangleBvh::Hit> ReviewInteraction::hit(const Eigen::Vector3d& origin_stage,
+                                                               const Eigen::Vector3d& direction_stage) const {
+  return bvh_.ray_hit(committed_V_, placement_.to_model_point(origin_stage),
+                      placement_.to_model_vector(direction_stage));
+}
+
+void ReviewInteraction::sync_committed(const deform::Snapshot& snapshot) {
+  if (snapshot.revision == bvh_revision_ || !snapshot.rest) return;
+  if (bvh_revision_ != 0 || snapshot.rest->V != committed_V_) {
+    committed_V_ = snapshot.rest->V;
+    bvh_.refit(committed_V_);
+  }
+  bvh_revision_ = snapshot.revision;
+}
+
+void ReviewInteraction::submit(const Eigen::Vector3d& d) {
+  if (submitted_ && d == last_d_) return;  // the newest request already says this
+  deform::Request request;
+  request.drag = drag_id_;
+  request.handle = deform::SurfaceHandle{p0_, options_.handle_radius};
+  request.region.max_distance = options_.roi_radius;
+  request.d = d;
+  request.options = options_.solver;
+  service_.submit(std::move(request));
+  last_d_ = d;
+  submitted_ = true;
+}
+
+std::vector<InteractionEvent> ReviewInteraction::update(const std::array<HandSample, 2>& hands) {
+  std::vector<InteractionEvent> events;
+  for (int h = 0; h < 2; ++h) {
+    const HandSample& in = hands[size_t(h)];
+    hovers_[size_t(h)] = in.tracked ? hit(in.origin_stage, in.direction_stage) : std::nullopt;
+    // One drag at a time: the other hand's gesture sees a released trigger while one hand drags.
+    xr::ControllerSample sample;
+    sample.trigger = (drag_hand_ < 0 || drag_hand_ == h) ? in.trigger : 0.0f;
+    sample.tracked = in.tracked;
+    sample.hand_position = to_glm(placement_.to_model_point(in.origin_stage));
+    if (hovers_[size_t(h)]) sample.surface_hit = to_glm(hovers_[size_t(h)]->point);
+    const xr::GestureEvent e = gestures_[size_t(h)].update(sample);
+    switch (e.kind) {
+      case xr::GestureEventKind::Pressed:
+        if (const auto pressed = begin_drag(h, *hovers_[size_t(h)])) events.push_back(*pressed);
+        break;
+      case xr::GestureEventKind::Dragged:
+        submit(to_eigen(e.displacement()));
+        break;
+      case xr::GestureEventKind::Released:
+        submit(to_eigen(e.displacement()));
+        events.push_back(finish(true));
+        break;
+      case xr::GestureEventKind::Cancelled:
+        events.push_back(finish(false));
+        break;
+      case xr::GestureEventKind::None:
+        break;
+    }
+  }
+  return events;
+}
+
+void ReviewInteraction::scale_sizes(double handle_factor, double region_factor) {
+  if (dragging() || !(handle_factor > 0.0) || !(region_factor > 0.0)) return;
+  const double lo = 1e-3 / options_.scale, hi = 10.0 / options_.scale;
+  options_.handle_radius = std::clamp(options_.handle_radius * handle_factor, lo, hi);
+  options_.roi_radius = std::clamp(options_.roi_radius * region_factor, lo, hi);
+}
+
+void ReviewInteraction::set_method(deform::Method method) {
+  if (!dragging()) options_.solver.method = method;
+}
+
+std::optional<InteractionEvent> ReviewInteraction::begin_drag(int hand, const deform::TriangleBvh::Hit& hit) {
+  if (dragging()) return std::nullopt;
+  drag_hand_ = hand;
+  ++drag_id_;
+  submitted_ = false;
+  last_d_.setZero();
+  p0_ = {hit.face, hit.point};
+  InteractionEvent out;
+  out.kind = InteractionEvent::Kind::Pressed;
+  out.hand = hand;
+  out.face = p0_.face;
+  out.p0 = p0_.point;
+  return out;
+}
+
+void ReviewInteraction::drag(const Eigen::Vector3d& d) {
+  if (dragging()) submit(d);
+}
+
+std::optional<InteractionEvent> ReviewInteraction::end_drag(bool commit) {
+  if (!dragging()) return std::nullopt;
+  // As the gesture: a release closer than 0.1 mm (life size) to p0 is a click, not a push/pull.
+  return finish(commit && submitted_ && last_d_.norm() * options_.scale >= 1e-4);
+}
+
+InteractionEvent ReviewInteraction::finish(bool commit) {
+  InteractionEvent out;
+  out.hand = drag_hand_;
+  out.face = p0_.face;
+  out.p0 = p0_.point;
+  out.d = last_d_;
+  if (commit) {
+    out.kind = InteractionEvent::Kind::Committed;
+    out.request = service_.commit();
+  } else {
+    out.kind = InteractionEvent::Kind::Cancelled;
+    service_.cancel();
+  }
+  drag_hand_ = -1;
+  return out;
+}
+
+Eigen::Vector3d ReviewInteraction::face_normal(int face) const {
+  const Eigen::Vector3d a = committed_V_.row(F_(face, 0)), b = committed_V_.row(F_(face, 1)),
+                        c = committed_V_.row(F_(face, 2));
+  return (b - a).cross(c - a).normalized();
+}
+
+std::optional<InteractionEvent> ReviewInteraction::cancel() {
+  if (drag_hand_ < 0) return std::nullopt;
+  // Reset the gesture: a sample with tracking lost ends its drag.
+  xr::ControllerSample lost;
+  lost.tracked = false;
+  gestures_[size_t(drag_hand_)].update(lost);
+  return finish(false);
+}
+
+}  // namespace pushpull::app

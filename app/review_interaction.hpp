@@ -1,0 +1,113 @@
+// The review's push/pull interaction: controller aim rays -> BVH hit on the committed surface (p0) -> the
+// push-pull gesture -> requests to deform::Service every frame of a drag, commit on release, cancel on a
+// click, lost tracking or a lost session. Knows neither OpenXR nor the renderer: the loop feeds it hand
+// samples in stage space and it talks to the service.
+//
+// Frames and units: samples are in stage space (metres); p0, d and the handle radius are model space, file
+// units (the placement's inverse maps stage to model). The BVH holds the committed shape (rest of the newest
+// snapshot), refitted when the committed revision changes (commit, undo, redo).
+// Ownership: borrows the Service (outlives this). Thread-safety: one thread (the frame loop).
+#pragma once
+
+#include "stage_placement.hpp"
+
+#include "pushpull/deform/service.hpp"
+#include "pushpull/deform/triangle_bvh.hpp"
+#include "pushpull/xr/push_pull_gesture.hpp"
+
+#include <Eigen/Core>
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <vector>
+
+namespace pushpull::app {
+
+struct HandSample {
+  bool tracked = false;
+  float trigger = 0.0f;             // 0..1
+  Eigen::Vector3d origin_stage{0, 0, 0};     // aim ray origin, stage, metres
+  Eigen::Vector3d direction_stage{0, 0, -1};  // aim ray direction, stage (unit)
+  Eigen::Vector3d up_stage{0, 1, 0};          // the controller's +Y, stage (unit)
+};
+
+struct InteractionOptions {
+  double handle_radius = 0.05;  // model units, along the surface from p0
+  double roi_radius = 0.6;      // model units, region grown from the handle
+  deform::DeformOptions solver;
+  double scale = 1.0;  // metres per model unit (the gesture's click threshold is 0.1 mm at life size)
+};
+
+// Something the reviewer did, for the log and the HUD.
+struct InteractionEvent {
+  enum class Kind { Pressed, Committed, Cancelled };
+  Kind kind = Kind::Pressed;
+  int hand = 0;  // 0 left, 1 right
+  int face = -1;
+  Eigen::Vector3d p0 = Eigen::Vector3d::Zero();  // model space
+  Eigen::Vector3d d = Eigen::Vector3d::Zero();   // model space (the last one submitted)
+  std::uint64_t request = 0;                     // Committed: the committed request (Service::commit)
+};
+
+class ReviewInteraction {
+ public:
+  ReviewInteraction(deform::Service& service, const deform::Mesh& rest, StagePlacement placement,
+                    InteractionOptions options);
+
+  // One frame: both hands. Returns what happened (press, commit, cancel), in order.
+  std::vector<InteractionEvent> update(const std::array<HandSample, 2>& hands);
+  // Thumbstick between drags: scales the handle radius and the region radius by these factors (> 0), within
+  // [1 mm, 10 m] at life size. Ignored while dragging (a drag keeps its setup).
+  void scale_sizes(double handle_factor, double region_factor);
+  // The model was moved on the stage (grip). Takes effect for the next samples; call between drags.
+  void set_placement(const StagePlacement& placement) { placement_ = placement; }
+  // The method of the next drag (a drag keeps its method). Ignored while dragging.
+  void set_method(deform::Method method);
+  [[nodiscard]] deform::Method method() const { return options_.solver.method; }
+  [[nodiscard]] double handle_radius() const { return options_.handle_radius; }
+  [[nodiscard]] double roi_radius() const { return options_.roi_radius; }
+  // Direct drag control (desktop mode: the mouse instead of a gesture). begin_drag grabs the surface at `hit`
+  // (model space, from hit()); drag submits d (model space) when it changed; end_drag commits (true) or
+  // cancels (false). begin_drag is refused (nullopt) while a drag runs; drag/end_drag without one are no-ops.
+  std::optional<InteractionEvent> begin_drag(int hand, const deform::TriangleBvh::Hit& hit);
+  void drag(const Eigen::Vector3d& d);
+  std::optional<InteractionEvent> end_drag(bool commit);
+  // The committed shape's unit face normal (model space) of a face from hit().
+  [[nodiscard]] Eigen::Vector3d face_normal(int face) const;
+  // Drops a drag in progress (session lost, focus lost): the service shows the committed state again.
+  std::optional<InteractionEvent> cancel();
+  // The committed shape changed (newest snapshot's rest): refits the BVH when its revision is new.
+  void sync_committed(const deform::Snapshot& snapshot);
+
+  [[nodiscard]] bool dragging() const { return drag_hand_ >= 0; }
+  [[nodiscard]] int drag_hand() const { return drag_hand_; }
+  // Where each hand's ray meets the committed surface (model space), for the cursor.
+  [[nodiscard]] const std::array<std::optional<deform::TriangleBvh::Hit>, 2>& hovers() const { return hovers_; }
+  [[nodiscard]] const Eigen::Vector3d& current_d() const { return last_d_; }
+  // Ray hit on the committed surface in model space (exposed for the benchmark).
+  [[nodiscard]] std::optional<deform::TriangleBvh::Hit> hit(const Eigen::Vector3d& origin_stage,
+                                                            const Eigen::Vector3d& direction_stage) const;
+
+ private:
+  void submit(const Eigen::Vector3d& d);
+  InteractionEvent finish(bool commit);  // commit or cancel the running drag
+
+  deform::Service& service_;
+  StagePlacement placement_;
+  InteractionOptions options_;
+  Eigen::MatrixXd committed_V_;
+  Eigen::MatrixXi F_;
+  deform::TriangleBvh bvh_;
+  std::uint64_t bvh_revision_ = 0;
+  std::array<xr::PushPullGesture, 2> gestures_;
+  std::array<std::optional<deform::TriangleBvh::Hit>, 2> hovers_;
+  int drag_hand_ = -1;
+  std::uint64_t drag_id_ = 0;
+  deform::SurfacePoint p0_;
+  Eigen::Vector3d last_d_ = Eigen::Vector3d::Zero();
+  bool submitted_ = false;
+};
+
+}  // namespace pushpull::app

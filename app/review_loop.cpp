@@ -1,0 +1,334 @@
+#include "review_loop.hpp"
+
+#include "commands.hpp"
+#include "desktop_loop.hpp"
+#include "grab_placement.hpp"
+#include "mirror_view.hpp"
+#include "review_interaction.hpp"
+#include "review_setup.hpp"
+#include "review_scene.hpp"
+#include "stage_placement.hpp"
+#include "vulkan_validation.hpp"
+
+#include "pushpull/assets/model.hpp"
+#include "pushpull/deform/service.hpp"
+#include "pushpull/renderer/context.hpp"
+#include "pushpull/renderer/mirror_window.hpp"
+#include "pushpull/renderer/renderer.hpp"
+#include "pushpull/xr/input.hpp"
+#include "pushpull/xr/session.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <cstdio>
+#include <numeric>
+#include <thread>
+
+namespace pushpull::app {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// The hand's aim ray in stage space (the pose's -Z axis).
+// The controller's heading about stage +Y: where its ray points, or, when it points nearly straight up or down,
+// where its top (+Y) faces (the ray's heading is noise there).
+double heading(const HandSample& s) {
+  const Eigen::Vector3d& f = s.direction_stage;
+  const Eigen::Vector3d h = std::hypot(f.x(), f.z()) > 0.3 ? f : (f.y() < 0.0 ? s.up_stage : Eigen::Vector3d(-s.up_stage));
+  return std::atan2(-h.x(), -h.z());
+}
+
+HandSample hand_sample(const xr::HandInput& in) {
+  HandSample s;
+  s.trigger = in.trigger;
+  s.tracked = in.T_stage_aim.has_value();
+  if (s.tracked) {
+    const XrPosef& p = *in.T_stage_aim;
+    const Eigen::Quaterniond q(p.orientation.w, p.orientation.x, p.orientation.y, p.orientation.z);
+    s.origin_stage = {p.position.x, p.position.y, p.position.z};
+    s.direction_stage = q.normalized() * Eigen::Vector3d(0.0, 0.0, -1.0);
+    s.up_stage = q.normalized() * Eigen::Vector3d(0.0, 1.0, 0.0);
+  }
+  return s;
+}
+
+// Frame work (from xrWaitFrame's return to xrEndFrame's return), split by whether the solver was busy.
+struct FrameStats {
+  std::vector<double> idle_ms, solving_ms;
+  size_t region_vertices = 0;  // the largest region solved meanwhile
+  double snapshot_ms = 0.0;    // total time spent turning new snapshots into vertex data (frame thread)
+  size_t snapshots = 0;
+  static double mean(const std::vector<double>& v) {
+    return v.empty() ? 0.0 : std::accumulate(v.begin(), v.end(), 0.0) / double(v.size());
+  }
+  static double percentile(std::vector<double> v, double q) {
+    if (v.empty()) return 0.0;
+    std::sort(v.begin(), v.end());
+    return v[std::min(v.size() - 1, size_t(q * double(v.size())))];
+  }
+  void print() const {
+    std::printf("frame time (xrBeginFrame .. xrEndFrame, CPU): idle %.2f ms mean, %.2f ms p95 (%zu frames); "
+                "solver running %.2f ms mean, %.2f ms p95 (%zu frames); ratio %.3f\n",
+                mean(idle_ms), percentile(idle_ms, 0.95), idle_ms.size(), mean(solving_ms),
+                percentile(solving_ms, 0.95), solving_ms.size(),
+                mean(idle_ms) > 0.0 ? mean(solving_ms) / mean(idle_ms) : 0.0);
+    std::printf("largest region solved: %zu vertices; %zu new snapshots drawn, %.2f ms CPU each to turn into "
+                "vertex data on the frame thread (positions, normals, colour-map scalars, overlays)\n",
+                region_vertices, snapshots, snapshots ? snapshot_ms / double(snapshots) : 0.0);
+  }
+};
+
+}  // namespace
+
+void run_review(const ReviewCommandOptions& o) {
+  const ReviewSetup setup = prepare_review(o);
+  const LifeSize& life = setup.life;
+  const assets::Model& model = setup.model;
+  const std::shared_ptr<const deform::Mesh>& rest = setup.rest;
+  const StagePlacement& placement = setup.placement;
+  const InteractionOptions& interaction_options = setup.interaction;
+  const ReviewColour colour = setup.colour;
+  if (o.desktop) return run_desktop(o, setup);
+
+  xr::SessionOptions session_options;
+  session_options.require_vulkan13_features = [](VkPhysicalDeviceVulkan13Features& f) {
+    renderer::Context::require_features(f);
+  };
+  if (o.eye_size.size() == 2) {
+    session_options.eye_width = uint32_t(o.eye_size[0]);
+    session_options.eye_height = uint32_t(o.eye_size[1]);
+  }
+  if (o.mirror) {
+    try {
+      session_options.vulkan_instance_extensions = renderer::MirrorWindow::required_instance_extensions();
+    } catch (const std::exception& e) {
+      throw CommandError(std::string("--mirror: ") + e.what());
+    }
+    session_options.vulkan_device_extensions.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
+  }
+  if (o.validation) {
+    session_options.vulkan_layers = validation_layers();
+    for (const auto& e : validation_extensions()) session_options.vulkan_instance_extensions.push_back(e);
+  }
+  std::optional<xr::Session> session;
+  try {
+    session.emplace(session_options);
+  } catch (const xr::RuntimeUnavailable& e) {
+    // No runtime or headset: one line saying so, then the desktop window where there is a display.
+    if (std::getenv("DISPLAY") == nullptr && std::getenv("WAYLAND_DISPLAY") == nullptr) throw CommandError(e.what());
+    std::fprintf(stderr, "pushpull review: %s; opening the desktop window instead\n", e.what());
+    return run_desktop(o, setup);
+  }
+  xr::Session& xr = *session;
+  std::printf("pushpull review: %s on %s (OpenXR runtime \"%s\"), %ux%u per eye, %s space\n", o.model.c_str(),
+              xr.system_name().c_str(), xr.runtime_name().c_str(), xr.eye(0).width(), xr.eye(0).height(),
+              xr.stage_is_local() ? "LOCAL (no STAGE)" : "STAGE");
+
+  EventLog log(o.events);
+  log.write_start(o, setup, xr.runtime_name());
+
+  bool lost = false;
+  std::optional<VulkanValidation> validation;
+  if (o.validation) validation.emplace(xr.vulkan().instance);
+  {
+    const xr::VulkanDevice& vk = xr.vulkan();
+    renderer::Context context = renderer::Context::wrap(
+        {vk.instance, vk.physical_device, vk.device, vk.queue_family_index, vk.queue});
+    renderer::RendererOptions renderer_options;
+    renderer_options.samples = VkSampleCountFlagBits(o.samples);
+    // render() calls per loop frame: eyes, and the mirror; two loop frames in flight either way.
+    renderer_options.frames_in_flight = o.mirror ? 4 : 2;
+    renderer::Renderer renderer(context, renderer_options);
+    std::optional<renderer::MirrorWindow> mirror;
+    if (o.mirror) mirror.emplace(context, uint32_t(o.mirror_size[0]), uint32_t(o.mirror_size[1]), "pushpull review");
+    MirrorView mirror_view;
+    std::optional<std::array<xr::EyeView, 2>> last_eyes;
+    std::string mirror_title;
+    size_t mirror_frames = 0;
+    auto last_mirror = Clock::now();
+    ReviewScene scene(renderer, model, placement, colour, life.scale());
+    EyeTargets eyes(vk.device, xr.eye(0), xr.eye(1));
+    deform::Service service(rest);
+    ReviewInteraction interaction(service, *rest, placement, interaction_options);
+    xr::Input input(xr.instance(), xr.handle(), xr.stage_space());
+    FrameStats stats;
+    bool sizes_changed = false;
+    GrabPlacement grab(placement);
+
+    auto log_event = [&](const InteractionEvent& e) { log.write_interaction(e, life); };
+
+    while (!xr.exit_requested()) {
+      try {
+        xr.poll_events();
+        if (xr.exit_requested()) break;
+        if (!xr.running()) {
+          std::this_thread::sleep_for(std::chrono::milliseconds(10));
+          continue;
+        }
+        const xr::FrameViews frame = xr.begin_frame();
+        if (xr.lost()) break;
+        const auto start = Clock::now();
+        input.sync(frame.predicted_display_time);
+        // Focus lost mid-drag (a system menu, another app): the inputs read as released, which the gesture
+        // would take as a release; the drag is cancelled instead, the model stays as before it.
+        if (!xr.focused() && interaction.dragging())
+          if (const auto e = interaction.cancel()) log_event(*e);
+        std::array<HandSample, 2> hands{hand_sample(input.hand(xr::Hand::Left)),
+                                        hand_sample(input.hand(xr::Hand::Right))};
+        // Grip (between drags): grab and move the model; both grips also scale it.
+        if (!interaction.dragging()) {
+          std::array<std::optional<GrabHand>, 2> grabbing;
+          for (int h = 0; h < 2; ++h)
+            if (input.hand(xr::Hand(h)).grip > 0.5f && hands[size_t(h)].tracked)
+              grabbing[size_t(h)] = GrabHand{hands[size_t(h)].origin_stage, heading(hands[size_t(h)])};
+          const bool was_grabbing = grab.grabbing();
+          if (grab.update(grabbing)) {
+            interaction.set_placement(grab.placement());
+            scene.set_placement(grab.placement());
+          }
+          if (was_grabbing && !grab.grabbing()) {
+            std::vector<double> T;
+            for (int r = 0; r < 4; ++r)
+              for (int c = 0; c < 4; ++c) T.push_back(grab.placement().T_stage_model(r, c));
+            log.write({{"event", "placement"}, {"T_stage_model", T}, {"relative_scale", grab.relative_scale()}});
+            std::printf("pushpull review: model moved (%.0f%% of life size)\n", 100.0 * grab.relative_scale());
+          }
+          if (grab.grabbing())
+            for (auto& hand : hands) hand.trigger = 0.0f;  // no push/pull while holding the model
+        }
+        for (const InteractionEvent& e : interaction.update(hands)) {
+          log_event(e);
+          if (e.kind != InteractionEvent::Kind::Cancelled) input.haptic_pulse(xr::Hand(e.hand), 0.6f, 0.03);
+        }
+        for (int h = 0; h < 2 && !interaction.dragging(); ++h) {
+          const xr::HandInput& in = input.hand(xr::Hand(h));
+          if (in.undo_pressed && grab.grabbing()) {  // undo while holding the model: back to life size
+            grab.reset();
+            interaction.set_placement(grab.placement());
+            scene.set_placement(grab.placement());
+            log.write({{"event", "placement reset"}});
+          } else if (in.undo_pressed) {
+            service.undo();
+            log.write({{"event", "undo"}});
+          }
+          if (in.redo_pressed) {
+            service.redo();
+            log.write({{"event", "redo"}});
+          }
+          if (in.menu_pressed) scene.set_colour(next_colour(scene.colour()));
+        }
+        // Right thumbstick between drags: up/down grows/shrinks the handle, right/left the region (x2 per
+        // second at full deflection; a dead zone keeps a resting thumb from drifting them).
+        {
+          const XrVector2f stick = input.hand(xr::Hand::Right).thumbstick;
+          const double dt = double(frame.predicted_display_period) * 1e-9;
+          auto factor = [&](float v) { return std::abs(v) < 0.2f ? 1.0 : std::exp2(double(v) * dt); };
+          const double before = interaction.handle_radius() + interaction.roi_radius();
+          interaction.scale_sizes(factor(stick.y), factor(stick.x));
+          sizes_changed = sizes_changed || interaction.handle_radius() + interaction.roi_radius() != before;
+          if (sizes_changed && std::abs(stick.x) < 0.2f && std::abs(stick.y) < 0.2f) {
+            sizes_changed = false;
+            log.write({{"event", "sizes"},
+                       {"handle_radius", interaction.handle_radius()},
+                       {"roi_radius", interaction.roi_radius()}});
+            std::printf("pushpull review: handle radius %.0f mm, region %.0f mm\n",
+                        life.to_mm(interaction.handle_radius()), life.to_mm(interaction.roi_radius()));
+          }
+        }
+        const std::shared_ptr<const deform::Snapshot> snapshot = service.latest();
+        const bool solving = interaction.dragging() || !snapshot->final;
+        if (snapshot->region) stats.region_vertices = std::max(stats.region_vertices, snapshot->region->size());
+        interaction.sync_committed(*snapshot);
+        {
+          const std::uint64_t generation = scene.generation();
+          scene.update(snapshot);
+          if (scene.generation() != generation) {
+            stats.snapshot_ms += scene.last_cpu_ms();
+            ++stats.snapshots;
+          }
+        }
+        bool rendered = false;
+        if (frame.should_render) {
+          const uint32_t left = xr.eye(0).acquire();
+          const uint32_t right = xr.eye(1).acquire();
+          const std::array<renderer::View, 2> views{eye_view(frame.eyes[0]), eye_view(frame.eyes[1])};
+          renderer.render(views, scene.draws(), scene.settings(), eyes.targets(left, right));
+          rendered = true;
+        }
+        xr.end_frame(frame, rendered);
+        if (frame.should_render) last_eyes = frame.eyes;
+        if (mirror) {
+          mirror->poll_events();
+          for (int key : mirror->take_key_presses()) {
+            if (key == 'C') scene.set_colour(next_colour(scene.colour()));
+            if (key == 'V')
+              mirror_view.set_mode(mirror_view.mode() == MirrorMode::HeadsetEye ? MirrorMode::SmoothedFirstPerson
+                                                                                 : MirrorMode::HeadsetEye);
+            if (key == 'M') {
+              const auto& all = deform::kAllMethods;
+              const auto it = std::find(all.begin(), all.end(), interaction.method());
+              interaction.set_method(it + 1 == all.end() || it == all.end() ? all.front() : *(it + 1));
+            }
+            if (key == 256 /* GLFW_KEY_ESCAPE */) xr.request_exit();
+          }
+          if (mirror->should_close()) xr.request_exit();
+          const auto now = Clock::now();
+          const double dt = std::chrono::duration<double>(now - last_mirror).count();
+          last_mirror = now;
+          if (last_eyes) {
+            if (auto target = mirror->acquire()) {
+              const VkExtent2D e = target->targets.extent;
+              const renderer::View view = mirror_view.update(*last_eyes, dt, float(e.width) / float(e.height));
+              renderer.render(std::span(&view, 1), scene.draws(), scene.settings(), target->targets, target->sync);
+              mirror->present(*target);
+              ++mirror_frames;
+            }
+          }
+          char title[256];
+          std::snprintf(title, sizeof title, "pushpull review | %s%s | |d| %.1f mm | %d it %s | %s | %s",
+                        std::string(deform::method_name(interaction.method())).c_str(),
+                        interaction.dragging() ? " (dragging)" : "", life.to_mm(snapshot->d.norm()),
+                        snapshot->iteration, snapshot->converged ? "converged" : "not converged",
+                        colour_name(scene.colour()), mirror_mode_name(mirror_view.mode()));
+          if (mirror_title != title) mirror->set_title(mirror_title = title);
+        }
+        const double ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+        (solving ? stats.solving_ms : stats.idle_ms).push_back(ms);
+      } catch (const xr::XrError& e) {
+        if (e.result() != XR_ERROR_SESSION_LOST && e.result() != XR_ERROR_INSTANCE_LOST) throw;
+        break;
+      }
+      if (xr.lost()) break;
+    }
+    lost = xr.lost();
+    if (lost) {
+      std::printf("pushpull review: the OpenXR session was lost\n");
+      if (const auto e = interaction.cancel()) log_event(*e);
+      log.write({{"event", "lost"}});
+    }
+    renderer.wait_idle();
+    service.wait_idle();
+    const auto history = service.history();
+    const deform::HistoryEntry& current = history.at(service.history_position());
+    log.write({{"event", "end"},
+               {"revision", service.revision()},
+               {"hash", current.hash},
+               {"commits", service.history_position()}});
+    if (!o.out.empty()) {
+      write_review_model(o.out, model, current.state->V);
+      std::printf("pushpull review: wrote %s (%zu committed push/pull(s))\n", o.out.c_str(),
+                  service.history_position());
+    }
+    if (validation && validation->message_count() > 0)
+      throw CommandError("Vulkan validation reported " + std::to_string(validation->message_count()) +
+                         " message(s) (printed above)");
+    if (mirror) std::printf("pushpull review: mirror window presented %zu frames\n", mirror_frames);
+    if (o.benchmark) stats.print();
+  }
+}
+
+}  // namespace pushpull::app

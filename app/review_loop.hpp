@@ -1,0 +1,44 @@
+// `pushpull review`: the headset loop. Opens an OpenXR session (xr::Session), hands its Vulkan device to the
+// renderer (Context::wrap), places the model on the stage (T_stage_model), and runs frames: input -> push/pull
+// interaction -> deform::Service (never waited on) -> the newest snapshot drawn into both eyes -> xrEndFrame.
+// On exit it waits for the service to finish and writes the committed model (--out) and the event log.
+// Thread-safety: run_review runs on the calling thread; the service has its own worker.
+#pragma once
+
+#include "life_size.hpp"
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace pushpull::app {
+
+// Lengths typed in life-size metres (life_size.hpp).
+struct ReviewCommandOptions {
+  std::string model;
+  std::string method = "asan";
+  double mu = 100.0;  // ASAN stiffness ratio (deform::DeformOptions::mu)
+  double handle_radius_m = 0.05;
+  double roi_radius_m = 0.6;
+  std::vector<double> up{0.0, 1.0, 0.0};     // model frame
+  std::vector<double> front{0.0, 0.0, 1.0};  // model frame
+  double distance_m = 0.6;
+  std::vector<int> eye_size;  // W H, empty: the runtime's recommendation
+  int samples = 4;
+  std::string colour = "displacement";
+  std::string out;
+  std::string events;
+  bool benchmark = false;
+  bool validation = false;  // Vulkan validation layer on the runtime's instance; any message fails the run
+  bool mirror = false;   // the supervisor's GLFW window
+  bool desktop = false;  // no headset: the window is the workspace (desktop_loop.hpp)
+  int frames = 0;        // desktop mode: stop after this many frames (0: when the window closes)
+  std::vector<int> mirror_size{960, 540};
+  LifeSizeOptions life_size;
+};
+
+// Throws CommandError (no runtime or headset: one line saying which runtime was looked for and how to point
+// at one) or the module's errors naming the failing call.
+void run_review(const ReviewCommandOptions& options);
+
+}  // namespace pushpull::app

@@ -1,0 +1,198 @@
+#include "review_scene.hpp"
+
+#include "pushpull/deform/metrics.hpp"
+#include "pushpull/renderer/camera.hpp"
+#include "pushpull/renderer/vk_check.hpp"
+
+#include <glm/gtc/quaternion.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <stdexcept>
+
+namespace pushpull::app {
+
+ReviewColour next_colour(ReviewColour c) {
+  switch (c) {
+    case ReviewColour::Material: return ReviewColour::Displacement;
+    case ReviewColour::Displacement: return ReviewColour::CurvatureSign;
+    case ReviewColour::CurvatureSign: return ReviewColour::Material;
+  }
+  return ReviewColour::Material;
+}
+
+const char* colour_name(ReviewColour c) {
+  switch (c) {
+    case ReviewColour::Material: return "material";
+    case ReviewColour::Displacement: return "displacement";
+    case ReviewColour::CurvatureSign: return "curvature-sign";
+  }
+  return "?";
+}
+
+ReviewScene::ReviewScene(renderer::Renderer& renderer, const assets::Model& model, const StagePlacement& placement,
+                         ReviewColour colour, double life_size_scale)
+    : renderer_(renderer),
+      render_(build_render_model(model)),
+      rest_V_(model.deform_mesh.V),
+      F_(model.deform_mesh.F),
+      colour_(colour),
+      scale_(life_size_scale) {
+  if (render_.mesh.indices.empty()) throw std::invalid_argument("the model has no triangles to draw");
+  std::vector<renderer::TextureId> texture_ids;
+  for (const auto& t : render_.textures) texture_ids.push_back(renderer_.add_texture(t));
+  auto tex = [&](int i) { return i >= 0 ? int(texture_ids[size_t(i)]) : -1; };
+  std::vector<int> material_ids;
+  for (renderer::Material m : render_.materials) {
+    m.base_colour_texture = tex(m.base_colour_texture);
+    m.metallic_roughness_texture = tex(m.metallic_roughness_texture);
+    m.normal_texture = tex(m.normal_texture);
+    m.occlusion_texture = tex(m.occlusion_texture);
+    m.emissive_texture = tex(m.emissive_texture);
+    material_ids.push_back(int(renderer_.add_material(m)));
+  }
+  renderer::RenderMesh mesh = render_.mesh;
+  mesh.positions = render_positions(render_, rest_V_);
+  mesh.normals = render_.file_normals;
+  mesh.scalars.assign(mesh.vertex_count(), 0.0f);
+  for (auto& sub : mesh.submeshes) sub.material = sub.material >= 0 ? material_ids[size_t(sub.material)] : -1;
+  mesh_ = renderer_.add_mesh(mesh, /*streamed=*/true);
+  set_placement(placement);
+}
+
+void ReviewScene::set_placement(const StagePlacement& placement) {
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) T_stage_model_[c][r] = float(placement.T_stage_model(r, c));
+}
+
+void ReviewScene::set_colour(ReviewColour colour) {
+  if (colour == colour_) return;
+  colour_ = colour;
+  if (last_) upload(*last_);
+}
+
+void ReviewScene::update(const std::shared_ptr<const deform::Snapshot>& snapshot) {
+  if (snapshot->generation == generation_) return;
+  generation_ = snapshot->generation;
+  last_ = snapshot;
+  upload(*snapshot);
+}
+
+void ReviewScene::upload(const deform::Snapshot& snapshot) {
+  const auto start = std::chrono::steady_clock::now();
+  const Eigen::MatrixXd& V = *snapshot.positions;
+  const std::vector<float> positions = render_positions(render_, V);
+  const std::vector<float> normals = deformed_normals(render_, positions);
+  std::vector<float> scalars;
+  if (colour_ == ReviewColour::Displacement) {
+    const Eigen::VectorXd magnitude = (V - rest_V_).rowwise().norm();
+    scalars = to_render_vertices(render_, magnitude);
+    // The colour map's top: the largest displacement seen, at least 1 mm at life size.
+    scalar_max_ = std::max(magnitude.size() ? magnitude.maxCoeff() : 0.0, 1e-3 / scale_);
+  } else if (colour_ == ReviewColour::CurvatureSign) {
+    const deform::GaussianCurvature K = deform::gaussian_curvature(V, F_);
+    const double threshold = deform::flat_curvature_threshold(deform::curvature_reference_length(rest_V_),
+                                                              deform::kDefaultFlatBand);
+    std::vector<std::int8_t> signs = deform::curvature_signs(K, threshold);
+    for (size_t i = 0; i < signs.size(); ++i)
+      if (K.boundary[i]) signs[i] = 0;
+    scalars = curvature_signs_on_render_vertices(render_, V, signs);
+  } else {
+    scalars.assign(positions.size() / 3, 0.0f);
+  }
+  // The drag's region while its previews show; nothing once committed, cancelled or undone.
+  const bool show = snapshot.kind == deform::Snapshot::Kind::Preview && snapshot.region != nullptr;
+  std::vector<renderer::OverlayWeights> overlays;
+  if (show ? snapshot.region != shown_region_ : overlays_shown_) {
+    overlays.assign(positions.size() / 3, renderer::OverlayWeights{});
+    if (show) {
+      const auto& role = snapshot.region->role;
+      for (size_t r = 0; r < overlays.size(); ++r) {
+        const int d = render_.deform_vertex[r];
+        if (d < 0) continue;
+        const deform::VertexRole vr = role[size_t(d)];
+        overlays[r].roi = vr != deform::VertexRole::Outside ? 1.0f : 0.0f;
+        overlays[r].handle = vr == deform::VertexRole::Handle ? 1.0f : 0.0f;
+        overlays[r].fixed = vr == deform::VertexRole::Fixed ? 1.0f : 0.0f;
+      }
+    }
+    shown_region_ = show ? snapshot.region : nullptr;
+    overlays_shown_ = show;
+  }
+  last_cpu_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  renderer_.update_vertices(mesh_, positions, normals, scalars, overlays);
+}
+
+std::vector<renderer::Draw> ReviewScene::draws() const { return {renderer::Draw{mesh_, T_stage_model_}}; }
+
+renderer::FrameSettings ReviewScene::settings() const {
+  renderer::FrameSettings s;
+  s.up = {0.0f, 1.0f, 0.0f};  // stage
+  switch (colour_) {
+    case ReviewColour::Material:
+      s.color_mode = renderer::ColorMode::material;
+      break;
+    case ReviewColour::Displacement:
+      s.color_mode = renderer::ColorMode::displacement;
+      s.scalar_max = float(std::max(scalar_max_, 1e-3 / scale_));
+      break;
+    case ReviewColour::CurvatureSign:
+      s.color_mode = renderer::ColorMode::curvature_sign;
+      s.curvature_epsilon = 0.5f;  // scalars are the signs -1 / 0 / +1
+      break;
+  }
+  return s;
+}
+
+EyeTargets::EyeTargets(VkDevice device, xr::Swapchain& left, xr::Swapchain& right)
+    : device_(device), swapchains_{&left, &right} {
+  if (left.width() != right.width() || left.height() != right.height() || left.format() != right.format())
+    throw std::runtime_error("the eye swapchains differ in size or format; the renderer draws both eyes at one size");
+  for (size_t e = 0; e < 2; ++e)
+    for (VkImage image : swapchains_[e]->images()) {
+      VkImageViewCreateInfo info{};
+      info.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO;
+      info.image = image;
+      info.viewType = VK_IMAGE_VIEW_TYPE_2D;
+      info.format = swapchains_[e]->format();
+      info.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+      VkImageView view = VK_NULL_HANDLE;
+      PP_VK_CHECK(vkCreateImageView(device_, &info, nullptr, &view));
+      views_[e].push_back(view);
+    }
+}
+
+EyeTargets::~EyeTargets() {
+  for (auto& eye : views_)
+    for (VkImageView v : eye) vkDestroyImageView(device_, v, nullptr);
+}
+
+renderer::RenderTargets EyeTargets::targets(uint32_t left_index, uint32_t right_index) const {
+  renderer::RenderTargets t;
+  t.extent = {swapchains_[0]->width(), swapchains_[0]->height()};
+  t.format = swapchains_[0]->format();
+  const uint32_t index[2] = {left_index, right_index};
+  for (size_t e = 0; e < 2; ++e) {
+    renderer::ColorTarget c;
+    c.image = swapchains_[e]->images().at(index[e]);
+    c.view = views_[e].at(index[e]);
+    c.initial_layout = VK_IMAGE_LAYOUT_UNDEFINED;  // cleared anyway
+    c.final_layout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;  // what XR_KHR_vulkan_enable2 expects back
+    t.views.push_back(c);
+  }
+  return t;
+}
+
+renderer::View eye_view(const xr::EyeView& eye, float z_near, float z_far) {
+  const XrQuaternionf& q = eye.T_stage_eye.orientation;
+  const XrVector3f& p = eye.T_stage_eye.position;
+  glm::mat4 T_stage_eye = glm::mat4_cast(glm::quat(q.w, q.x, q.y, q.z));
+  T_stage_eye[3] = glm::vec4(p.x, p.y, p.z, 1.0f);
+  renderer::View view;
+  view.view = glm::inverse(T_stage_eye);
+  view.projection = renderer::projection_from_fov(eye.fov.angleLeft, eye.fov.angleRight, eye.fov.angleUp,
+                                                  eye.fov.angleDown, z_near, z_far);
+  return view;
+}
+
+}  // namespace pushpull::app

@@ -1,0 +1,89 @@
+// What the review draws: the model (materials, textures, one streamed mesh) placed on the stage by
+// T_stage_model, recoloured from the newest deform::Snapshot (positions, normals, displacement or
+// curvature-sign scalars; while a drag's previews show, its handle red, fixed border blue and region
+// tinted), and the eye views of an XR frame.
+//
+// Frames: the mesh is in model space (file units); draws place it with T_stage_model; views come from
+// T_stage_eye poses (stage metres). Shapes: snapshot positions are #Vd by 3 (the welded deform mesh);
+// the render mesh has #Vr vertices mapped by RenderModel::deform_vertex.
+// Ownership: borrows the Renderer (outlives this). Thread-safety: the renderer's thread only.
+#pragma once
+
+#include "render_model.hpp"
+#include "stage_placement.hpp"
+
+#include "pushpull/assets/model.hpp"
+#include "pushpull/deform/service.hpp"
+#include "pushpull/renderer/renderer.hpp"
+#include "pushpull/xr/session.hpp"
+
+#include <cstdint>
+#include <vector>
+
+namespace pushpull::app {
+
+enum class ReviewColour { Material, Displacement, CurvatureSign };
+ReviewColour next_colour(ReviewColour c);
+const char* colour_name(ReviewColour c);
+
+class ReviewScene {
+ public:
+  // life_size_scale: metres per model unit (displacement legend in mm).
+  ReviewScene(renderer::Renderer& renderer, const assets::Model& model, const StagePlacement& placement,
+              ReviewColour colour, double life_size_scale);
+
+  // Uploads the snapshot's positions (and colour-map scalars) when its generation is new. Cost O(#Vr) on
+  // the calling thread: render positions, normals, scalars.
+  void update(const std::shared_ptr<const deform::Snapshot>& snapshot);
+  void set_colour(ReviewColour colour);
+  void set_placement(const StagePlacement& placement);
+  [[nodiscard]] ReviewColour colour() const { return colour_; }
+  [[nodiscard]] std::uint64_t generation() const { return generation_; }  // of the snapshot drawn
+  // CPU time of the last snapshot's conversion to vertex data (before the upload, which may wait for the GPU
+  // to release its staging slot).
+  [[nodiscard]] double last_cpu_ms() const { return last_cpu_ms_; }
+
+  [[nodiscard]] std::vector<renderer::Draw> draws() const;
+  [[nodiscard]] renderer::FrameSettings settings() const;
+
+ private:
+  void upload(const deform::Snapshot& snapshot);
+
+  renderer::Renderer& renderer_;
+  RenderModel render_;
+  Eigen::MatrixXd rest_V_;  // the model as loaded: displacement is measured from it
+  Eigen::MatrixXi F_;
+  renderer::MeshId mesh_ = 0;
+  glm::mat4 T_stage_model_{1.0f};
+  ReviewColour colour_;
+  double scale_ = 1.0;
+  double scalar_max_ = 0.0;
+  std::uint64_t generation_ = 0;
+  std::shared_ptr<const deform::RegionOfInterest> shown_region_;  // whose roles the overlays show
+  bool overlays_shown_ = false;
+  double last_cpu_ms_ = 0.0;
+  std::shared_ptr<const deform::Snapshot> last_;
+};
+
+// Image views for the eye swapchains' images and the RenderTargets of one frame.
+// Ownership: owns the views; borrows the images (the swapchains outlive this).
+class EyeTargets {
+ public:
+  EyeTargets(VkDevice device, xr::Swapchain& left, xr::Swapchain& right);
+  ~EyeTargets();
+  EyeTargets(const EyeTargets&) = delete;
+  EyeTargets& operator=(const EyeTargets&) = delete;
+
+  // Targets for the images acquired at these indices (left, right).
+  [[nodiscard]] renderer::RenderTargets targets(uint32_t left_index, uint32_t right_index) const;
+
+ private:
+  VkDevice device_;
+  std::array<xr::Swapchain*, 2> swapchains_;
+  std::array<std::vector<VkImageView>, 2> views_;
+};
+
+// The renderer's view of an eye: T_eye_stage and the asymmetric projection of its field of view.
+renderer::View eye_view(const xr::EyeView& eye, float z_near = 0.05f, float z_far = 100.0f);
+
+}  // namespace pushpull::app

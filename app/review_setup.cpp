@@ -1,0 +1,113 @@
+#include "review_setup.hpp"
+
+#include "commands.hpp"
+
+#include "pushpull/assets/write.hpp"
+#include "pushpull/deform/mesh_io.hpp"
+
+#include <cctype>
+#include <cstdio>
+#include <filesystem>
+
+namespace pushpull::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+Eigen::Vector3d vec3(const std::vector<double>& v) { return {v.at(0), v.at(1), v.at(2)}; }
+nlohmann::json to_json(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+
+std::string lower_extension(const std::string& path) {
+  std::string extension = fs::path(path).extension().string();
+  for (char& c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return extension;
+}
+
+}  // namespace
+
+ReviewSetup prepare_review(const ReviewCommandOptions& o) {
+  if (!fs::exists(o.model)) throw CommandError(o.model + ": model file does not exist");
+  if (!o.out.empty() && !deform::mesh_format_from_path(o.out) && lower_extension(o.out) != ".glb")
+    throw CommandError(o.out + ": unsupported output format (expected .glb, .off, .obj or .ply)");
+  ReviewSetup s;
+  try {
+    s.model = assets::load_model(o.model);
+  } catch (const std::exception& e) {
+    throw CommandError(e.what());
+  }
+  s.life = LifeSize(o.life_size, s.model.bounds, o.model);
+  s.rest = std::make_shared<const deform::Mesh>(s.model.deform_mesh);
+  PlacementOptions placement;
+  placement.up_model = vec3(o.up);
+  placement.front_model = vec3(o.front);
+  placement.scale = s.life.scale();
+  placement.distance_m = o.distance_m;
+  try {
+    s.placement = place_on_stage(s.rest->V, placement);
+  } catch (const std::invalid_argument& e) {
+    throw CommandError(std::string("--up/--front: ") + e.what());
+  }
+  s.interaction.handle_radius = s.life.to_file_units(o.handle_radius_m);
+  s.interaction.roi_radius = s.life.to_file_units(o.roi_radius_m);
+  s.interaction.scale = s.life.scale();
+  try {
+    s.interaction.solver.method = deform::parse_method(o.method);
+  } catch (const std::invalid_argument& e) {
+    throw CommandError(std::string("--method: ") + e.what());
+  }
+  s.interaction.solver.mu = o.mu;
+  s.colour = o.colour == "material"         ? ReviewColour::Material
+             : o.colour == "curvature-sign" ? ReviewColour::CurvatureSign
+                                            : ReviewColour::Displacement;
+  return s;
+}
+
+void write_review_model(const std::string& path, const assets::Model& model, const Eigen::MatrixXd& V) {
+  try {
+    if (lower_extension(path) == ".glb") {
+      for (const std::string& w : assets::write_glb(model, V, path)) std::printf("  warning: %s\n", w.c_str());
+    } else {
+      deform::write_mesh(path, deform::Mesh{V, model.deform_mesh.F});
+    }
+  } catch (const std::exception& e) {
+    throw CommandError(path + ": " + e.what());
+  }
+}
+
+EventLog::EventLog(const std::string& path) {
+  if (path.empty()) return;
+  file_.open(path);
+  if (!file_) throw CommandError(path + ": cannot write the event log");
+}
+
+void EventLog::write(const nlohmann::json& line) {
+  if (file_.is_open()) file_ << line.dump() << '\n' << std::flush;
+}
+
+void EventLog::write_start(const ReviewCommandOptions& o, const ReviewSetup& s, const std::string& runtime) {
+  nlohmann::json header{{"event", "start"},
+                        {"model", o.model},
+                        {"scale", s.life.scale()},
+                        {"method", o.method},
+                        {"mu", o.mu},
+                        {"handle_radius", s.interaction.handle_radius},
+                        {"roi_radius", s.interaction.roi_radius},
+                        {"runtime", runtime}};
+  std::vector<double> T;
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) T.push_back(s.placement.T_stage_model(r, c));
+  header["T_stage_model"] = T;  // row-major 4x4
+  write(header);
+}
+
+void EventLog::write_interaction(const InteractionEvent& e, const LifeSize& life) {
+  static const char* names[] = {"press", "commit", "cancel"};
+  nlohmann::json line{{"event", names[int(e.kind)]}, {"hand", e.hand == 0 ? "left" : "right"},
+                      {"face", e.face}, {"p0", to_json(e.p0)}, {"d", to_json(e.d)}};
+  if (e.kind == InteractionEvent::Kind::Committed) line["request"] = e.request;
+  write(line);
+  std::printf("pushpull review: %s at p0 = (%.4f, %.4f, %.4f), |d| = %.1f mm\n", names[int(e.kind)], e.p0.x(),
+              e.p0.y(), e.p0.z(), life.to_mm(e.d.norm()));
+}
+
+}  // namespace pushpull::app

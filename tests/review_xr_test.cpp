@@ -1,0 +1,348 @@
+// `pushpull review` against the simulated OpenXR runtime (xr/sim) on lavapipe, driven by input scripts:
+// a push/pull in the headset commits what `pushpull deform` computes for the same p0, d and handle rule;
+// the eyes see the model in the displacement colours; a session lost mid-drag leaves the model as it was;
+// without a runtime the command says which runtime it looked for and how to point at one.
+#include "command_runner.hpp"
+
+#include "pushpull/deform/mesh_io.hpp"
+#include "pushpull/renderer/image_io.hpp"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+namespace fs = std::filesystem;
+using pushpull::testing::run_command;
+
+const std::string kHood = std::string(PUSHPULL_SOURCE_DIR) + "/examples/hood.off";
+// hood.off is Z-up with its front edge at y = 0 facing -Y: stood on the stage floor with the front edge
+// towards the reviewer, 0.6 m away, it spans stage z -0.6 .. -1.8 and stage y 0 .. 0.11.
+const std::string kPlacement = " --up 0 0 1 --front 0 -1 0 --handle-radius 0.25 --roi-radius 0.9 --samples 1";
+
+fs::path test_dir() {
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  const fs::path dir = fs::temp_directory_path() / "pushpull_review_xr_tests" / info->name();
+  fs::remove_all(dir);
+  fs::create_directories(dir / "capture");
+  return dir;
+}
+
+// Head 1 m up looking 38 degrees down at the bonnet; right controller 0.5 m up pointing straight down at the
+// bonnet 5 cm behind its front edge (x off the centre line: the ray hits inside a triangle, not on an edge).
+std::string script_start() {
+  return R"({"t":0.0,"path":"/user/head","pose":{"p":[0,1.0,0],"q":[-0.32557,0,0,0.94552]}}
+{"t":0.0,"path":"/user/hand/right/input/aim/pose","pose":{"p":[0.0123,0.5,-0.65],"q":[-0.70710678,0,0,0.70710678]}}
+{"t":0.0,"path":"/user/hand/right/input/trigger/value","value":0.0}
+{"t":0.5,"path":"/user/hand/right/input/aim/pose","pose":{"p":[0.0123,0.5,-0.65],"q":[-0.70710678,0,0,0.70710678]}}
+{"t":0.5,"path":"/user/hand/right/input/trigger/value","value":1.0}
+{"t":1.0,"path":"/user/hand/right/input/aim/pose","pose":{"p":[0.0123,0.5,-0.55],"q":[-0.70710678,0,0,0.70710678]}}
+)";
+}
+
+struct ReviewRun {
+  pushpull::testing::CommandResult result;
+  std::vector<nlohmann::json> events;
+  [[nodiscard]] std::vector<nlohmann::json> of(const std::string& kind) const {
+    std::vector<nlohmann::json> out;
+    for (const auto& e : events)
+      if (e.at("event") == kind) out.push_back(e);
+    return out;
+  }
+};
+
+// `pushpull review` on the simulated runtime with a 256x256 eye, 30 Hz virtual clock, Touch controllers.
+ReviewRun run_review(const fs::path& dir, const std::string& script, const std::string& arguments,
+                     const std::string& extra_env = "") {
+  std::ofstream(dir / "input.jsonl") << script;
+  std::string env = "env XR_RUNTIME_JSON=" + std::string(PUSHPULL_XR_SIM_MANIFEST);
+  const char* lvp = "/usr/share/vulkan/icd.d/lvp_icd.x86_64.json";
+  if (fs::exists(lvp)) env += std::string(" VK_ICD_FILENAMES=") + lvp;
+  env += " PUSHPULL_XR_SIM_INPUT=" + (dir / "input.jsonl").string() + " PUSHPULL_XR_SIM_CAPTURE=" +
+         (dir / "capture").string() +
+         " PUSHPULL_XR_SIM_WIDTH=256 PUSHPULL_XR_SIM_HEIGHT=256 PUSHPULL_XR_SIM_RATE=30"
+         " PUSHPULL_XR_SIM_PROFILE=/interaction_profiles/oculus/touch_controller " +
+         extra_env;
+  ReviewRun run;
+  run.result = run_command(env + " " + PUSHPULL_EXECUTABLE + " review " + kHood + kPlacement + " --events " +
+                           (dir / "events.jsonl").string() + " " + arguments);
+  std::ifstream log(dir / "events.jsonl");
+  for (std::string line; std::getline(log, line);)
+    if (!line.empty()) run.events.push_back(nlohmann::json::parse(line));
+  return run;
+}
+
+std::string number(double v) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.17g", v);
+  return text;
+}
+
+TEST(ReviewXr, DragCommitsWhatDeformComputesForTheSameP0AndD) {
+  const fs::path dir = test_dir();
+  const ReviewRun run = run_review(dir,
+                                   script_start() +
+                                       R"({"t":1.4,"path":"/user/hand/right/input/trigger/value","value":1.0}
+{"t":1.5,"path":"/user/hand/right/input/trigger/value","value":0.0}
+{"t":2.0,"event":"capture"}
+{"t":2.5,"event":"exit"}
+)",
+                                   "--out " + (dir / "review.off").string(),
+                                   "PUSHPULL_XR_SIM_HAPTICS=" + (dir / "haptics.jsonl").string());
+  ASSERT_EQ(run.result.status, 0) << run.result.output;
+  ASSERT_EQ(run.of("press").size(), 1u) << run.result.output;
+  // A haptic pulse on the dragging (right) hand at the press (0.5 s) and at the release (1.5 s).
+  {
+    std::ifstream haptics(dir / "haptics.jsonl");
+    std::vector<nlohmann::json> pulses;
+    for (std::string line; std::getline(haptics, line);)
+      if (!line.empty()) pulses.push_back(nlohmann::json::parse(line));
+    ASSERT_EQ(pulses.size(), 2u);
+    for (size_t i = 0; i < 2; ++i) {
+      EXPECT_EQ(pulses[i].at("path"), "/user/hand/right/output/haptic");
+      EXPECT_NEAR(double(pulses[i].at("t")), i == 0 ? 0.5 : 1.5, 0.05);
+      EXPECT_GT(double(pulses[i].at("amplitude")), 0.0);
+    }
+  }
+  ASSERT_EQ(run.of("commit").size(), 1u) << run.result.output;
+  const nlohmann::json commit = run.of("commit")[0];
+  const std::vector<double> p0 = commit.at("p0"), d = commit.at("d");
+  // The hand moved 100 mm towards the reviewer (stage +Z) = the bonnet's forward, model -Y.
+  EXPECT_NEAR(d[0], 0.0, 1e-6);
+  EXPECT_NEAR(d[1], -0.1, 1e-6);
+  EXPECT_NEAR(d[2], 0.0, 1e-6);
+  EXPECT_NEAR(p0[1], 0.05, 1e-6);  // 5 cm behind the front edge (model y = 0)
+
+  const std::string deform_out = (dir / "deform.off").string();
+  const auto deform = pushpull::testing::run_pushpull(
+      "deform " + kHood + " --handle-at " + number(p0[0]) + " " + number(p0[1]) + " " + number(p0[2]) +
+      " --handle-radius 0.25 --roi-radius 0.9 --method asan --displacement " + number(d[0]) + " " + number(d[1]) +
+      " " + number(d[2]) + " --out " + deform_out + " --metrics " + (dir / "deform.json").string());
+  ASSERT_EQ(deform.status, 0) << deform.output;
+
+  const auto rest = pushpull::deform::read_mesh(kHood);
+  const auto reviewed = pushpull::deform::read_mesh(dir / "review.off");
+  const auto expected = pushpull::deform::read_mesh(deform_out);
+  ASSERT_EQ(reviewed.V.rows(), expected.V.rows());
+  const double size = (rest.V.colwise().maxCoeff() - rest.V.colwise().minCoeff()).norm();
+  EXPECT_LE((reviewed.V - expected.V).cwiseAbs().maxCoeff(), 1e-9 * size);
+  EXPECT_NEAR((reviewed.V - rest.V).rowwise().norm().maxCoeff(), 0.1, 1e-3);  // it did move
+
+  // Both eyes see the bonnet in the displacement colours: many pixels unlike the background (the top-left
+  // corner), among them the map's red (pulled 100 mm) and blue (still) ends.
+  int images = 0;
+  for (const auto& entry : fs::directory_iterator(dir / "capture")) {
+    const auto image = pushpull::renderer::read_png(entry.path());
+    ++images;
+    const uint8_t* bg = image.pixels.data();
+    size_t model = 0, red = 0, blue = 0;
+    for (size_t i = 0; i < image.pixels.size(); i += 4) {
+      const int r = image.pixels[i], g = image.pixels[i + 1], b = image.pixels[i + 2];
+      if (std::abs(r - bg[0]) + std::abs(g - bg[1]) + std::abs(b - bg[2]) > 30) ++model;
+      if (r > g + 80 && r > b + 80) ++red;
+      if (b > r + 80 && b > g + 40) ++blue;
+    }
+    const size_t pixels = image.pixels.size() / 4;
+    EXPECT_GT(model, pixels / 20) << entry.path();
+    EXPECT_GT(red, 50u) << entry.path();
+    EXPECT_GT(blue, 50u) << entry.path();
+  }
+  EXPECT_EQ(images, 2) << "one capture, both eyes";
+}
+
+TEST(ReviewXr, SessionLostMidDragLeavesTheModelAsBeforeTheDrag) {
+  const fs::path dir = test_dir();
+  const ReviewRun run = run_review(dir, script_start() + R"({"t":0.8,"event":"loss"}
+{"t":3.0,"event":"exit"}
+)",
+                                   "--out " + (dir / "review.off").string());
+  ASSERT_EQ(run.result.status, 0) << run.result.output;
+  EXPECT_EQ(run.of("press").size(), 1u) << run.result.output;
+  EXPECT_EQ(run.of("commit").size(), 0u) << run.result.output;
+  EXPECT_EQ(run.of("cancel").size(), 1u) << run.result.output;
+  EXPECT_EQ(run.of("lost").size(), 1u) << run.result.output;
+  EXPECT_NE(run.result.output.find("session was lost"), std::string::npos) << run.result.output;
+  const auto rest = pushpull::deform::read_mesh(kHood);
+  const auto reviewed = pushpull::deform::read_mesh(dir / "review.off");
+  ASSERT_EQ(reviewed.V.rows(), rest.V.rows());
+  EXPECT_EQ((reviewed.V - rest.V).cwiseAbs().maxCoeff(), 0.0);
+}
+
+// The OpenXR core validation layer (between the app and the runtime) and VK_LAYER_KHRONOS_validation (on the
+// runtime's instance, --validation fails the run on any message) see a whole push/pull without complaint.
+TEST(ReviewXr, ValidationLayersReportNothingForAPushPull) {
+  const fs::path dir = test_dir();
+  const ReviewRun run = run_review(dir,
+                                   script_start() +
+                                       R"({"t":1.4,"path":"/user/hand/right/input/trigger/value","value":1.0}
+{"t":1.5,"path":"/user/hand/right/input/trigger/value","value":0.0}
+{"t":2.0,"event":"exit"}
+)",
+                                   "--validation", "XR_ENABLE_API_LAYERS=XR_APILAYER_LUNARG_core_validation");
+  ASSERT_EQ(run.result.status, 0) << run.result.output;
+  EXPECT_EQ(run.of("commit").size(), 1u) << run.result.output;
+  EXPECT_NE(run.result.output.find("Core Validation"), std::string::npos) << "the core validation layer did not load";
+  std::istringstream lines(run.result.output);
+  for (std::string line; std::getline(lines, line);)
+    for (const char* bad : {"VUID", "Error", "ERROR", "Warning", "WARNING", "vulkan validation"})
+      EXPECT_EQ(line.find(bad), std::string::npos) << line;
+}
+
+TEST(ReviewXr, UndoRestoresTheModelAndRedoReappliesIt) {
+  const fs::path dir = test_dir();
+  const std::string release = R"({"t":1.4,"path":"/user/hand/right/input/trigger/value","value":1.0}
+{"t":1.5,"path":"/user/hand/right/input/trigger/value","value":0.0}
+)";
+  // X (left) = undo at 2.0 s; Y (left) = redo at 2.5 s; undo again at 3.0 s: the model ends as loaded.
+  const ReviewRun run = run_review(dir, script_start() + release + R"({"t":2.0,"path":"/user/hand/left/input/x/click","value":true}
+{"t":2.1,"path":"/user/hand/left/input/x/click","value":false}
+{"t":2.5,"path":"/user/hand/left/input/y/click","value":true}
+{"t":2.6,"path":"/user/hand/left/input/y/click","value":false}
+{"t":3.0,"path":"/user/hand/left/input/x/click","value":true}
+{"t":3.1,"path":"/user/hand/left/input/x/click","value":false}
+{"t":3.5,"event":"exit"}
+)",
+                                   "--out " + (dir / "review.off").string());
+  ASSERT_EQ(run.result.status, 0) << run.result.output;
+  EXPECT_EQ(run.of("commit").size(), 1u) << run.result.output;
+  EXPECT_EQ(run.of("undo").size(), 2u) << run.result.output;
+  EXPECT_EQ(run.of("redo").size(), 1u) << run.result.output;
+  const auto rest = pushpull::deform::read_mesh(kHood);
+  const auto reviewed = pushpull::deform::read_mesh(dir / "review.off");
+  EXPECT_EQ((reviewed.V - rest.V).cwiseAbs().maxCoeff(), 0.0);
+}
+
+// Grip moves the model: 0.5 m towards the reviewer; a later push/pull aimed at where the bonnet's front now
+// is grabs the same model point as before the move and moves it by the same model-space d.
+TEST(ReviewXr, GripMovesTheModelAndLaterPushPullsFollowIt) {
+  const fs::path dir = test_dir();
+  const std::string down = R"("q":[-0.70710678,0,0,0.70710678])";
+  const std::string aim = "/user/hand/right/input/aim/pose", trigger = "/user/hand/right/input/trigger/value",
+                    grip = "/user/hand/right/input/squeeze/value";
+  auto pose = [&](double t, double z) {
+    return R"({"t":)" + number(t) + R"(,"path":")" + aim + R"(","pose":{"p":[0.0123,0.5,)" + number(z) + "]," +
+           down + "}}\n";
+  };
+  auto value = [&](double t, const std::string& path, double v) {
+    return R"({"t":)" + number(t) + R"(,"path":")" + path + R"(","value":)" + number(v) + "}\n";
+  };
+  const std::string script = R"({"t":0.0,"path":"/user/head","pose":{"p":[0,1.0,0.5],"q":[-0.32557,0,0,0.94552]}}
+)" + pose(0.0, -0.65) + value(0.0, trigger, 0.0) + value(0.0, grip, 0.0) + value(0.3, grip, 1.0) +
+                             pose(0.3, -0.65) + pose(0.8, -0.15) + value(0.9, grip, 1.0) + value(1.0, grip, 0.0) +
+                             value(1.4, trigger, 0.0) + value(1.5, trigger, 1.0) + pose(1.5, -0.15) +
+                             pose(2.0, -0.05) + value(2.4, trigger, 1.0) + value(2.5, trigger, 0.0) +
+                             R"({"t":3.0,"event":"exit"}
+)";
+  const ReviewRun run = run_review(dir, script, "");
+  ASSERT_EQ(run.result.status, 0) << run.result.output;
+  const auto moved = run.of("placement");
+  ASSERT_EQ(moved.size(), 1u) << run.result.output;
+  const std::vector<double> T = moved[0].at("T_stage_model");
+  EXPECT_NEAR(T[11], -0.6 + 0.5, 1e-5);  // the translation's z: 0.5 m closer
+  EXPECT_NEAR(double(moved[0].at("relative_scale")), 1.0, 1e-9);
+  ASSERT_EQ(run.of("commit").size(), 1u) << run.result.output;
+  const std::vector<double> p0 = run.of("commit")[0].at("p0"), d = run.of("commit")[0].at("d");
+  EXPECT_NEAR(p0[0], 0.0123, 1e-5);
+  EXPECT_NEAR(p0[1], 0.05, 1e-5);
+  EXPECT_NEAR(d[1], -0.1, 1e-5);
+}
+
+// Both grips scale the model with the distance between the hands (0.4 m -> 0.8 m: twice life size).
+TEST(ReviewXr, TwoGripsScaleTheModel) {
+  const fs::path dir = test_dir();
+  const std::string script = R"({"t":0.0,"path":"/user/hand/left/input/aim/pose","pose":{"p":[-0.2,1.0,-0.4],"q":[0,0,0,1]}}
+{"t":0.0,"path":"/user/hand/right/input/aim/pose","pose":{"p":[0.2,1.0,-0.4],"q":[0,0,0,1]}}
+{"t":0.0,"path":"/user/hand/left/input/squeeze/value","value":0.0}
+{"t":0.0,"path":"/user/hand/right/input/squeeze/value","value":0.0}
+{"t":0.3,"path":"/user/hand/left/input/squeeze/value","value":1.0}
+{"t":0.3,"path":"/user/hand/right/input/squeeze/value","value":1.0}
+{"t":0.4,"path":"/user/hand/left/input/aim/pose","pose":{"p":[-0.2,1.0,-0.4],"q":[0,0,0,1]}}
+{"t":0.4,"path":"/user/hand/right/input/aim/pose","pose":{"p":[0.2,1.0,-0.4],"q":[0,0,0,1]}}
+{"t":1.0,"path":"/user/hand/left/input/aim/pose","pose":{"p":[-0.4,1.0,-0.4],"q":[0,0,0,1]}}
+{"t":1.0,"path":"/user/hand/right/input/aim/pose","pose":{"p":[0.4,1.0,-0.4],"q":[0,0,0,1]}}
+{"t":1.2,"path":"/user/hand/left/input/squeeze/value","value":0.0}
+{"t":1.2,"path":"/user/hand/right/input/squeeze/value","value":0.0}
+{"t":1.5,"event":"exit"}
+)";
+  const ReviewRun run = run_review(dir, script, "");
+  ASSERT_EQ(run.result.status, 0) << run.result.output;
+  const auto moved = run.of("placement");
+  ASSERT_EQ(moved.size(), 1u) << run.result.output;
+  EXPECT_NEAR(double(moved[0].at("relative_scale")), 2.0, 1e-4);
+}
+
+TEST(ReviewXr, ThumbstickBetweenDragsScalesHandleAndRegion) {
+  const fs::path dir = test_dir();
+  // Full up for 1 s (handle x2), then full left for 1 s (region / 2), then centred.
+  const ReviewRun run = run_review(dir, R"({"t":0.0,"path":"/user/hand/right/input/thumbstick","value":[0.0,0.0]}
+{"t":0.5,"path":"/user/hand/right/input/thumbstick","value":[0.0,1.0]}
+{"t":1.5,"path":"/user/hand/right/input/thumbstick","value":[-1.0,0.0]}
+{"t":2.5,"path":"/user/hand/right/input/thumbstick","value":[0.0,0.0]}
+{"t":3.0,"event":"exit"}
+)",
+                                   "");
+  ASSERT_EQ(run.result.status, 0) << run.result.output;
+  const auto sizes = run.of("sizes");
+  ASSERT_EQ(sizes.size(), 1u) << run.result.output;
+  EXPECT_NEAR(double(sizes[0].at("handle_radius")), 0.5, 0.05);  // 0.25 m doubled
+  EXPECT_NEAR(double(sizes[0].at("roi_radius")), 0.45, 0.05);    // 0.9 m halved
+}
+
+// ReviewXrWindow.*: run under xvfb-run (ctest: review_xr_window_xvfb); skipped where there is no display.
+TEST(ReviewXrWindow, MirrorWindowPresentsFramesAndLeavesTheCommitUnchanged) {
+  if (std::getenv("DISPLAY") == nullptr) GTEST_SKIP() << "no DISPLAY (ctest runs this under xvfb-run)";
+  const fs::path dir = test_dir();
+  const std::string script = script_start() + R"({"t":1.4,"path":"/user/hand/right/input/trigger/value","value":1.0}
+{"t":1.5,"path":"/user/hand/right/input/trigger/value","value":0.0}
+{"t":2.5,"event":"exit"}
+)";
+  const ReviewRun plain = run_review(dir, script, "--out " + (dir / "plain.off").string());
+  ASSERT_EQ(plain.result.status, 0) << plain.result.output;
+  const ReviewRun mirrored =
+      run_review(dir, script, "--mirror --mirror-size 320 240 --out " + (dir / "mirrored.off").string());
+  ASSERT_EQ(mirrored.result.status, 0) << mirrored.result.output;
+  const auto at = mirrored.result.output.find("mirror window presented ");
+  ASSERT_NE(at, std::string::npos) << mirrored.result.output;
+  EXPECT_GT(std::stoi(mirrored.result.output.substr(at + 24)), 30) << mirrored.result.output;
+  const auto a = pushpull::deform::read_mesh(dir / "plain.off");
+  const auto b = pushpull::deform::read_mesh(dir / "mirrored.off");
+  EXPECT_EQ((a.V - b.V).cwiseAbs().maxCoeff(), 0.0);
+}
+
+TEST(ReviewXrWindow, WithoutARuntimeItSaysSoAndOpensTheDesktopWindow) {
+  if (std::getenv("DISPLAY") == nullptr) GTEST_SKIP() << "no DISPLAY (ctest runs this under xvfb-run)";
+  const fs::path dir = test_dir();
+  const auto result = run_command("env XR_RUNTIME_JSON=/nonexistent/runtime.json " + std::string(PUSHPULL_EXECUTABLE) +
+                                  " review " + kHood + kPlacement + " --frames 10 --mirror-size 160 120 --out " +
+                                  (dir / "desktop.off").string());
+  ASSERT_EQ(result.status, 0) << result.output;
+  EXPECT_NE(result.output.find("XR_RUNTIME_JSON=/nonexistent/runtime.json"), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("opening the desktop window instead"), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("desktop window presented 10 frames"), std::string::npos) << result.output;
+  const auto rest = pushpull::deform::read_mesh(kHood);
+  const auto written = pushpull::deform::read_mesh(dir / "desktop.off");
+  EXPECT_EQ((written.V - rest.V).cwiseAbs().maxCoeff(), 0.0);  // nothing was pushed
+}
+
+TEST(ReviewXr, WithoutARuntimeSaysWhichOneItLookedForAndHowToPointAtOne) {
+  // No display either: the command ends with the message instead of opening the desktop window.
+  const auto result = run_command("env -u DISPLAY -u WAYLAND_DISPLAY XR_RUNTIME_JSON=/nonexistent/runtime.json " +
+                                  std::string(PUSHPULL_EXECUTABLE) + " review " + kHood);
+  EXPECT_NE(result.status, 0);
+  EXPECT_NE(result.output.find("pushpull: error: no usable OpenXR runtime: looked for the runtime in "
+                               "XR_RUNTIME_JSON=/nonexistent/runtime.json"),
+            std::string::npos)
+      << result.output;
+  EXPECT_NE(result.output.find("XR_RUNTIME_JSON=build/xr/sim/pushpull_xr_sim.json"), std::string::npos)
+      << result.output;
+}
+
+}  // namespace

@@ -1,0 +1,58 @@
+// pushpull::xr::Input: the review's action set and its bindings for five interaction profiles
+// (khr/simple, oculus/touch, valve/index, htc/vive, microsoft/motion), synced once per frame.
+//
+// Actions per hand (subaction paths /user/hand/left and /user/hand/right):
+//   trigger (push/pull; simple: select/click), grip (squeeze), aim pose, thumbstick (vive: trackpad),
+//   undo, redo (touch: X/A = undo, Y/B = redo; index: A = undo, B = redo; simple, vive, motion: left menu =
+//   undo, right menu = redo), menu (touch: left menu; index: thumbstick click; vive: trackpad click;
+//   motion: thumbstick click) and a haptic output.
+// A profile the runtime refuses (XR_ERROR_PATH_UNSUPPORTED, ...) is skipped with a warning on stderr.
+//
+// Frames: aim poses are T_stage_aim (metres, the stage space given), the ray leaves along the pose's -Z.
+// Ownership: owns the action set, actions and action spaces; borrows the instance, session and stage space
+// (the Session outlives the Input). Thread-safety: one thread (the frame loop).
+#pragma once
+
+#include "pushpull/xr/xr_check.hpp"
+
+#include <array>
+#include <memory>
+#include <optional>
+#include <string>
+
+namespace pushpull::xr {
+
+enum class Hand { Left = 0, Right = 1 };
+
+struct HandInput {
+  float trigger = 0.0f;  // 0..1
+  float grip = 0.0f;     // 0..1
+  XrVector2f thumbstick{0.0f, 0.0f};
+  std::optional<XrPosef> T_stage_aim;  // none when not tracked
+  bool undo_pressed = false;  // went down since the last sync
+  bool redo_pressed = false;
+  bool menu_pressed = false;
+};
+
+class Input {
+ public:
+  Input(XrInstance instance, XrSession session, XrSpace stage_space);
+  ~Input();
+  Input(const Input&) = delete;
+  Input& operator=(const Input&) = delete;
+
+  // xrSyncActions and every action's state at `time` (the frame's predicted display time). Only call
+  // while the session is running; when it is not focused every input reads as released.
+  void sync(XrTime time);
+  [[nodiscard]] const HandInput& hand(Hand hand) const;
+  // A short vibration (amplitude 0..1, duration in seconds) on that hand's controller.
+  void haptic_pulse(Hand hand, float amplitude, double duration_s);
+  // The interaction profile the runtime chose for the hand ("" when none yet).
+  [[nodiscard]] std::string current_profile(Hand hand) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace pushpull::xr

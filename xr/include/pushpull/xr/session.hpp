@@ -1,0 +1,115 @@
+// pushpull::xr::Session: an OpenXR instance, system, Vulkan device (XR_KHR_vulkan_enable2), session, the
+// stage space and one swapchain per eye, with the session state machine and the frame calls.
+//
+//   Session xr(options);                     // throws RuntimeUnavailable when there is no runtime / HMD
+//   renderer::Context::wrap(xr.vulkan());    // app/: xr never includes the renderer
+//   while (!xr.exit_requested()) {
+//     xr.poll_events();                      // READY -> xrBeginSession, STOPPING -> xrEndSession, ...
+//     if (!xr.running()) { sleep a little; continue; }
+//     FrameViews f = xr.begin_frame();       // xrWaitFrame + xrBeginFrame + xrLocateViews (stage space)
+//     if (f.should_render) { index = xr.eye(i).acquire(); draw; }   // both eyes
+//     xr.end_frame(f, rendered);             // releases the images, submits one projection layer
+//   }
+//
+// State machine: READY begins the session (PRIMARY_STEREO); STOPPING ends it; EXITING, LOSS_PENDING and
+// instance loss request exit; a frame call that fails with XR_ERROR_SESSION_LOST marks the session lost.
+// lost() tells the app to drop what the session was doing (a drag is cancelled, not committed).
+//
+// Frames: poses are T_stage_eye (stage space: STAGE when the runtime has it, LOCAL otherwise; metres, +Y up,
+// -Z forward). Ownership: owns every handle it creates (the Vulkan instance and device too: destroyed after
+// the session, before the XrInstance); keep everything made from vulkan() shorter-lived than the Session.
+// Move-only. Thread-safety: one thread (the frame loop) for every call.
+#pragma once
+
+#include "pushpull/xr/swapchain.hpp"
+#include "pushpull/xr/xr_check.hpp"
+
+#include <array>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace pushpull::xr {
+
+// xrCreateInstance or xrGetSystem failed: no OpenXR runtime installed or active, or no headset. what() is one
+// line naming the runtime the loader looked for and how to point it at one (XR_RUNTIME_JSON).
+class RuntimeUnavailable : public XrError {
+ public:
+  using XrError::XrError;
+};
+
+struct SessionOptions {
+  std::string application_name = "pushpull";
+  // Called before the runtime creates the Vulkan device, on the Vulkan 1.3 feature struct chained into
+  // VkDeviceCreateInfo (the renderer's Context::require_features).
+  std::function<void(VkPhysicalDeviceVulkan13Features&)> require_vulkan13_features;
+  // Vulkan extensions beyond the runtime's own (e.g. a mirror window's surface extensions and
+  // VK_KHR_swapchain): added to the create infos handed to xrCreateVulkanInstanceKHR / xrCreateVulkanDeviceKHR.
+  std::vector<std::string> vulkan_instance_extensions;
+  std::vector<std::string> vulkan_device_extensions;
+  std::vector<std::string> vulkan_layers;  // instance layers, e.g. VK_LAYER_KHRONOS_validation
+  // Per-eye image size; 0 = the runtime's recommended size.
+  uint32_t eye_width = 0, eye_height = 0;
+  // Extensions the session must enable beyond XR_KHR_vulkan_enable2 (e.g. for tests); unknown ones fail.
+  std::vector<std::string> extensions;
+};
+
+// What the renderer borrows (renderer::ExternalVulkan has the same fields). Owned by the Session.
+struct VulkanDevice {
+  VkInstance instance = VK_NULL_HANDLE;
+  VkPhysicalDevice physical_device = VK_NULL_HANDLE;
+  VkDevice device = VK_NULL_HANDLE;
+  uint32_t queue_family_index = 0;
+  VkQueue queue = VK_NULL_HANDLE;
+};
+
+struct EyeView {
+  XrPosef T_stage_eye{{0, 0, 0, 1}, {0, 0, 0}};  // metres
+  XrFovf fov{};                                  // radians, left/down negative
+};
+
+struct FrameViews {
+  XrTime predicted_display_time = 0;
+  XrDuration predicted_display_period = 0;
+  bool should_render = false;  // the runtime shows the frame and the views were located
+  std::array<EyeView, 2> eyes{};
+};
+
+class Session {
+ public:
+  explicit Session(const SessionOptions& options = {});
+  ~Session();
+  Session(Session&&) noexcept;
+  Session& operator=(Session&&) noexcept;
+
+  // Handles pending events and runs the state machine. Never blocks.
+  void poll_events();
+  [[nodiscard]] bool running() const;         // begun and not ended: run frames
+  [[nodiscard]] bool focused() const;         // XR_SESSION_STATE_FOCUSED: input is ours
+  [[nodiscard]] bool exit_requested() const;  // leave the frame loop
+  [[nodiscard]] bool lost() const;            // the session or the instance was lost
+  [[nodiscard]] XrSessionState state() const;
+  // Asks the runtime to end the session (xrRequestExitSession); the loop goes on until exit_requested().
+  void request_exit();
+
+  // xrWaitFrame, xrBeginFrame, xrLocateViews. On XR_ERROR_SESSION_LOST: lost() and should_render = false.
+  FrameViews begin_frame();
+  // Releases the eye images still acquired and calls xrEndFrame, with one projection layer when `rendered`.
+  void end_frame(const FrameViews& frame, bool rendered);
+
+  [[nodiscard]] Swapchain& eye(int index);  // 0 = left, 1 = right
+  [[nodiscard]] const VulkanDevice& vulkan() const;
+  [[nodiscard]] XrInstance instance() const;
+  [[nodiscard]] XrSession handle() const;
+  [[nodiscard]] XrSpace stage_space() const;
+  [[nodiscard]] bool stage_is_local() const;  // no STAGE space: LOCAL (floor unknown, head height guessed)
+  [[nodiscard]] const std::string& runtime_name() const;
+  [[nodiscard]] const std::string& system_name() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace pushpull::xr

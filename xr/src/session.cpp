@@ -1,0 +1,396 @@
+#include "pushpull/xr/session.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <optional>
+
+namespace pushpull::xr {
+namespace {
+
+#define CHECK(expression) PUSHPULL_XR_CHECK(instance, expression)
+
+// Where the loader looks for the runtime, for the message when there is none.
+std::string runtime_looked_for() {
+  if (const char* json = std::getenv("XR_RUNTIME_JSON"); json && *json)
+    return std::string("the runtime in XR_RUNTIME_JSON=") + json;
+  return "the active OpenXR runtime (active_runtime.json under $XDG_CONFIG_HOME/openxr/1 or /etc/xdg/openxr/1)";
+}
+
+constexpr const char* kPointAtRuntime =
+    "point at one with XR_RUNTIME_JSON=/path/to/runtime.json (the simulated runtime: "
+    "XR_RUNTIME_JSON=build/xr/sim/pushpull_xr_sim.json)";
+
+template <class Fn>
+Fn instance_function(XrInstance instance, const char* name) {
+  PFN_xrVoidFunction f = nullptr;
+  check_xr(xrGetInstanceProcAddr(instance, name, &f), instance, name, __FILE__, __LINE__);
+  return reinterpret_cast<Fn>(f);
+}
+
+}  // namespace
+
+struct Session::Impl {
+  XrInstance instance = XR_NULL_HANDLE;
+  XrSystemId system = XR_NULL_SYSTEM_ID;
+  VulkanDevice vk;
+  XrSession session = XR_NULL_HANDLE;
+  XrSpace stage = XR_NULL_HANDLE;
+  bool stage_is_local = false;
+  std::vector<Swapchain> eyes;
+  std::vector<XrViewConfigurationView> view_configs;
+  XrEnvironmentBlendMode blend_mode = XR_ENVIRONMENT_BLEND_MODE_OPAQUE;
+  XrSessionState state = XR_SESSION_STATE_UNKNOWN;
+  bool running = false, exit = false, lost = false;
+  std::string runtime_name, system_name;
+
+  ~Impl() {
+    eyes.clear();
+    if (stage != XR_NULL_HANDLE) xrDestroySpace(stage);
+    if (session != XR_NULL_HANDLE) xrDestroySession(session);
+    if (vk.device != VK_NULL_HANDLE) vkDestroyDevice(vk.device, nullptr);
+    if (vk.instance != VK_NULL_HANDLE) vkDestroyInstance(vk.instance, nullptr);
+    if (instance != XR_NULL_HANDLE) xrDestroyInstance(instance);
+  }
+
+  void create_instance(const SessionOptions& options) {
+    std::vector<const char*> extensions{XR_KHR_VULKAN_ENABLE2_EXTENSION_NAME};
+    for (const auto& e : options.extensions) extensions.push_back(e.c_str());
+    XrInstanceCreateInfo info{XR_TYPE_INSTANCE_CREATE_INFO};
+    std::snprintf(info.applicationInfo.applicationName, XR_MAX_APPLICATION_NAME_SIZE, "%s",
+                  options.application_name.c_str());
+    std::snprintf(info.applicationInfo.engineName, XR_MAX_ENGINE_NAME_SIZE, "pushpull");
+    info.applicationInfo.apiVersion = XR_MAKE_VERSION(1, 0, 0);
+    info.enabledExtensionCount = uint32_t(extensions.size());
+    info.enabledExtensionNames = extensions.data();
+    if (const XrResult r = xrCreateInstance(&info, &instance); XR_FAILED(r)) {
+      instance = XR_NULL_HANDLE;
+      const std::string why = r == XR_ERROR_EXTENSION_NOT_PRESENT
+                                  ? "it does not offer XR_KHR_vulkan_enable2"
+                                  : "xrCreateInstance failed with " + result_name(XR_NULL_HANDLE, r);
+      throw RuntimeUnavailable("no usable OpenXR runtime: looked for " + runtime_looked_for() + ", " + why +
+                                   " (the loader's and runtime's messages above say more); " + kPointAtRuntime,
+                               r);
+    }
+    XrInstanceProperties properties{XR_TYPE_INSTANCE_PROPERTIES};
+    CHECK(xrGetInstanceProperties(instance, &properties));
+    runtime_name = properties.runtimeName;
+    XrSystemGetInfo system_info{XR_TYPE_SYSTEM_GET_INFO};
+    system_info.formFactor = XR_FORM_FACTOR_HEAD_MOUNTED_DISPLAY;
+    if (const XrResult r = xrGetSystem(instance, &system_info, &system); XR_FAILED(r))
+      throw RuntimeUnavailable("no headset: the OpenXR runtime \"" + runtime_name + "\" (" + runtime_looked_for() +
+                                   ") has no head-mounted display (xrGetSystem: " + result_name(instance, r) +
+                                   "); connect one, or " + kPointAtRuntime,
+                               r);
+    XrSystemProperties system_properties{XR_TYPE_SYSTEM_PROPERTIES};
+    CHECK(xrGetSystemProperties(instance, system, &system_properties));
+    system_name = system_properties.systemName;
+  }
+
+  void create_vulkan(const SessionOptions& options) {
+    auto requirements =
+        instance_function<PFN_xrGetVulkanGraphicsRequirements2KHR>(instance, "xrGetVulkanGraphicsRequirements2KHR");
+    auto create_vk_instance =
+        instance_function<PFN_xrCreateVulkanInstanceKHR>(instance, "xrCreateVulkanInstanceKHR");
+    auto get_device = instance_function<PFN_xrGetVulkanGraphicsDevice2KHR>(instance, "xrGetVulkanGraphicsDevice2KHR");
+    auto create_device = instance_function<PFN_xrCreateVulkanDeviceKHR>(instance, "xrCreateVulkanDeviceKHR");
+    XrGraphicsRequirementsVulkan2KHR req{XR_TYPE_GRAPHICS_REQUIREMENTS_VULKAN2_KHR};
+    CHECK(requirements(instance, system, &req));
+    if (XR_VERSION_MAJOR(req.maxApiVersionSupported) < 1 ||
+        (XR_VERSION_MAJOR(req.maxApiVersionSupported) == 1 && XR_VERSION_MINOR(req.maxApiVersionSupported) < 3))
+      std::fprintf(stderr, "pushpull: warning: the OpenXR runtime says it supports Vulkan up to %u.%u; the "
+                           "renderer needs 1.3\n",
+                   unsigned(XR_VERSION_MAJOR(req.maxApiVersionSupported)),
+                   unsigned(XR_VERSION_MINOR(req.maxApiVersionSupported)));
+
+    VkApplicationInfo app{};
+    app.sType = VK_STRUCTURE_TYPE_APPLICATION_INFO;
+    app.pApplicationName = options.application_name.c_str();
+    app.pEngineName = "pushpull";
+    app.apiVersion = VK_API_VERSION_1_3;
+    VkInstanceCreateInfo vci{};
+    vci.sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO;
+    vci.pApplicationInfo = &app;
+    std::vector<const char*> instance_extensions;
+    for (const auto& e : options.vulkan_instance_extensions) instance_extensions.push_back(e.c_str());
+    vci.enabledExtensionCount = uint32_t(instance_extensions.size());
+    vci.ppEnabledExtensionNames = instance_extensions.data();
+    std::vector<const char*> layers;
+    for (const auto& l : options.vulkan_layers) layers.push_back(l.c_str());
+    vci.enabledLayerCount = uint32_t(layers.size());
+    vci.ppEnabledLayerNames = layers.data();
+    XrVulkanInstanceCreateInfoKHR xci{XR_TYPE_VULKAN_INSTANCE_CREATE_INFO_KHR};
+    xci.systemId = system;
+    xci.pfnGetInstanceProcAddr = &vkGetInstanceProcAddr;
+    xci.vulkanCreateInfo = &vci;
+    VkResult vr = VK_ERROR_UNKNOWN;
+    CHECK(create_vk_instance(instance, &xci, &vk.instance, &vr));
+    if (vr != VK_SUCCESS)
+      throw XrError("vkCreateInstance through xrCreateVulkanInstanceKHR failed with VkResult " +
+                        std::to_string(int(vr)),
+                    XR_ERROR_RUNTIME_FAILURE);
+
+    XrVulkanGraphicsDeviceGetInfoKHR gi{XR_TYPE_VULKAN_GRAPHICS_DEVICE_GET_INFO_KHR};
+    gi.systemId = system;
+    gi.vulkanInstance = vk.instance;
+    CHECK(get_device(instance, &gi, &vk.physical_device));
+
+    uint32_t n = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(vk.physical_device, &n, nullptr);
+    std::vector<VkQueueFamilyProperties> families(n);
+    vkGetPhysicalDeviceQueueFamilyProperties(vk.physical_device, &n, families.data());
+    std::optional<uint32_t> family;
+    for (uint32_t i = 0; i < n && !family; ++i)
+      if (families[i].queueFlags & VK_QUEUE_GRAPHICS_BIT) family = i;
+    if (!family) throw XrError("the runtime's Vulkan device has no graphics queue", XR_ERROR_RUNTIME_FAILURE);
+    vk.queue_family_index = *family;
+
+    const float priority = 1.0f;
+    VkDeviceQueueCreateInfo qci{};
+    qci.sType = VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO;
+    qci.queueFamilyIndex = vk.queue_family_index;
+    qci.queueCount = 1;
+    qci.pQueuePriorities = &priority;
+    VkPhysicalDeviceVulkan13Features features13{};
+    features13.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES;
+    if (options.require_vulkan13_features) options.require_vulkan13_features(features13);
+    VkDeviceCreateInfo dci{};
+    dci.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO;
+    dci.pNext = &features13;
+    dci.queueCreateInfoCount = 1;
+    dci.pQueueCreateInfos = &qci;
+    std::vector<const char*> device_extensions;
+    for (const auto& e : options.vulkan_device_extensions) device_extensions.push_back(e.c_str());
+    dci.enabledExtensionCount = uint32_t(device_extensions.size());
+    dci.ppEnabledExtensionNames = device_extensions.data();
+    XrVulkanDeviceCreateInfoKHR xdci{XR_TYPE_VULKAN_DEVICE_CREATE_INFO_KHR};
+    xdci.systemId = system;
+    xdci.pfnGetInstanceProcAddr = &vkGetInstanceProcAddr;
+    xdci.vulkanPhysicalDevice = vk.physical_device;
+    xdci.vulkanCreateInfo = &dci;
+    CHECK(create_device(instance, &xdci, &vk.device, &vr));
+    if (vr != VK_SUCCESS)
+      throw XrError("vkCreateDevice through xrCreateVulkanDeviceKHR failed with VkResult " + std::to_string(int(vr)),
+                    XR_ERROR_RUNTIME_FAILURE);
+    vkGetDeviceQueue(vk.device, vk.queue_family_index, 0, &vk.queue);
+  }
+
+  void create_session() {
+    XrGraphicsBindingVulkan2KHR binding{XR_TYPE_GRAPHICS_BINDING_VULKAN2_KHR};
+    binding.instance = vk.instance;
+    binding.physicalDevice = vk.physical_device;
+    binding.device = vk.device;
+    binding.queueFamilyIndex = vk.queue_family_index;
+    binding.queueIndex = 0;
+    XrSessionCreateInfo info{XR_TYPE_SESSION_CREATE_INFO};
+    info.next = &binding;
+    info.systemId = system;
+    CHECK(xrCreateSession(instance, &info, &session));
+  }
+
+  void create_stage_space() {
+    uint32_t n = 0;
+    CHECK(xrEnumerateReferenceSpaces(session, 0, &n, nullptr));
+    std::vector<XrReferenceSpaceType> types(n);
+    CHECK(xrEnumerateReferenceSpaces(session, n, &n, types.data()));
+    XrReferenceSpaceCreateInfo info{XR_TYPE_REFERENCE_SPACE_CREATE_INFO};
+    info.poseInReferenceSpace.orientation.w = 1.0f;
+    if (std::find(types.begin(), types.end(), XR_REFERENCE_SPACE_TYPE_STAGE) != types.end()) {
+      info.referenceSpaceType = XR_REFERENCE_SPACE_TYPE_STAGE;
+    } else {
+      // LOCAL has its origin at the head when the app started: put the floor 1.6 m below it (a guess).
+      info.referenceSpaceType = XR_REFERENCE_SPACE_TYPE_LOCAL;
+      info.poseInReferenceSpace.position.y = -1.6f;
+      stage_is_local = true;
+      std::fprintf(stderr, "pushpull: the OpenXR runtime has no STAGE space; using LOCAL with the floor guessed "
+                           "1.6 m below the head\n");
+    }
+    CHECK(xrCreateReferenceSpace(session, &info, &stage));
+  }
+
+  void create_swapchains(const SessionOptions& options) {
+    uint32_t n = 0;
+    CHECK(xrEnumerateViewConfigurationViews(instance, system, XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO, 0, &n,
+                                            nullptr));
+    view_configs.assign(n, {XR_TYPE_VIEW_CONFIGURATION_VIEW});
+    CHECK(xrEnumerateViewConfigurationViews(instance, system, XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO, n, &n,
+                                            view_configs.data()));
+    if (n != 2)
+      throw XrError("the runtime's PRIMARY_STEREO view configuration has " + std::to_string(n) + " views, not 2",
+                    XR_ERROR_VIEW_CONFIGURATION_TYPE_UNSUPPORTED);
+    uint32_t format_count = 0;
+    CHECK(xrEnumerateSwapchainFormats(session, 0, &format_count, nullptr));
+    std::vector<int64_t> formats(format_count);
+    CHECK(xrEnumerateSwapchainFormats(session, format_count, &format_count, formats.data()));
+    int64_t format = 0;
+    for (int64_t preferred : {int64_t(VK_FORMAT_R8G8B8A8_SRGB), int64_t(VK_FORMAT_B8G8R8A8_SRGB)})
+      if (format == 0 && std::find(formats.begin(), formats.end(), preferred) != formats.end()) format = preferred;
+    if (format == 0)
+      throw XrError("the runtime offers no sRGB colour swapchain format (R8G8B8A8_SRGB or B8G8R8A8_SRGB)",
+                    XR_ERROR_SWAPCHAIN_FORMAT_UNSUPPORTED);
+    for (const auto& view : view_configs) {
+      const uint32_t w = std::min(options.eye_width ? options.eye_width : view.recommendedImageRectWidth,
+                                  view.maxImageRectWidth);
+      const uint32_t h = std::min(options.eye_height ? options.eye_height : view.recommendedImageRectHeight,
+                                  view.maxImageRectHeight);
+      eyes.emplace_back(instance, session, format, w, h);
+    }
+    uint32_t blend_count = 0;
+    CHECK(xrEnumerateEnvironmentBlendModes(instance, system, XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO, 0,
+                                           &blend_count, nullptr));
+    std::vector<XrEnvironmentBlendMode> modes(blend_count);
+    CHECK(xrEnumerateEnvironmentBlendModes(instance, system, XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO,
+                                           blend_count, &blend_count, modes.data()));
+    if (!modes.empty() && std::find(modes.begin(), modes.end(), XR_ENVIRONMENT_BLEND_MODE_OPAQUE) == modes.end())
+      blend_mode = modes.front();
+  }
+
+  // true: the call succeeded; false: the session is lost (recorded). Other failures throw.
+  bool ok_unless_lost(XrResult r, const char* expression, int line) {
+    if (r == XR_ERROR_SESSION_LOST || r == XR_ERROR_INSTANCE_LOST) {
+      lost = exit = true;
+      running = false;
+      return false;
+    }
+    check_xr(r, instance, expression, __FILE__, line);
+    return true;
+  }
+};
+
+#define CHECK_UNLESS_LOST(expression) impl_->ok_unless_lost((expression), #expression, __LINE__)
+
+Session::Session(const SessionOptions& options) : impl_(std::make_unique<Impl>()) {
+  impl_->create_instance(options);
+  impl_->create_vulkan(options);
+  impl_->create_session();
+  impl_->create_stage_space();
+  impl_->create_swapchains(options);
+}
+
+Session::~Session() = default;
+Session::Session(Session&&) noexcept = default;
+Session& Session::operator=(Session&&) noexcept = default;
+
+void Session::poll_events() {
+  Impl& s = *impl_;
+  const XrInstance instance = s.instance;
+  for (;;) {
+    XrEventDataBuffer event{XR_TYPE_EVENT_DATA_BUFFER};
+    const XrResult r = xrPollEvent(instance, &event);
+    if (r == XR_EVENT_UNAVAILABLE) return;
+    if (!CHECK_UNLESS_LOST(r)) return;
+    switch (event.type) {
+      case XR_TYPE_EVENT_DATA_INSTANCE_LOSS_PENDING:
+        s.lost = s.exit = true;
+        break;
+      case XR_TYPE_EVENT_DATA_SESSION_STATE_CHANGED: {
+        const auto& changed = reinterpret_cast<const XrEventDataSessionStateChanged&>(event);
+        s.state = changed.state;
+        switch (changed.state) {
+          case XR_SESSION_STATE_READY: {
+            XrSessionBeginInfo begin{XR_TYPE_SESSION_BEGIN_INFO};
+            begin.primaryViewConfigurationType = XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO;
+            if (CHECK_UNLESS_LOST(xrBeginSession(s.session, &begin))) s.running = true;
+            break;
+          }
+          case XR_SESSION_STATE_STOPPING:
+            s.running = false;
+            CHECK_UNLESS_LOST(xrEndSession(s.session));
+            break;
+          case XR_SESSION_STATE_EXITING:
+            s.exit = true;
+            break;
+          case XR_SESSION_STATE_LOSS_PENDING:
+            s.running = false;
+            s.lost = s.exit = true;
+            break;
+          default:
+            break;
+        }
+        break;
+      }
+      default:
+        break;  // interaction profile and reference space changes: Input and the caller query them
+    }
+  }
+}
+
+bool Session::running() const { return impl_->running && !impl_->lost; }
+bool Session::focused() const { return impl_->state == XR_SESSION_STATE_FOCUSED; }
+bool Session::exit_requested() const { return impl_->exit; }
+bool Session::lost() const { return impl_->lost; }
+XrSessionState Session::state() const { return impl_->state; }
+
+void Session::request_exit() {
+  if (impl_->running) {
+    CHECK_UNLESS_LOST(xrRequestExitSession(impl_->session));
+  } else {
+    impl_->exit = true;
+  }
+}
+
+FrameViews Session::begin_frame() {
+  Impl& s = *impl_;
+  FrameViews frame;
+  XrFrameState state{XR_TYPE_FRAME_STATE};
+  XrFrameWaitInfo wait{XR_TYPE_FRAME_WAIT_INFO};
+  if (!CHECK_UNLESS_LOST(xrWaitFrame(s.session, &wait, &state))) return frame;
+  XrFrameBeginInfo begin{XR_TYPE_FRAME_BEGIN_INFO};
+  if (!CHECK_UNLESS_LOST(xrBeginFrame(s.session, &begin))) return frame;
+  frame.predicted_display_time = state.predictedDisplayTime;
+  frame.predicted_display_period = state.predictedDisplayPeriod;
+  if (!state.shouldRender) return frame;
+  XrViewLocateInfo locate{XR_TYPE_VIEW_LOCATE_INFO};
+  locate.viewConfigurationType = XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO;
+  locate.displayTime = state.predictedDisplayTime;
+  locate.space = s.stage;
+  XrViewState view_state{XR_TYPE_VIEW_STATE};
+  std::array<XrView, 2> views{{{XR_TYPE_VIEW}, {XR_TYPE_VIEW}}};
+  uint32_t n = 0;
+  if (!CHECK_UNLESS_LOST(xrLocateViews(s.session, &locate, &view_state, 2, &n, views.data()))) return frame;
+  const XrViewStateFlags valid = XR_VIEW_STATE_ORIENTATION_VALID_BIT | XR_VIEW_STATE_POSITION_VALID_BIT;
+  if (n != 2 || (view_state.viewStateFlags & valid) != valid) return frame;
+  for (int i = 0; i < 2; ++i) frame.eyes[size_t(i)] = {views[size_t(i)].pose, views[size_t(i)].fov};
+  frame.should_render = true;
+  return frame;
+}
+
+void Session::end_frame(const FrameViews& frame, bool rendered) {
+  Impl& s = *impl_;
+  for (auto& eye : s.eyes) eye.release();
+  if (s.lost) return;
+  std::array<XrCompositionLayerProjectionView, 2> views{};
+  XrCompositionLayerProjection layer{XR_TYPE_COMPOSITION_LAYER_PROJECTION};
+  const XrCompositionLayerBaseHeader* layers[] = {reinterpret_cast<XrCompositionLayerBaseHeader*>(&layer)};
+  XrFrameEndInfo end{XR_TYPE_FRAME_END_INFO};
+  end.displayTime = frame.predicted_display_time;
+  end.environmentBlendMode = s.blend_mode;
+  if (rendered && frame.should_render) {
+    for (size_t i = 0; i < 2; ++i) {
+      views[i] = {XR_TYPE_COMPOSITION_LAYER_PROJECTION_VIEW};
+      views[i].pose = frame.eyes[i].T_stage_eye;
+      views[i].fov = frame.eyes[i].fov;
+      views[i].subImage.swapchain = s.eyes[i].handle();
+      views[i].subImage.imageRect.extent = {int32_t(s.eyes[i].width()), int32_t(s.eyes[i].height())};
+      views[i].subImage.imageArrayIndex = 0;
+    }
+    layer.space = s.stage;
+    layer.viewCount = 2;
+    layer.views = views.data();
+    end.layerCount = 1;
+    end.layers = layers;
+  }
+  CHECK_UNLESS_LOST(xrEndFrame(s.session, &end));
+}
+
+Swapchain& Session::eye(int index) { return impl_->eyes.at(size_t(index)); }
+const VulkanDevice& Session::vulkan() const { return impl_->vk; }
+XrInstance Session::instance() const { return impl_->instance; }
+XrSession Session::handle() const { return impl_->session; }
+XrSpace Session::stage_space() const { return impl_->stage; }
+bool Session::stage_is_local() const { return impl_->stage_is_local; }
+const std::string& Session::runtime_name() const { return impl_->runtime_name; }
+const std::string& Session::system_name() const { return impl_->system_name; }
+
+}  // namespace pushpull::xr

@@ -1,0 +1,71 @@
+#include "pushpull/xr/swapchain.hpp"
+
+namespace pushpull::xr {
+
+struct Swapchain::Impl {
+  XrInstance instance = XR_NULL_HANDLE;
+  XrSwapchain swapchain = XR_NULL_HANDLE;
+  std::vector<VkImage> images;
+  VkFormat format = VK_FORMAT_UNDEFINED;
+  uint32_t width = 0, height = 0;
+  bool acquired = false;
+
+  ~Impl() {
+    if (swapchain != XR_NULL_HANDLE) xrDestroySwapchain(swapchain);
+  }
+};
+
+Swapchain::Swapchain(XrInstance instance, XrSession session, int64_t format, uint32_t width, uint32_t height)
+    : impl_(std::make_unique<Impl>()) {
+  impl_->instance = instance;
+  impl_->format = VkFormat(format);
+  impl_->width = width;
+  impl_->height = height;
+  XrSwapchainCreateInfo info{XR_TYPE_SWAPCHAIN_CREATE_INFO};
+  info.usageFlags = XR_SWAPCHAIN_USAGE_COLOR_ATTACHMENT_BIT | XR_SWAPCHAIN_USAGE_TRANSFER_SRC_BIT;
+  info.format = format;
+  info.sampleCount = 1;
+  info.width = width;
+  info.height = height;
+  info.faceCount = 1;
+  info.arraySize = 1;
+  info.mipCount = 1;
+  PUSHPULL_XR_CHECK(instance, xrCreateSwapchain(session, &info, &impl_->swapchain));
+  uint32_t count = 0;
+  PUSHPULL_XR_CHECK(instance, xrEnumerateSwapchainImages(impl_->swapchain, 0, &count, nullptr));
+  std::vector<XrSwapchainImageVulkan2KHR> images(count, {XR_TYPE_SWAPCHAIN_IMAGE_VULKAN2_KHR});
+  PUSHPULL_XR_CHECK(instance,
+                    xrEnumerateSwapchainImages(impl_->swapchain, count, &count,
+                                               reinterpret_cast<XrSwapchainImageBaseHeader*>(images.data())));
+  for (const auto& image : images) impl_->images.push_back(image.image);
+}
+
+Swapchain::~Swapchain() = default;
+Swapchain::Swapchain(Swapchain&&) noexcept = default;
+Swapchain& Swapchain::operator=(Swapchain&&) noexcept = default;
+
+uint32_t Swapchain::acquire() {
+  uint32_t index = 0;
+  XrSwapchainImageAcquireInfo acquire_info{XR_TYPE_SWAPCHAIN_IMAGE_ACQUIRE_INFO};
+  PUSHPULL_XR_CHECK(impl_->instance, xrAcquireSwapchainImage(impl_->swapchain, &acquire_info, &index));
+  impl_->acquired = true;
+  XrSwapchainImageWaitInfo wait_info{XR_TYPE_SWAPCHAIN_IMAGE_WAIT_INFO};
+  wait_info.timeout = XR_INFINITE_DURATION;
+  PUSHPULL_XR_CHECK(impl_->instance, xrWaitSwapchainImage(impl_->swapchain, &wait_info));
+  return index;
+}
+
+void Swapchain::release() {
+  if (!impl_->acquired) return;
+  impl_->acquired = false;
+  XrSwapchainImageReleaseInfo release_info{XR_TYPE_SWAPCHAIN_IMAGE_RELEASE_INFO};
+  PUSHPULL_XR_CHECK(impl_->instance, xrReleaseSwapchainImage(impl_->swapchain, &release_info));
+}
+
+XrSwapchain Swapchain::handle() const { return impl_->swapchain; }
+const std::vector<VkImage>& Swapchain::images() const { return impl_->images; }
+VkFormat Swapchain::format() const { return impl_->format; }
+uint32_t Swapchain::width() const { return impl_->width; }
+uint32_t Swapchain::height() const { return impl_->height; }
+
+}  // namespace pushpull::xr
