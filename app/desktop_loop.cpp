@@ -3,6 +3,7 @@
 #include "commands.hpp"
 #include "review_interaction.hpp"
 #include "review_scene.hpp"
+#include "session_recorder.hpp"
 
 #include "pushpull/deform/service.hpp"
 #include "pushpull/renderer/camera.hpp"
@@ -13,6 +14,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <optional>
@@ -58,6 +60,16 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
   renderer::Context context = renderer::Context::create(context_options);
   EventLog log(o.events);
   log.write_start(o, setup, "desktop");
+  SessionRecorder recorder(o.record.empty() ? default_recording_path() : o.record);
+  {
+    RecordingContext recording;
+    recording.runtime = "desktop";
+    recording.view_configuration = "desktop window";
+    recording.eye_width = o.mirror_size[0];
+    recording.eye_height = o.mirror_size[1];
+    recorder.write_header(o, setup, recording);
+  }
+  std::printf("pushpull review: recording the session to %s\n", recorder.path().c_str());
   const LifeSize& life = setup.life;
   {
     renderer::RendererOptions renderer_options;
@@ -66,8 +78,21 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
     renderer::MirrorWindow window(context, uint32_t(o.mirror_size[0]), uint32_t(o.mirror_size[1]),
                                   "pushpull review (desktop)");
     ReviewScene scene(renderer, setup.model, setup.placement, setup.colour, life.scale());
-    deform::Service service(setup.rest);
+    CommitWatch commits;  // before the service: its worker calls into it until the service is destroyed
+    deform::Service service(setup.rest, deform::ServiceOptions{commits.callback()});
     ReviewInteraction interaction(service, *setup.rest, setup.placement, setup.interaction);
+    const auto start = std::chrono::steady_clock::now();
+    double t = 0.0;  // seconds since the window opened
+    auto record_interaction = [&](const InteractionEvent& e) {
+      log.write_interaction(e, life);
+      recorder.write_interaction(t, e, interaction.handle_radius(), interaction.roi_radius());
+    };
+    auto take_commits = [&] {
+      for (const CommitRecord& c : commits.take()) {
+        recorder.write_commit(t, c);
+        if (o.on_commit) o.on_commit(c);
+      }
+    };
 
     // Orbit around the model's box on the stage, from the reviewer's side.
     const Eigen::MatrixXd& V = setup.rest->V;
@@ -92,6 +117,7 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
     int frames = 0;
     while (!window.should_close() && (o.frames <= 0 || frames < o.frames)) {
       window.poll_events();
+      t = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       bool quit = false;
       for (int key : window.take_key_presses()) {
         if (key == 256 /* GLFW_KEY_ESCAPE */) quit = true;
@@ -100,10 +126,12 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
           if (key == 'U') {
             service.undo();
             log.write({{"event", "undo"}});
+            recorder.write_record("undo", t);
           }
           if (key == 'R') {
             service.redo();
             log.write({{"event", "redo"}});
+            recorder.write_record("redo", t);
           }
           if (key == 'M') {
             const auto& all = deform::kAllMethods;
@@ -124,10 +152,14 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
       orbit.distance_scale = std::clamp(orbit.distance_scale * float(std::pow(0.9, p.scroll)), 0.05f, 10.0f);
       const renderer::View view = renderer::frame_bounds(bounds, orbit, aspect);
       const auto [origin, direction] = cursor_ray(view, p);
+      recorder.write_pointer_input(t, origin, direction, p.left);
       if (p.left && !last.left && !dragging) {
+        // As in the headset loop: a press hits the committed surface, never one a pending commit replaces.
+        service.wait_idle();
+        interaction.sync_committed(*service.latest());
         if (const auto hit = interaction.hit(origin, direction)) {
           if (const auto e = interaction.begin_drag(1, *hit)) {
-            log.write_interaction(*e, life);
+            record_interaction(*e);
             dragging = true;
             p0_stage = setup.placement.to_stage_point(hit->point);
             const Eigen::Matrix3d A = setup.placement.T_stage_model.topLeftCorner<3, 3>();
@@ -143,11 +175,13 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
           p1 = origin + (plane_normal.dot(p0_stage - origin) / plane_normal.dot(direction)) * direction;
         }
         interaction.drag(setup.placement.to_model_vector(p1 - p0_stage));
+        recorder.write_drag(t, interaction.current_d());
       } else if (dragging && !p.left) {
         dragging = false;
-        if (const auto e = interaction.end_drag(true)) log.write_interaction(*e, life);
+        if (const auto e = interaction.end_drag(true)) record_interaction(*e);
       }
       last = p;
+      take_commits();
 
       const std::shared_ptr<const deform::Snapshot> snapshot = service.latest();
       interaction.sync_committed(*snapshot);
@@ -164,11 +198,14 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
                     snapshot->converged ? "converged" : "not converged", colour_name(scene.colour()));
       if (title != text) window.set_title(title = text);
     }
-    if (const auto e = interaction.end_drag(false)) log.write_interaction(*e, life);
+    if (const auto e = interaction.end_drag(false)) record_interaction(*e);
     renderer.wait_idle();
     service.wait_idle();
+    take_commits();
     const auto history = service.history();
     const deform::HistoryEntry& current = history.at(service.history_position());
+    recorder.write_record("end", t,
+                          {{"commits", service.history_position()}, {"hash", hash_text(current.hash)}});
     log.write({{"event", "end"}, {"revision", service.revision()}, {"hash", current.hash},
                {"commits", service.history_position()}});
     if (!o.out.empty()) {
