@@ -30,6 +30,7 @@ struct HandSample {
   float trigger = 0.0f;             // 0..1
   Eigen::Vector3d origin_stage{0, 0, 0};     // aim ray origin, stage, metres
   Eigen::Vector3d direction_stage{0, 0, -1};  // aim ray direction, stage (unit)
+  Eigen::Vector3d up_stage{0, 1, 0};          // the controller's +Y, stage (unit)
 };
 
 struct InteractionOptions {

@@ -35,6 +35,14 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 // The hand's aim ray in stage space (the pose's -Z axis).
+// The controller's heading about stage +Y: where its ray points, or, when it points nearly straight up or down,
+// where its top (+Y) faces (the ray's heading is noise there).
+double heading(const HandSample& s) {
+  const Eigen::Vector3d& f = s.direction_stage;
+  const Eigen::Vector3d h = std::hypot(f.x(), f.z()) > 0.3 ? f : (f.y() < 0.0 ? s.up_stage : Eigen::Vector3d(-s.up_stage));
+  return std::atan2(-h.x(), -h.z());
+}
+
 HandSample hand_sample(const xr::HandInput& in) {
   HandSample s;
   s.trigger = in.trigger;
@@ -44,6 +52,7 @@ HandSample hand_sample(const xr::HandInput& in) {
     const Eigen::Quaterniond q(p.orientation.w, p.orientation.x, p.orientation.y, p.orientation.z);
     s.origin_stage = {p.position.x, p.position.y, p.position.z};
     s.direction_stage = q.normalized() * Eigen::Vector3d(0.0, 0.0, -1.0);
+    s.up_stage = q.normalized() * Eigen::Vector3d(0.0, 1.0, 0.0);
   }
   return s;
 }
@@ -51,6 +60,9 @@ HandSample hand_sample(const xr::HandInput& in) {
 // Frame work (from xrWaitFrame's return to xrEndFrame's return), split by whether the solver was busy.
 struct FrameStats {
   std::vector<double> idle_ms, solving_ms;
+  size_t region_vertices = 0;  // the largest region solved meanwhile
+  double snapshot_ms = 0.0;    // total time spent turning new snapshots into vertex data (frame thread)
+  size_t snapshots = 0;
   static double mean(const std::vector<double>& v) {
     return v.empty() ? 0.0 : std::accumulate(v.begin(), v.end(), 0.0) / double(v.size());
   }
@@ -65,6 +77,9 @@ struct FrameStats {
                 mean(idle_ms), percentile(idle_ms, 0.95), idle_ms.size(), mean(solving_ms),
                 percentile(solving_ms, 0.95), solving_ms.size(),
                 mean(idle_ms) > 0.0 ? mean(solving_ms) / mean(idle_ms) : 0.0);
+    std::printf("largest region solved: %zu vertices; %zu new snapshots drawn, %.2f ms CPU each to turn into "
+                "vertex data on the frame thread (positions, normals, colour-map scalars, overlays)\n",
+                region_vertices, snapshots, snapshots ? snapshot_ms / double(snapshots) : 0.0);
   }
 };
 
@@ -200,16 +215,18 @@ void run_review(const ReviewCommandOptions& o) {
           recorder.write_frame_input(t, head, {input.hand(xr::Hand::Left), input.hand(xr::Hand::Right)},
                                      input.current_profile(xr::Hand::Right));
         }
+        // Focus lost mid-drag (a system menu, another app): the inputs read as released, which the gesture
+        // would take as a release; the drag is cancelled instead, the model stays as before it.
+        if (!xr.focused() && interaction.dragging())
+          if (const auto e = interaction.cancel()) log_event(*e);
         std::array<HandSample, 2> hands{hand_sample(input.hand(xr::Hand::Left)),
                                         hand_sample(input.hand(xr::Hand::Right))};
         // Grip (between drags): grab and move the model; both grips also scale it.
         if (!interaction.dragging()) {
           std::array<std::optional<GrabHand>, 2> grabbing;
           for (int h = 0; h < 2; ++h)
-            if (input.hand(xr::Hand(h)).grip > 0.5f && hands[size_t(h)].tracked) {
-              const Eigen::Vector3d& f = hands[size_t(h)].direction_stage;
-              grabbing[size_t(h)] = GrabHand{hands[size_t(h)].origin_stage, std::atan2(-f.x(), -f.z())};
-            }
+            if (input.hand(xr::Hand(h)).grip > 0.5f && hands[size_t(h)].tracked)
+              grabbing[size_t(h)] = GrabHand{hands[size_t(h)].origin_stage, heading(hands[size_t(h)])};
           const bool was_grabbing = grab.grabbing();
           if (grab.update(grabbing)) {
             interaction.set_placement(grab.placement());
@@ -281,8 +298,16 @@ void run_review(const ReviewCommandOptions& o) {
         take_commits();
         const std::shared_ptr<const deform::Snapshot> snapshot = service.latest();
         const bool solving = interaction.dragging() || !snapshot->final;
+        if (snapshot->region) stats.region_vertices = std::max(stats.region_vertices, snapshot->region->size());
         interaction.sync_committed(*snapshot);
-        scene.update(snapshot);
+        {
+          const std::uint64_t generation = scene.generation();
+          scene.update(snapshot);
+          if (scene.generation() != generation) {
+            stats.snapshot_ms += scene.last_cpu_ms();
+            ++stats.snapshots;
+          }
+        }
         bool rendered = false;
         if (frame.should_render) {
           const uint32_t left = xr.eye(0).acquire();

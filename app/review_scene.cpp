@@ -7,6 +7,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include <algorithm>
+#include <chrono>
 #include <stdexcept>
 
 namespace pushpull::app {
@@ -78,6 +79,7 @@ void ReviewScene::update(const std::shared_ptr<const deform::Snapshot>& snapshot
 }
 
 void ReviewScene::upload(const deform::Snapshot& snapshot) {
+  const auto start = std::chrono::steady_clock::now();
   const Eigen::MatrixXd& V = *snapshot.positions;
   const std::vector<float> positions = render_positions(render_, V);
   const std::vector<float> normals = deformed_normals(render_, positions);
@@ -117,6 +119,7 @@ void ReviewScene::upload(const deform::Snapshot& snapshot) {
     shown_region_ = show ? snapshot.region : nullptr;
     overlays_shown_ = show;
   }
+  last_cpu_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   renderer_.update_vertices(mesh_, positions, normals, scalars, overlays);
 }
 

@@ -38,6 +38,10 @@ class ReviewScene {
   void set_colour(ReviewColour colour);
   void set_placement(const StagePlacement& placement);
   [[nodiscard]] ReviewColour colour() const { return colour_; }
+  [[nodiscard]] std::uint64_t generation() const { return generation_; }  // of the snapshot drawn
+  // CPU time of the last snapshot's conversion to vertex data (before the upload, which may wait for the GPU
+  // to release its staging slot).
+  [[nodiscard]] double last_cpu_ms() const { return last_cpu_ms_; }
 
   [[nodiscard]] std::vector<renderer::Draw> draws() const;
   [[nodiscard]] renderer::FrameSettings settings() const;
@@ -57,6 +61,7 @@ class ReviewScene {
   std::uint64_t generation_ = 0;
   std::shared_ptr<const deform::RegionOfInterest> shown_region_;  // whose roles the overlays show
   bool overlays_shown_ = false;
+  double last_cpu_ms_ = 0.0;
   std::shared_ptr<const deform::Snapshot> last_;
 };
 

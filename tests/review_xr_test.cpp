@@ -255,6 +255,30 @@ TEST(ReviewXr, GripMovesTheModelAndLaterPushPullsFollowIt) {
   EXPECT_NEAR(d[1], -0.1, 1e-5);
 }
 
+// Both grips scale the model with the distance between the hands (0.4 m -> 0.8 m: twice life size).
+TEST(ReviewXr, TwoGripsScaleTheModel) {
+  const fs::path dir = test_dir();
+  const std::string script = R"({"t":0.0,"path":"/user/hand/left/input/aim/pose","pose":{"p":[-0.2,1.0,-0.4],"q":[0,0,0,1]}}
+{"t":0.0,"path":"/user/hand/right/input/aim/pose","pose":{"p":[0.2,1.0,-0.4],"q":[0,0,0,1]}}
+{"t":0.0,"path":"/user/hand/left/input/squeeze/value","value":0.0}
+{"t":0.0,"path":"/user/hand/right/input/squeeze/value","value":0.0}
+{"t":0.3,"path":"/user/hand/left/input/squeeze/value","value":1.0}
+{"t":0.3,"path":"/user/hand/right/input/squeeze/value","value":1.0}
+{"t":0.4,"path":"/user/hand/left/input/aim/pose","pose":{"p":[-0.2,1.0,-0.4],"q":[0,0,0,1]}}
+{"t":0.4,"path":"/user/hand/right/input/aim/pose","pose":{"p":[0.2,1.0,-0.4],"q":[0,0,0,1]}}
+{"t":1.0,"path":"/user/hand/left/input/aim/pose","pose":{"p":[-0.4,1.0,-0.4],"q":[0,0,0,1]}}
+{"t":1.0,"path":"/user/hand/right/input/aim/pose","pose":{"p":[0.4,1.0,-0.4],"q":[0,0,0,1]}}
+{"t":1.2,"path":"/user/hand/left/input/squeeze/value","value":0.0}
+{"t":1.2,"path":"/user/hand/right/input/squeeze/value","value":0.0}
+{"t":1.5,"event":"exit"}
+)";
+  const ReviewRun run = run_review(dir, script, "");
+  ASSERT_EQ(run.result.status, 0) << run.result.output;
+  const auto moved = run.of("placement");
+  ASSERT_EQ(moved.size(), 1u) << run.result.output;
+  EXPECT_NEAR(double(moved[0].at("relative_scale")), 2.0, 1e-4);
+}
+
 TEST(ReviewXr, ThumbstickBetweenDragsScalesHandleAndRegion) {
   const fs::path dir = test_dir();
   // Full up for 1 s (handle x2), then full left for 1 s (region / 2), then centred.
