@@ -17,7 +17,10 @@ namespace pushpull::app {
 struct CommitRecord {
   std::size_t index = 0;   // 1, 2, ... in commit order within the session
   std::uint64_t hash = 0;  // deform::position_hash of the committed positions (the history entry's hash)
-  std::shared_ptr<const deform::Snapshot> snapshot;  // kind Committed; rest = the state it was made from
+  std::shared_ptr<const deform::Snapshot> snapshot;  // kind Committed; rest and positions = the new state
+  // The committed state the commit was computed from (the rest of the snapshots published before it); null
+  // when no snapshot was seen before it (then it is the service's initial mesh).
+  std::shared_ptr<const deform::Mesh> before;
 };
 
 class CommitWatch {
@@ -31,6 +34,7 @@ class CommitWatch {
   std::mutex mutex_;
   std::vector<CommitRecord> pending_;
   std::size_t count_ = 0;
+  std::shared_ptr<const deform::Mesh> current_;  // the committed state of the last snapshot seen (worker only)
 };
 
 }  // namespace pushpull::app

@@ -14,7 +14,6 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <optional>
@@ -81,8 +80,16 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
     CommitWatch commits;  // before the service: its worker calls into it until the service is destroyed
     deform::Service service(setup.rest, deform::ServiceOptions{commits.callback()});
     ReviewInteraction interaction(service, *setup.rest, setup.placement, setup.interaction);
-    const auto start = std::chrono::steady_clock::now();
-    double t = 0.0;  // seconds since the window opened
+    // The recording's clock: frame n at n / 90 s (xr/sim's virtual clock at 90 Hz), so a replay on the simulated
+    // runtime sees each recorded frame at its own frame.
+    constexpr double kRecordingRate = 90.0;
+    std::int64_t loop_frames = 0;
+    double t = 0.0;
+    recorder.write_record("clock", 0.0, {{"rate_hz", kRecordingRate}});
+    // The mouse gesture as a hand: outside a drag the cursor ray; during a drag the ray of the press moved by
+    // p1 - p0, so the headset gesture (d = the hand's travel) sees the same p0 and d.
+    Eigen::Vector3d hand_origin = Eigen::Vector3d::Zero(), hand_direction(0, 0, -1);
+    Eigen::Vector3d press_origin = Eigen::Vector3d::Zero();
     auto record_interaction = [&](const InteractionEvent& e) {
       log.write_interaction(e, life);
       recorder.write_interaction(t, e, interaction.handle_radius(), interaction.roi_radius());
@@ -117,7 +124,7 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
     int frames = 0;
     while (!window.should_close() && (o.frames <= 0 || frames < o.frames)) {
       window.poll_events();
-      t = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      t = double(std::llround(double(loop_frames++) * 1e9 / kRecordingRate)) * 1e-9;  // as xr/sim's script_time
       bool quit = false;
       for (int key : window.take_key_presses()) {
         if (key == 256 /* GLFW_KEY_ESCAPE */) quit = true;
@@ -152,7 +159,8 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
       orbit.distance_scale = std::clamp(orbit.distance_scale * float(std::pow(0.9, p.scroll)), 0.05f, 10.0f);
       const renderer::View view = renderer::frame_bounds(bounds, orbit, aspect);
       const auto [origin, direction] = cursor_ray(view, p);
-      recorder.write_pointer_input(t, origin, direction, p.left);
+      const bool was_dragging = dragging;
+      if (!dragging) hand_origin = origin, hand_direction = direction;
       if (p.left && !last.left && !dragging) {
         // As in the headset loop: a press hits the committed surface, never one a pending commit replaces.
         service.wait_idle();
@@ -165,6 +173,7 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
             const Eigen::Matrix3d A = setup.placement.T_stage_model.topLeftCorner<3, 3>();
             normal_stage = (A * interaction.face_normal(hit->face)).normalized();
             plane_normal = (p0_stage - origin).normalized();  // the view plane through p0
+            press_origin = origin;
           }
         }
       } else if (dragging && p.left) {
@@ -175,11 +184,14 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
           p1 = origin + (plane_normal.dot(p0_stage - origin) / plane_normal.dot(direction)) * direction;
         }
         interaction.drag(setup.placement.to_model_vector(p1 - p0_stage));
+        hand_origin = press_origin + (p1 - p0_stage);
         recorder.write_drag(t, interaction.current_d());
       } else if (dragging && !p.left) {
         dragging = false;
         if (const auto e = interaction.end_drag(true)) record_interaction(*e);
       }
+      // Released this frame: the hand stays where the drag left it (the gesture's release reads d there).
+      recorder.write_pointer_input(t, hand_origin, hand_direction, dragging || (p.left && !was_dragging));
       last = p;
       take_commits();
 

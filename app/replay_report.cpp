@@ -4,6 +4,10 @@
 
 #include "pushpull/deform/mesh_io.hpp"
 
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <sstream>
 
@@ -28,6 +32,43 @@ std::string number(double v, const char* format = "%.3g") {
   char text[64];
   std::snprintf(text, sizeof text, format, v);
   return text;
+}
+
+// The section curves of one plane (perpendicular to d) before (grey) and after (red), in the plane's own 2D
+// axes (u, v), life-size millimetres, one scale for both.
+std::string section_svg(const deform::Section& section, const Eigen::Vector3d& d, double scale) {
+  const Eigen::Vector3d n = d.normalized();
+  const Eigen::Vector3d helper = std::abs(n.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+  const Eigen::Vector3d u = n.cross(helper).normalized(), v = n.cross(u);
+  double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
+  for (const auto* curves : {&section.before, &section.after})
+    for (const deform::SectionCurve& c : *curves)
+      for (const Eigen::Vector3d& p : c.points) {
+        x0 = std::min(x0, p.dot(u)), x1 = std::max(x1, p.dot(u));
+        y0 = std::min(y0, p.dot(v)), y1 = std::max(y1, p.dot(v));
+      }
+  if (!(x1 >= x0)) return "";
+  const double W = 360, H = 220, margin = 10;
+  const double k = std::min((W - 2 * margin) / std::max(x1 - x0, 1e-12), (H - 2 * margin) / std::max(y1 - y0, 1e-12));
+  std::ostringstream svg;
+  svg << "<figure><svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << W << "\" height=\"" << H
+      << "\" style=\"border:1px solid #ccc\">";
+  auto polyline = [&](const deform::SectionCurve& c, const char* colour) {
+    svg << "<polyline fill=\"none\" stroke=\"" << colour << "\" stroke-width=\"1.5\" points=\"";
+    auto point = [&](const Eigen::Vector3d& p) {
+      svg << number(margin + (p.dot(u) - x0) * k, "%.1f") << ',' << number(H - margin - (p.dot(v) - y0) * k, "%.1f")
+          << ' ';
+    };
+    for (const Eigen::Vector3d& p : c.points) point(p);
+    if (c.closed && !c.points.empty()) point(c.points.front());
+    svg << "\"/>";
+  };
+  for (const deform::SectionCurve& c : section.before) polyline(c, "#888");
+  for (const deform::SectionCurve& c : section.after) polyline(c, "#d00");
+  svg << "</svg><figcaption>section at " << number(section.offset * scale * 1000.0, "%.0f")
+      << " mm along d: before grey, after red (" << number((x1 - x0) * scale * 1000.0, "%.0f") << " mm wide)"
+      << "</figcaption></figure>\n";
+  return svg.str();
 }
 
 }  // namespace
@@ -72,6 +113,8 @@ void write_replay_report(const std::string& path, const ReportSession& s, const 
     h << "<tr><th>files</th><td><a href=\"" << escape(c.model_file) << "\">" << escape(c.model_file)
       << "</a>, <a href=\"" << escape(c.metrics_file) << "\">" << escape(c.metrics_file) << "</a></td></tr>\n";
     h << "</table>\n";
+    for (const deform::Section& section : m.sections) h << section_svg(section, c.d, c.scale);
+    h << "<br>\n";
     for (const auto& [caption, file] : c.pictures)
       h << "<figure><img src=\"" << escape(file) << "\" alt=\"" << escape(caption) << "\"><figcaption>"
         << escape(caption) << "</figcaption></figure>\n";

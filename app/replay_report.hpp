@@ -1,7 +1,7 @@
 // The HTML report of a replay (report.html beside the pictures it shows): the session (model, SHA-256,
 // method, runtime), then per push/pull: before / after pictures, displacement and curvature-sign maps, method,
 // |d| in life-size mm, iterations, converged, error estimate, curvature sign reversals and flips, displacement
-// along and across d, the hash check.
+// along and across d, the section curves before and after (inline SVG), the hash check.
 // Thread-safety: pure function of its arguments plus one file write.
 #pragma once
 
@@ -22,7 +22,8 @@ struct ReportCommit {
   int iterations = 0;
   bool converged = false;
   std::optional<double> error_estimate;
-  deform::DeformationMetrics metrics;
+  deform::DeformationMetrics metrics;  // with sections (plotted before / after)
+  Eigen::Vector3d d = Eigen::Vector3d::Zero();  // model units: the sections' planes are perpendicular to it
   double scale = 1.0;  // metres per model unit (metrics lengths are model units)
   std::string hash, recorded_hash;  // recorded_hash "" when not compared
   std::string check;                 // "match", "mismatch: ...", "not compared: ..."

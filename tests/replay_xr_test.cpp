@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -169,9 +170,14 @@ TEST(ReplayXr, ReplayReproducesEveryCommitHashAndTheSameMeshesTwice) {
   const auto metrics = nlohmann::json::parse(file_bytes(dir / "replay1" / "commit-01.metrics.json"));
   EXPECT_NEAR(double(metrics.at("d").at(1)), -0.1, 1e-6);
   EXPECT_GT(int(metrics.at("iterations")), 0);
+  // Measured against the state before the commit (for commit 2: after commit 1), not the original model.
+  EXPECT_NEAR(double(metrics.at("max_displacement")), 0.1, 1e-3);
+  const auto metrics2 = nlohmann::json::parse(file_bytes(dir / "replay1" / "commit-02.metrics.json"));
+  EXPECT_NEAR(double(metrics2.at("max_displacement")), std::abs(double(recorded[1].at("d").at(2))), 0.02);
   const std::string report = file_bytes(dir / "replay1" / "report.html");
   EXPECT_NE(report.find("Push/pull 2"), std::string::npos);
   EXPECT_NE(report.find("100.0 mm"), std::string::npos);
+  EXPECT_NE(report.find("<polyline"), std::string::npos);  // the section curves
   // The committed model moved 100 mm at most, where the hand pulled.
   const auto rest = pushpull::deform::read_mesh(kHood);
   const auto one = pushpull::deform::read_mesh(dir / "replay1" / "commit-01.off");
