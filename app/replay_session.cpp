@@ -100,7 +100,13 @@ void run_replay(const ReplayOptions& o) {
   const auto start = Clock::now();
   const SessionRecording rec = read_session_recording(o.recording);
   const json& header = rec.header;
-  const std::string model_path = o.model.empty() ? header.at("model").get<std::string>() : o.model;
+  // --model, else the model where it was relative to the recording (a recording moved or checked out with its
+  // model, as the bundled session), else the absolute path recorded.
+  std::string model_path = o.model.empty() ? header.at("model").get<std::string>() : o.model;
+  if (o.model.empty() && header.contains("model_relative")) {
+    const fs::path beside = fs::path(o.recording).parent_path() / header["model_relative"].get<std::string>();
+    if (fs::exists(beside)) model_path = beside.lexically_normal().string();
+  }
   if (!fs::exists(model_path))
     throw CommandError(model_path + ": the recorded model file does not exist (recording " + o.recording +
                        "); pass --model FILE");

@@ -114,6 +114,9 @@ void SessionRecorder::write_header(const ReviewCommandOptions& o, const ReviewSe
       {"format", "pushpull-session-1"},
       {"pushpull_version", PUSHPULL_VERSION},
       {"model", fs::absolute(o.model).lexically_normal().string()},
+      // Also relative to the recording's folder: a recording kept beside its model (examples/) replays elsewhere.
+      {"model_relative",
+       fs::absolute(o.model).lexically_normal().lexically_relative(fs::absolute(path_).parent_path()).string()},
       {"model_sha256", sha256_file_hex(o.model)},
       {"life_size_scale", s.life.scale()},
       {"T_stage_model", T},  // row-major 4x4, model (file units) -> stage (metres)
