@@ -31,6 +31,9 @@ void add_replay_command(CLI::App& root) {
       ->expected(2)
       ->check(CLI::Range(16, 16384))
       ->capture_default_str();
+  cmd->add_option("--capture-every", o->capture_every,
+                  "Also write both eyes every N frames into OUT/eyes (default: at each release and at the end)")
+      ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--no-pictures", [o](std::int64_t) { o->pictures = false; }, "Leave the pictures out of the report");
   cmd->callback([o, mu, mu_option] {
     if (mu_option->count() > 0) o->mu = *mu;

@@ -85,6 +85,7 @@ void point_at_simulated_runtime(const ReplayOptions& o, const SessionRecording& 
     setenv("VK_ICD_FILENAMES", lavapipe, 1);
   setenv("PUSHPULL_XR_SIM_INPUT", script.c_str(), 1);
   setenv("PUSHPULL_XR_SIM_CAPTURE", eyes.c_str(), 1);
+  setenv("PUSHPULL_XR_SIM_CAPTURE_EVERY", std::to_string(std::max(0, o.capture_every)).c_str(), 1);
   setenv("PUSHPULL_XR_SIM_WIDTH", std::to_string(o.eye_size.at(0)).c_str(), 1);
   setenv("PUSHPULL_XR_SIM_HEIGHT", std::to_string(o.eye_size.at(1)).c_str(), 1);
   const long rate = rec.rate_hz > 0.0 ? std::lround(rec.rate_hz) : 90;

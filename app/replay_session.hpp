@@ -31,6 +31,7 @@ struct ReplayOptions {
   std::optional<double> mu;         // none = the recorded mu
   std::vector<int> eye_size{256, 256};
   std::vector<int> picture_size{480, 360};
+  int capture_every = 0;  // also both eyes every N frames (0: only at each release and at the end)
   bool pictures = true;  // the report's per-commit pictures (four `pushpull render` runs per commit)
 };
 

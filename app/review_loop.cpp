@@ -367,6 +367,7 @@ void run_review(const ReviewCommandOptions& o) {
       if (const auto e = interaction.cancel()) log_event(*e);
       log.write({{"event", "lost"}});
       recorder.write_record("lost", t);
+      recorder.write_event_input(t, "loss");  // as xr/sim's script event: a replay loses the session there too
     }
     renderer.wait_idle();
     service.wait_idle();

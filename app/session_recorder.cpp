@@ -207,6 +207,10 @@ void SessionRecorder::write_pointer_input(double t, const Eigen::Vector3d& origi
   write_value(t, "/user/hand/right/input/trigger/value", pressed ? 1.0 : 0.0);
 }
 
+void SessionRecorder::write_event_input(double t, const std::string& event) {
+  write_line({{"t", t}, {"event", event}});
+}
+
 void SessionRecorder::write_interaction(double t, const InteractionEvent& e, double handle_radius,
                                         double roi_radius) {
   const char* hand = e.hand == 0 ? "left" : "right";

@@ -71,6 +71,8 @@ class SessionRecorder {
   // mouse button as its trigger.
   void write_pointer_input(double t, const Eigen::Vector3d& origin_stage, const Eigen::Vector3d& direction_stage,
                            bool pressed);
+  // A runtime event at t as an xr/sim script line ({"t":..,"event":"loss"}): what the loop saw happen.
+  void write_event_input(double t, const std::string& event);
   // press / release (commit or cancel) from the interaction; release carries p1 = p0 + d and d.
   void write_interaction(double t, const InteractionEvent& event, double handle_radius, double roi_radius);
   // A drag update: the d the interaction submitted (written when it changed).
