@@ -75,6 +75,21 @@ SessionRecording read_session_recording(const std::string& path) {
       if (!j.contains("model_sha256") || !j["model_sha256"].is_string() || !j.contains("model") ||
           !j["model"].is_string())
         corrupted(path, 1, "the header lacks \"model\" or \"model_sha256\"");
+      // What `pushpull replay` sets the review up from.
+      const nlohmann::json* options = j.contains("options") && j["options"].is_object() ? &j["options"] : nullptr;
+      if (options == nullptr) corrupted(path, 1, "the header lacks the review's \"options\"");
+      for (const char* key : {"method"})
+        if (!options->contains(key) || !(*options)[key].is_string())
+          corrupted(path, 1, std::string("header option \"") + key + "\" is missing or not a string");
+      for (const char* key : {"mu", "handle_radius_m", "roi_radius_m", "distance_m"})
+        if (!options->contains(key) || !(*options)[key].is_number())
+          corrupted(path, 1, std::string("header option \"") + key + "\" is missing or not a number");
+      for (const char* key : {"up", "front"}) {
+        const bool ok = options->contains(key) && (*options)[key].is_array() && (*options)[key].size() == 3 &&
+                        (*options)[key][0].is_number() && (*options)[key][1].is_number() &&
+                        (*options)[key][2].is_number();
+        if (!ok) corrupted(path, 1, std::string("header option \"") + key + "\" is not [x, y, z]");
+      }
       r.header = j;
     } else if (j.contains("t")) {
       if (const std::string problem = input_line_problem(j); !problem.empty()) corrupted(path, number, problem);
