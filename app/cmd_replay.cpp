@@ -1,16 +1,20 @@
 // `pushpull replay`: a recorded review session run again headless (replay_session.hpp).
 #include "commands.hpp"
+#include "replay_compare.hpp"
 #include "replay_session.hpp"
 
 #include <CLI/CLI.hpp>
 
 #include <memory>
+#include <string>
+#include <vector>
 
 namespace pushpull::app {
 
 void add_replay_command(CLI::App& root) {
   auto o = std::make_shared<ReplayOptions>();
   auto mu = std::make_shared<double>(0.0);  // outlives this function with the command, as `o` does
+  auto compare = std::make_shared<std::vector<std::string>>();
   CLI::App* cmd = root.add_subcommand(
       "replay",
       "Replay a session recorded by `pushpull review` (--record) headless: the same review loop against the\n"
@@ -31,12 +35,20 @@ void add_replay_command(CLI::App& root) {
       ->expected(2)
       ->check(CLI::Range(16, 16384))
       ->capture_default_str();
+  cmd->add_option("--compare", *compare,
+                  "Replay once per method (e.g. asan,arap-sr) into OUT/METHOD and write OUT/compare.html side by side")
+      ->delimiter(',');
   cmd->add_option("--capture-every", o->capture_every,
                   "Also write both eyes every N frames into OUT/eyes (default: at each release and at the end)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--no-pictures", [o](std::int64_t) { o->pictures = false; }, "Leave the pictures out of the report");
-  cmd->callback([o, mu, mu_option] {
+  cmd->callback([o, mu, mu_option, compare] {
     if (mu_option->count() > 0) o->mu = *mu;
+    if (!compare->empty()) {
+      if (!o->method.empty()) throw CommandError("give --method or --compare, not both");
+      run_replay_comparison(*o, *compare);
+      return;
+    }
     run_replay(*o);
   });
 }

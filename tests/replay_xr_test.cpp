@@ -197,6 +197,21 @@ TEST(ReplayXr, AnotherMethodComparesDInsteadOfHashes) {
   EXPECT_NE(file_bytes(dir / "arap" / "commit-01.metrics.json").find("\"arap-sr\""), std::string::npos);
 }
 
+TEST(ReplayXr, CompareReplaysEachMethodAndPutsThemSideBySide) {
+  const fs::path dir = test_dir();
+  const auto r = replay(record_session(dir), dir / "cmp", "--compare asan,arap-sr --no-pictures");
+  ASSERT_EQ(r.status, 0) << r.output;
+  for (const char* file : {"asan/commit-02.metrics.json", "arap-sr/commit-02.metrics.json", "compare.html"})
+    EXPECT_TRUE(fs::exists(dir / "cmp" / file)) << file << "\n" << r.output;
+  const std::string page = file_bytes(dir / "cmp" / "compare.html");
+  EXPECT_NE(page.find("arap-sr/report.html"), std::string::npos);
+  // The paper's point on the bonnet pulled forward: ASAN keeps the curvature signs, ARAP-s&r reverses many.
+  const auto asan = nlohmann::json::parse(file_bytes(dir / "cmp" / "asan" / "commit-01.metrics.json"));
+  const auto arap = nlohmann::json::parse(file_bytes(dir / "cmp" / "arap-sr" / "commit-01.metrics.json"));
+  EXPECT_LT(double(asan.at("gaussian_sign_reversal_fraction")), 0.01);
+  EXPECT_GT(double(arap.at("gaussian_sign_reversal_fraction")), 0.1);
+}
+
 TEST(ReplayXr, AChangedHashIsNamedAsTheFirstMismatch) {
   const fs::path dir = test_dir();
   const fs::path session = record_session(dir);
