@@ -167,8 +167,9 @@ void run_review(const ReviewCommandOptions& o) {
     deform::Service service(rest, deform::ServiceOptions{commits.callback()});
     ReviewInteraction interaction(service, *rest, placement, interaction_options);
     bool commands_pending = false;  // a commit, undo or redo was issued and the service may still run it
-    std::optional<XrTime> first_display_time;
-    double t = 0.0;  // seconds from the first frame (the simulated runtime's script clock)
+    long recording_rate_hz = 0;       // the headset's display rate, whole Hz (0 before the first frame)
+    std::int64_t recording_frames = 0;  // frames the loop has read input for
+    double t = 0.0;  // the recording's time of this frame (seconds; the simulated runtime's script clock)
     auto take_commits = [&] {
       for (const CommitRecord& c : commits.take()) {
         recorder.write_commit(t, c);
@@ -197,12 +198,15 @@ void run_review(const ReviewCommandOptions& o) {
         if (xr.lost()) break;
         const auto start = Clock::now();
         input.sync(frame.predicted_display_time);
-        if (!first_display_time) {
-          first_display_time = frame.predicted_display_time;
-          recorder.write_record("clock", 0.0,
-                                {{"rate_hz", 1e9 / double(std::max<XrDuration>(1, frame.predicted_display_period))}});
+        // The recording's clock counts frames: frame n at n / rate, exactly as xr/sim's virtual clock at that
+        // (whole) rate places it, so a replay gives frame n the input the loop read at its frame n, whatever the
+        // headset's timing (jitter, dropped frames) was.
+        if (recording_rate_hz == 0) {
+          recording_rate_hz =
+              std::max(1L, std::lround(1e9 / double(std::max<XrDuration>(1, frame.predicted_display_period))));
+          recorder.write_record("clock", 0.0, {{"rate_hz", recording_rate_hz}});
         }
-        t = double(frame.predicted_display_time - *first_display_time) * 1e-9;  // as xr/sim's script_time
+        t = double(std::llround(double(recording_frames++) * 1e9 / double(recording_rate_hz))) * 1e-9;
         {
           std::optional<XrPosef> head;
           if (frame.should_render) {  // the head: between the eyes, looking as the left eye

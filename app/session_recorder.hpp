@@ -10,8 +10,9 @@
 //   {"record":"undo","time":..} {"record":"redo","time":..} {"record":"profile","time":..,"profile":".."}
 //   {"record":"end","time":..,"commits":n,"hash":".."}
 //
-// Input lines carry "t" (seconds from the loop's first frame: the simulated runtime's script clock) and an
-// OpenXR path; derived records carry "record" and "time" but no "t", so xr/sim skips them and the recording is
+// Input lines carry "t" and an OpenXR path. t counts the loop's frames: frame n at n / rate (the "clock" record
+// gives the rate, whole Hz), exactly where xr/sim's virtual clock puts its frame n, so a replay reads at every
+// frame what the loop read at the same frame, whatever the headset's timing was; derived records carry "record" and "time" but no "t", so xr/sim skips them and the recording is
 // its input script unchanged. Poses: stage space, metres, the float values the loop read (written exactly);
 // aim poses and the head are written every frame (the runtime interpolates between lines, so holding and moving
 // are both reproduced at the recorded frame times); values only when they change; a button that went down is
@@ -63,7 +64,7 @@ class SessionRecorder {
   // The header: model file and SHA-256, life-size scale, T_stage_model (row-major 4x4, model -> stage),
   // method, mu and every solver option, radii, placement options, pushpull version, runtime.
   void write_header(const ReviewCommandOptions& options, const ReviewSetup& setup, const RecordingContext& context);
-  // One headset frame as the loop read it: t seconds from the first frame, head pose (stage), both hands.
+  // One headset frame as the loop read it: t (frame clock, above), head pose (stage), both hands.
   // `profile` is the interaction profile the runtime chose (names the button paths; a change is recorded).
   void write_frame_input(double t, const std::optional<XrPosef>& head, const std::array<xr::HandInput, 2>& hands,
                          const std::string& profile);
