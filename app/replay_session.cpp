@@ -129,10 +129,11 @@ void run_replay(const ReplayOptions& o) {
   const double rate = rec.rate_hz > 0.0 ? rec.rate_hz : 90.0;
   const double frame = 1.0 / rate;
   std::string script = rec.script;
+  std::vector<double> captures;
   for (const json& r : rec.records)
-    if (r.value("record", "") == "release")
-      script += json{{"t", r.value("time", 0.0) + frame}, {"event", "capture"}}.dump() + "\n";
-  script += json{{"t", rec.last_input_time + frame}, {"event", "capture"}}.dump() + "\n";
+    if (r.value("record", "") == "release") captures.push_back(r.value("time", 0.0) + frame);
+  captures.push_back(rec.last_input_time + frame);
+  for (const double t : captures) script += json{{"t", t}, {"event", "capture"}}.dump() + "\n";
   script += json{{"t", rec.last_input_time + 2.0 * frame}, {"event", "exit"}}.dump() + "\n";
   const fs::path script_path = out / "input.jsonl";
   deform::write_file_atomically(script_path, script);
@@ -155,6 +156,11 @@ void run_replay(const ReplayOptions& o) {
   if (h.contains("length_m") && h["length_m"].is_number()) review.life_size.length_m = h["length_m"].get<double>();
   review.eye_size = o.eye_size;
   review.record = (out / "replay-session.jsonl").string();
+  review.settle_drawn_frames = true;
+  if (o.capture_every <= 0)  // draw only the frames xr/sim captures (frame times are n / rate)
+    review.draw_frame = [captures, frame](double t) {
+      return std::any_of(captures.begin(), captures.end(), [&](double c) { return std::abs(t - c) < 0.5 * frame; });
+    };
   const std::string ext = model_extension(model_path);
   review.out = (out / ("final" + ext)).string();
   const bool same_solver = lower(review.method) == lower(header.at("options").at("method").get<std::string>()) &&

@@ -299,6 +299,8 @@ void run_review(const ReviewCommandOptions& o) {
                         life.to_mm(interaction.handle_radius()), life.to_mm(interaction.roi_radius()));
           }
         }
+        // Replay: a frame that is kept shows the solver's settled state, not whichever preview timing left.
+        if (o.settle_drawn_frames && frame.should_render && o.draw_frame && o.draw_frame(t)) service.wait_idle();
         take_commits();
         const std::shared_ptr<const deform::Snapshot> snapshot = service.latest();
         const bool solving = interaction.dragging() || !snapshot->final;
@@ -313,7 +315,7 @@ void run_review(const ReviewCommandOptions& o) {
           }
         }
         bool rendered = false;
-        if (frame.should_render) {
+        if (frame.should_render && (!o.draw_frame || o.draw_frame(t))) {
           const uint32_t left = xr.eye(0).acquire();
           const uint32_t right = xr.eye(1).acquire();
           const std::array<renderer::View, 2> views{eye_view(frame.eyes[0]), eye_view(frame.eyes[1])};

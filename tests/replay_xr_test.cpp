@@ -187,6 +187,12 @@ TEST(ReplayXr, ReplayReproducesEveryCommitHashAndTheSameMeshesTwice) {
   ASSERT_EQ(second.status, 0) << second.output;
   for (const char* file : {"commit-01.off", "commit-02.off", "final.off"})
     EXPECT_EQ(file_bytes(dir / "replay1" / file), file_bytes(dir / "replay2" / file)) << file;
+  // Both eyes one frame after each release and at the end, drawn once the solver settled: the same images.
+  std::vector<fs::path> eyes;
+  for (const auto& e : fs::directory_iterator(dir / "replay1" / "eyes")) eyes.push_back(e.path().filename());
+  EXPECT_EQ(eyes.size(), 6u);  // 2 releases + the end, 2 eyes each
+  for (const fs::path& eye : eyes)
+    EXPECT_EQ(file_bytes(dir / "replay1" / "eyes" / eye), file_bytes(dir / "replay2" / "eyes" / eye)) << eye;
 }
 
 TEST(ReplayXr, AnotherMethodComparesDInsteadOfHashes) {
