@@ -4,8 +4,9 @@
 //
 // Writes into `out`: input.jsonl (the script given to xr/sim), replay-session.jsonl (the replay's own
 // recording), commit-NN.<ext> after every commit and final.<ext> at the end (.glb for glTF models, else the
-// model's own mesh format), commit-NN-before.<ext>, commit-NN.metrics.json (metrics_json.hpp), eyes/ (both eyes at
-// each release and at the end, from xr/sim's capture), commit-NN-*.png (before, after, displacement and
+// model's own mesh format), commit-NN-before.<ext>, commit-NN.metrics.json (metrics_json.hpp), eyes/ (both eyes one
+// frame after each release and at the end, from xr/sim's capture; only those frames are drawn, each after the solver
+// settled, so they are the same on every run; --capture-every N draws and keeps every Nth frame too), commit-NN-*.png (before, after, displacement and
 // curvature-sign pictures rendered by `pushpull render`), report.html.
 //
 // Checks: every commit's hash (deform::position_hash over the committed positions) must be bit-identical to
