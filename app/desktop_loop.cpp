@@ -59,7 +59,7 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
   renderer::Context context = renderer::Context::create(context_options);
   EventLog log(o.events);
   log.write_start(o, setup, "desktop");
-  SessionRecorder recorder(o.record.empty() ? default_recording_path() : o.record);
+  SessionRecorder recorder(o.record.empty() ? default_recording_path() : o.record, !o.record.empty());
   {
     RecordingContext recording;
     recording.runtime = "desktop";
@@ -68,7 +68,7 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
     recording.eye_height = o.mirror_size[1];
     recorder.write_header(o, setup, recording);
   }
-  std::printf("pushpull review: recording the session to %s\n", recorder.path().c_str());
+  if (recorder.recording()) std::printf("pushpull review: recording the session to %s\n", recorder.path().c_str());
   const LifeSize& life = setup.life;
   {
     renderer::RendererOptions renderer_options;

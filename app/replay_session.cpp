@@ -123,6 +123,12 @@ void run_replay(const ReplayOptions& o) {
   fs::create_directories(out / "eyes", ec);
   if (ec) throw CommandError(out.string() + ": cannot create the output folder: " + ec.message());
   for (const auto& entry : fs::directory_iterator(out / "eyes")) fs::remove(entry.path(), ec);
+  // What an earlier replay into the same folder wrote (it may have had more commits).
+  for (const auto& entry : fs::directory_iterator(out)) {
+    const std::string name = entry.path().filename().string();
+    if (entry.is_regular_file() && (name.rfind("commit-", 0) == 0 || name.rfind("final.", 0) == 0))
+      fs::remove(entry.path(), ec);
+  }
 
   // The script: the recording's complete lines, the eyes captured one frame after every release and at the
   // end, and the exit one frame after the last input.

@@ -131,7 +131,7 @@ void run_review(const ReviewCommandOptions& o) {
 
   EventLog log(o.events);
   log.write_start(o, setup, xr.runtime_name());
-  SessionRecorder recorder(o.record.empty() ? default_recording_path() : o.record);
+  SessionRecorder recorder(o.record.empty() ? default_recording_path() : o.record, !o.record.empty());
   {
     RecordingContext context;
     context.runtime = xr.runtime_name();
@@ -140,7 +140,7 @@ void run_review(const ReviewCommandOptions& o) {
     context.eye_height = int(xr.eye(0).height());
     recorder.write_header(o, setup, context);
   }
-  std::printf("pushpull review: recording the session to %s\n", recorder.path().c_str());
+  if (recorder.recording()) std::printf("pushpull review: recording the session to %s\n", recorder.path().c_str());
 
   bool lost = false;
   std::optional<VulkanValidation> validation;

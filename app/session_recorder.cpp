@@ -88,13 +88,17 @@ std::string default_recording_path() {
   return path.string();
 }
 
-SessionRecorder::SessionRecorder(const std::string& path) : path_(path) {
+SessionRecorder::SessionRecorder(const std::string& path, bool required) : path_(path) {
   if (path.empty()) return;
   std::error_code ec;
   const fs::path parent = fs::path(path).parent_path();
   if (!parent.empty()) fs::create_directories(parent, ec);
   file_.open(path, std::ios::out | std::ios::trunc);
-  if (!file_) throw CommandError(path + ": cannot write the session recording");
+  if (file_) return;
+  if (required) throw CommandError(path + ": cannot write the session recording");
+  std::fprintf(stderr, "pushpull review: warning: %s: cannot write the session recording; not recording (--record FILE "
+               "names another place)\n", path.c_str());
+  path_.clear();
 }
 
 void SessionRecorder::write_line(const json& line) {
@@ -243,7 +247,11 @@ void SessionRecorder::write_commit(double t, const CommitRecord& c) {
                 {"iterations", s.iteration},
                 {"converged", s.converged},
                 {"error_estimate", s.error_estimate ? json(*s.error_estimate) : json(nullptr)},
-                {"max_displacement", s.max_displacement}});
+                {"max_displacement", s.max_displacement},
+                // The handle and region the worker grew from p0 (vertex counts; the vertices are in the replay's
+                // metrics).
+                {"handle_vertices", s.region ? s.region->handle.size() : 0},
+                {"region_vertices", s.region ? s.region->size() : 0}});
 }
 
 void SessionRecorder::write_record(const std::string& kind, double t, json fields) {

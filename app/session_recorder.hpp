@@ -31,6 +31,7 @@
 
 #include <array>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <optional>
 #include <string>
@@ -57,8 +58,11 @@ struct RecordingContext {
 
 class SessionRecorder {
  public:
-  // Creates the file (and its folder); an empty path records nothing. Throws CommandError naming the file.
-  explicit SessionRecorder(const std::string& path);
+  // Creates the file (and its folder); an empty path records nothing. When the file cannot be created: throws
+  // CommandError naming it if `required` (the user named it), else warns on stderr and records nothing (the
+  // default path in a folder that cannot be written must not stop a review).
+  explicit SessionRecorder(const std::string& path, bool required = true);
+  [[nodiscard]] bool recording() const { return file_.is_open(); }
   [[nodiscard]] const std::string& path() const { return path_; }
 
   // The header: model file and SHA-256, life-size scale, T_stage_model (row-major 4x4, model -> stage),

@@ -117,6 +117,9 @@ SessionRecording read_session_recording(const std::string& path) {
     r.script += line;
     r.script += '\n';
   }
+  if (r.header.is_null())
+    throw CommandError(path + ":1: the header line is cut off (the session stopped while writing it); nothing "
+                       "to replay");
   if (!ended && !r.cut)
     r.cut = "no \"end\" record after line " + std::to_string(r.lines) +
             " (the session crashed or the file was truncated)";

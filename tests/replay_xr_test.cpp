@@ -259,6 +259,13 @@ TEST(ReplayXr, TruncatedRecordingReplaysUpToTheCut) {
   EXPECT_NE(r.output.find("replayed up to the cut"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("commit 1/1"), std::string::npos) << r.output;
   EXPECT_TRUE(fs::exists(dir / "out" / "commit-01.off"));
+
+  // Cut inside the header: nothing to replay, and it says so.
+  std::ofstream(session, std::ios::binary | std::ios::trunc) << bytes.substr(0, 40);
+  const auto header_cut = replay(session, dir / "out2", "--no-pictures");
+  EXPECT_NE(header_cut.status, 0) << header_cut.output;
+  EXPECT_NE(header_cut.output.find(session.string() + ":1: the header line is cut off"), std::string::npos)
+      << header_cut.output;
 }
 
 TEST(ReplayXr, AnotherModelIsRefusedBySha256) {
