@@ -45,6 +45,9 @@ void add_review_command(CLI::App& root) {
   cmd->add_option("--events", o->events,
                   "Write the session's events (press, commit, cancel, undo, redo, lost) as JSON Lines, with p0 and "
                   "d in model units");
+  cmd->add_option("--record", o->record,
+                  "Record the session (header, input by OpenXR path, press/drag/release/commit with result hashes) "
+                  "as JSON Lines for `pushpull replay` (default: out/recordings/review-<UTC time>.jsonl)");
   cmd->add_flag("--mirror", o->mirror,
                 "Open the supervisor's mirror window (keys: V view headset eye / smoothed first person, C colour "
                 "map, M method of the next drag, Esc end the session; the title shows method, |d|, iterations)");

@@ -21,5 +21,6 @@ void add_deform_command(CLI::App& root);  // pushpull deform: one push/pull on a
 void add_info_command(CLI::App& root);    // pushpull info: what is in a model
 void add_render_command(CLI::App& root);  // pushpull render: a PNG of a model or result
 void add_review_command(CLI::App& root);  // pushpull review: push/pull in an OpenXR headset
+void add_replay_command(CLI::App& root);  // pushpull replay: a recorded review session, headless
 
 }  // namespace pushpull::app

@@ -3,6 +3,7 @@
 #include "commands.hpp"
 #include "review_interaction.hpp"
 #include "review_scene.hpp"
+#include "session_recorder.hpp"
 
 #include "pushpull/deform/service.hpp"
 #include "pushpull/renderer/camera.hpp"
@@ -58,6 +59,16 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
   renderer::Context context = renderer::Context::create(context_options);
   EventLog log(o.events);
   log.write_start(o, setup, "desktop");
+  SessionRecorder recorder(o.record.empty() ? default_recording_path() : o.record, !o.record.empty());
+  {
+    RecordingContext recording;
+    recording.runtime = "desktop";
+    recording.view_configuration = "desktop window";
+    recording.eye_width = o.mirror_size[0];
+    recording.eye_height = o.mirror_size[1];
+    recorder.write_header(o, setup, recording);
+  }
+  if (recorder.recording()) std::printf("pushpull review: recording the session to %s\n", recorder.path().c_str());
   const LifeSize& life = setup.life;
   {
     renderer::RendererOptions renderer_options;
@@ -66,8 +77,29 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
     renderer::MirrorWindow window(context, uint32_t(o.mirror_size[0]), uint32_t(o.mirror_size[1]),
                                   "pushpull review (desktop)");
     ReviewScene scene(renderer, setup.model, setup.placement, setup.colour, life.scale());
-    deform::Service service(setup.rest);
+    CommitWatch commits;  // before the service: its worker calls into it until the service is destroyed
+    deform::Service service(setup.rest, deform::ServiceOptions{commits.callback()});
     ReviewInteraction interaction(service, *setup.rest, setup.placement, setup.interaction);
+    // The recording's clock: frame n at n / 90 s (xr/sim's virtual clock at 90 Hz), so a replay on the simulated
+    // runtime sees each recorded frame at its own frame.
+    constexpr double kRecordingRate = 90.0;
+    std::int64_t loop_frames = 0;
+    double t = 0.0;
+    recorder.write_record("clock", 0.0, {{"rate_hz", kRecordingRate}});
+    // The mouse gesture as a hand: outside a drag the cursor ray; during a drag the ray of the press moved by
+    // p1 - p0, so the headset gesture (d = the hand's travel) sees the same p0 and d.
+    Eigen::Vector3d hand_origin = Eigen::Vector3d::Zero(), hand_direction(0, 0, -1);
+    Eigen::Vector3d press_origin = Eigen::Vector3d::Zero();
+    auto record_interaction = [&](const InteractionEvent& e) {
+      log.write_interaction(e, life);
+      recorder.write_interaction(t, e, interaction.handle_radius(), interaction.roi_radius());
+    };
+    auto take_commits = [&] {
+      for (const CommitRecord& c : commits.take()) {
+        recorder.write_commit(t, c);
+        if (o.on_commit) o.on_commit(c);
+      }
+    };
 
     // Orbit around the model's box on the stage, from the reviewer's side.
     const Eigen::MatrixXd& V = setup.rest->V;
@@ -92,6 +124,7 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
     int frames = 0;
     while (!window.should_close() && (o.frames <= 0 || frames < o.frames)) {
       window.poll_events();
+      t = double(std::llround(double(loop_frames++) * 1e9 / kRecordingRate)) * 1e-9;  // as xr/sim's script_time
       bool quit = false;
       for (int key : window.take_key_presses()) {
         if (key == 256 /* GLFW_KEY_ESCAPE */) quit = true;
@@ -100,10 +133,12 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
           if (key == 'U') {
             service.undo();
             log.write({{"event", "undo"}});
+            recorder.write_record("undo", t);
           }
           if (key == 'R') {
             service.redo();
             log.write({{"event", "redo"}});
+            recorder.write_record("redo", t);
           }
           if (key == 'M') {
             const auto& all = deform::kAllMethods;
@@ -124,15 +159,21 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
       orbit.distance_scale = std::clamp(orbit.distance_scale * float(std::pow(0.9, p.scroll)), 0.05f, 10.0f);
       const renderer::View view = renderer::frame_bounds(bounds, orbit, aspect);
       const auto [origin, direction] = cursor_ray(view, p);
+      const bool was_dragging = dragging;
+      if (!dragging) hand_origin = origin, hand_direction = direction;
       if (p.left && !last.left && !dragging) {
+        // As in the headset loop: a press hits the committed surface, never one a pending commit replaces.
+        service.wait_idle();
+        interaction.sync_committed(*service.latest());
         if (const auto hit = interaction.hit(origin, direction)) {
           if (const auto e = interaction.begin_drag(1, *hit)) {
-            log.write_interaction(*e, life);
+            record_interaction(*e);
             dragging = true;
             p0_stage = setup.placement.to_stage_point(hit->point);
             const Eigen::Matrix3d A = setup.placement.T_stage_model.topLeftCorner<3, 3>();
             normal_stage = (A * interaction.face_normal(hit->face)).normalized();
             plane_normal = (p0_stage - origin).normalized();  // the view plane through p0
+            press_origin = origin;
           }
         }
       } else if (dragging && p.left) {
@@ -143,11 +184,16 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
           p1 = origin + (plane_normal.dot(p0_stage - origin) / plane_normal.dot(direction)) * direction;
         }
         interaction.drag(setup.placement.to_model_vector(p1 - p0_stage));
+        hand_origin = press_origin + (p1 - p0_stage);
+        recorder.write_drag(t, interaction.current_d());
       } else if (dragging && !p.left) {
         dragging = false;
-        if (const auto e = interaction.end_drag(true)) log.write_interaction(*e, life);
+        if (const auto e = interaction.end_drag(true)) record_interaction(*e);
       }
+      // Released this frame: the hand stays where the drag left it (the gesture's release reads d there).
+      recorder.write_pointer_input(t, hand_origin, hand_direction, dragging || (p.left && !was_dragging));
       last = p;
+      take_commits();
 
       const std::shared_ptr<const deform::Snapshot> snapshot = service.latest();
       interaction.sync_committed(*snapshot);
@@ -164,11 +210,14 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
                     snapshot->converged ? "converged" : "not converged", colour_name(scene.colour()));
       if (title != text) window.set_title(title = text);
     }
-    if (const auto e = interaction.end_drag(false)) log.write_interaction(*e, life);
+    if (const auto e = interaction.end_drag(false)) record_interaction(*e);
     renderer.wait_idle();
     service.wait_idle();
+    take_commits();
     const auto history = service.history();
     const deform::HistoryEntry& current = history.at(service.history_position());
+    recorder.write_record("end", t,
+                          {{"commits", service.history_position()}, {"hash", hash_text(current.hash)}});
     log.write({{"event", "end"}, {"revision", service.revision()}, {"hash", current.hash},
                {"commits", service.history_position()}});
     if (!o.out.empty()) {

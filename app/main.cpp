@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   pushpull::app::add_info_command(root);
   pushpull::app::add_render_command(root);
   pushpull::app::add_review_command(root);
+  pushpull::app::add_replay_command(root);
 
   try {
     root.parse(argc, argv);

@@ -6,6 +6,7 @@
 #include "mirror_view.hpp"
 #include "review_interaction.hpp"
 #include "review_setup.hpp"
+#include "session_recorder.hpp"
 #include "review_scene.hpp"
 #include "stage_placement.hpp"
 #include "vulkan_validation.hpp"
@@ -130,6 +131,16 @@ void run_review(const ReviewCommandOptions& o) {
 
   EventLog log(o.events);
   log.write_start(o, setup, xr.runtime_name());
+  SessionRecorder recorder(o.record.empty() ? default_recording_path() : o.record, !o.record.empty());
+  {
+    RecordingContext context;
+    context.runtime = xr.runtime_name();
+    context.view_configuration = "XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO";
+    context.eye_width = int(xr.eye(0).width());
+    context.eye_height = int(xr.eye(0).height());
+    recorder.write_header(o, setup, context);
+  }
+  if (recorder.recording()) std::printf("pushpull review: recording the session to %s\n", recorder.path().c_str());
 
   bool lost = false;
   std::optional<VulkanValidation> validation;
@@ -152,14 +163,28 @@ void run_review(const ReviewCommandOptions& o) {
     auto last_mirror = Clock::now();
     ReviewScene scene(renderer, model, placement, colour, life.scale());
     EyeTargets eyes(vk.device, xr.eye(0), xr.eye(1));
-    deform::Service service(rest);
+    CommitWatch commits;  // before the service: its worker calls into it until the service is destroyed
+    deform::Service service(rest, deform::ServiceOptions{commits.callback()});
     ReviewInteraction interaction(service, *rest, placement, interaction_options);
+    bool commands_pending = false;  // a commit, undo or redo was issued and the service may still run it
+    long recording_rate_hz = 0;       // the headset's display rate, whole Hz (0 before the first frame)
+    std::int64_t recording_frames = 0;  // frames the loop has read input for
+    double t = 0.0;  // the recording's time of this frame (seconds; the simulated runtime's script clock)
+    auto take_commits = [&] {
+      for (const CommitRecord& c : commits.take()) {
+        recorder.write_commit(t, c);
+        if (o.on_commit) o.on_commit(c);
+      }
+    };
     xr::Input input(xr.instance(), xr.handle(), xr.stage_space());
     FrameStats stats;
     bool sizes_changed = false;
     GrabPlacement grab(placement);
 
-    auto log_event = [&](const InteractionEvent& e) { log.write_interaction(e, life); };
+    auto log_event = [&](const InteractionEvent& e) {
+      log.write_interaction(e, life);
+      recorder.write_interaction(t, e, interaction.handle_radius(), interaction.roi_radius());
+    };
 
     while (!xr.exit_requested()) {
       try {
@@ -173,6 +198,27 @@ void run_review(const ReviewCommandOptions& o) {
         if (xr.lost()) break;
         const auto start = Clock::now();
         input.sync(frame.predicted_display_time);
+        // The recording's clock counts frames: frame n at n / rate, exactly as xr/sim's virtual clock at that
+        // (whole) rate places it, so a replay gives frame n the input the loop read at its frame n, whatever the
+        // headset's timing (jitter, dropped frames) was.
+        if (recording_rate_hz == 0) {
+          recording_rate_hz =
+              std::max(1L, std::lround(1e9 / double(std::max<XrDuration>(1, frame.predicted_display_period))));
+          recorder.write_record("clock", 0.0, {{"rate_hz", recording_rate_hz}});
+        }
+        t = double(std::llround(double(recording_frames++) * 1e9 / double(recording_rate_hz))) * 1e-9;
+        {
+          std::optional<XrPosef> head;
+          if (frame.should_render) {  // the head: between the eyes, looking as the left eye
+            const XrPosef& l = frame.eyes[0].T_stage_eye;
+            const XrPosef& r = frame.eyes[1].T_stage_eye;
+            head = XrPosef{l.orientation,
+                           {(l.position.x + r.position.x) * 0.5f, (l.position.y + r.position.y) * 0.5f,
+                            (l.position.z + r.position.z) * 0.5f}};
+          }
+          recorder.write_frame_input(t, head, {input.hand(xr::Hand::Left), input.hand(xr::Hand::Right)},
+                                     input.current_profile(xr::Hand::Right));
+        }
         // Focus lost mid-drag (a system menu, another app): the inputs read as released, which the gesture
         // would take as a release; the drag is cancelled instead, the model stays as before it.
         if (!xr.focused() && interaction.dragging())
@@ -200,10 +246,20 @@ void run_review(const ReviewCommandOptions& o) {
           if (grab.grabbing())
             for (auto& hand : hands) hand.trigger = 0.0f;  // no push/pull while holding the model
         }
+        // A press while a commit, undo or redo is still being solved would hit the surface the reviewer no
+        // longer sees and depend on the solver's timing: it waits for them (a stall only then), so the same
+        // input gives the same commits and a replay reproduces them.
+        if (commands_pending && !interaction.dragging() && (hands[0].trigger > 0.0f || hands[1].trigger > 0.0f)) {
+          service.wait_idle();
+          commands_pending = false;
+          interaction.sync_committed(*service.latest());
+        }
         for (const InteractionEvent& e : interaction.update(hands)) {
+          if (e.kind == InteractionEvent::Kind::Committed) commands_pending = true;
           log_event(e);
           if (e.kind != InteractionEvent::Kind::Cancelled) input.haptic_pulse(xr::Hand(e.hand), 0.6f, 0.03);
         }
+        if (interaction.dragging()) recorder.write_drag(t, interaction.current_d());
         for (int h = 0; h < 2 && !interaction.dragging(); ++h) {
           const xr::HandInput& in = input.hand(xr::Hand(h));
           if (in.undo_pressed && grab.grabbing()) {  // undo while holding the model: back to life size
@@ -213,11 +269,15 @@ void run_review(const ReviewCommandOptions& o) {
             log.write({{"event", "placement reset"}});
           } else if (in.undo_pressed) {
             service.undo();
+            commands_pending = true;
             log.write({{"event", "undo"}});
+            recorder.write_record("undo", t);
           }
           if (in.redo_pressed) {
             service.redo();
+            commands_pending = true;
             log.write({{"event", "redo"}});
+            recorder.write_record("redo", t);
           }
           if (in.menu_pressed) scene.set_colour(next_colour(scene.colour()));
         }
@@ -239,6 +299,9 @@ void run_review(const ReviewCommandOptions& o) {
                         life.to_mm(interaction.handle_radius()), life.to_mm(interaction.roi_radius()));
           }
         }
+        // Replay: a frame that is kept shows the solver's settled state, not whichever preview timing left.
+        if (o.settle_drawn_frames && frame.should_render && o.draw_frame && o.draw_frame(t)) service.wait_idle();
+        take_commits();
         const std::shared_ptr<const deform::Snapshot> snapshot = service.latest();
         const bool solving = interaction.dragging() || !snapshot->final;
         if (snapshot->region) stats.region_vertices = std::max(stats.region_vertices, snapshot->region->size());
@@ -252,7 +315,7 @@ void run_review(const ReviewCommandOptions& o) {
           }
         }
         bool rendered = false;
-        if (frame.should_render) {
+        if (frame.should_render && (!o.draw_frame || o.draw_frame(t))) {
           const uint32_t left = xr.eye(0).acquire();
           const uint32_t right = xr.eye(1).acquire();
           const std::array<renderer::View, 2> views{eye_view(frame.eyes[0]), eye_view(frame.eyes[1])};
@@ -309,11 +372,16 @@ void run_review(const ReviewCommandOptions& o) {
       std::printf("pushpull review: the OpenXR session was lost\n");
       if (const auto e = interaction.cancel()) log_event(*e);
       log.write({{"event", "lost"}});
+      recorder.write_record("lost", t);
+      recorder.write_event_input(t, "loss");  // as xr/sim's script event: a replay loses the session there too
     }
     renderer.wait_idle();
     service.wait_idle();
+    take_commits();
     const auto history = service.history();
     const deform::HistoryEntry& current = history.at(service.history_position());
+    recorder.write_record("end", t,
+                          {{"commits", service.history_position()}, {"hash", hash_text(current.hash)}});
     log.write({{"event", "end"},
                {"revision", service.revision()},
                {"hash", current.hash},

@@ -5,8 +5,10 @@
 // Thread-safety: run_review runs on the calling thread; the service has its own worker.
 #pragma once
 
+#include "commit_watch.hpp"
 #include "life_size.hpp"
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -35,6 +37,18 @@ struct ReviewCommandOptions {
   int frames = 0;        // desktop mode: stop after this many frames (0: when the window closes)
   std::vector<int> mirror_size{960, 540};
   LifeSizeOptions life_size;
+  // The session recording (session_recorder.hpp); empty: default_recording_path().
+  std::string record;
+  // Called on the loop's thread for every commit the service finished, in order, as soon as the loop sees it
+  // (and the last ones after the service went idle at the end). Used by `pushpull replay`.
+  std::function<void(const CommitRecord&)> on_commit;
+  // Headset loop: whether to draw the eyes of the frame at recording time t (s); empty: every frame. Frames not
+  // drawn end without layers. `pushpull replay` draws only the frames the simulated runtime captures: the loop
+  // computes the same either way, and a software rasterizer spends its time on the frames that are kept.
+  std::function<bool(double t)> draw_frame;
+  // With draw_frame: a drawn frame first waits for the deformation service to finish (replay: captured eyes
+  // show the settled result, the same on every run). Commits do not depend on it.
+  bool settle_drawn_frames = false;
 };
 
 // Throws CommandError (no runtime or headset: one line saying which runtime was looked for and how to point

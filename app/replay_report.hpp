@@ -1,0 +1,46 @@
+// The HTML report of a replay (report.html beside the pictures it shows): the session (model, SHA-256,
+// method, runtime), then per push/pull: before / after pictures, displacement and curvature-sign maps, method,
+// |d| in life-size mm, iterations, converged, error estimate, curvature sign reversals and flips, displacement
+// along and across d, the section curves before and after (inline SVG), the hash check.
+// Thread-safety: pure function of its arguments plus one file write.
+#pragma once
+
+#include "pushpull/deform/metrics.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace pushpull::app {
+
+struct ReportCommit {
+  std::size_t index = 0;
+  std::string method;
+  double d_mm = 0.0;  // |d| at life size
+  int iterations = 0;
+  bool converged = false;
+  std::optional<double> error_estimate;
+  deform::DeformationMetrics metrics;  // with sections (plotted before / after)
+  Eigen::Vector3d d = Eigen::Vector3d::Zero();  // model units: the sections' planes are perpendicular to it
+  double scale = 1.0;  // metres per model unit (metrics lengths are model units)
+  std::string hash, recorded_hash;  // recorded_hash "" when not compared
+  std::string check;                 // "match", "mismatch: ...", "not compared: ..."
+  std::string model_file, metrics_file;
+  std::vector<std::pair<std::string, std::string>> pictures;  // caption, file name (relative to the report)
+};
+
+struct ReportSession {
+  std::string recording, model, model_sha256, runtime, method;
+  double mu = 0.0;
+  std::string cut;  // "" when the recording is complete
+  std::vector<std::string> eye_images;  // file names relative to the report
+  std::string summary;
+};
+
+// Writes `path` atomically; throws CommandError naming it.
+void write_replay_report(const std::string& path, const ReportSession& session,
+                         const std::vector<ReportCommit>& commits);
+
+}  // namespace pushpull::app

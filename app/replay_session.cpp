@@ -1,0 +1,375 @@
+#include "replay_session.hpp"
+
+#include "commands.hpp"
+#include "commit_watch.hpp"
+#include "metrics_json.hpp"
+#include "replay_report.hpp"
+#include "review_loop.hpp"
+#include "session_recorder.hpp"
+#include "session_recording.hpp"
+#include "sha256.hpp"
+
+#include "pushpull/assets/model.hpp"
+#include "pushpull/assets/write.hpp"
+#include "pushpull/deform/mesh_io.hpp"
+#include "pushpull/deform/metrics.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <limits>
+#include <set>
+
+namespace pushpull::app {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+using json = nlohmann::json;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+std::string lower(std::string s) {
+  for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+// .glb for glTF models (the scene with moved vertices), else the model's own mesh format (the welded mesh).
+std::string model_extension(const std::string& model) {
+  const std::string ext = lower(fs::path(model).extension().string());
+  return (ext == ".gltf" || ext == ".glb" || ext == ".drc") ? ".glb" : ext;
+}
+
+void write_model(const fs::path& path, const assets::Model& model, const Eigen::MatrixXd& V) {
+  try {
+    if (path.extension() == ".glb")
+      (void)assets::write_glb(model, V, path.string());
+    else
+      deform::write_mesh(path.string(), deform::Mesh{V, model.deform_mesh.F});
+  } catch (const std::exception& e) {
+    throw CommandError(path.string() + ": " + e.what());
+  }
+}
+
+std::string quoted(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+std::string two_digits(std::size_t i) {
+  char text[16];
+  std::snprintf(text, sizeof text, "%02zu", i);
+  return text;
+}
+
+// The simulated runtime beside this executable (build/pushpull -> build/xr/sim/pushpull_xr_sim.json).
+void point_at_simulated_runtime(const ReplayOptions& o, const SessionRecording& rec, const fs::path& script,
+                                const fs::path& eyes) {
+  if (std::getenv("XR_RUNTIME_JSON") == nullptr) {
+    std::error_code ec;
+    const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+    const fs::path manifest = exe.parent_path() / "xr" / "sim" / "pushpull_xr_sim.json";
+    if (ec || !fs::exists(manifest))
+      throw CommandError("no XR_RUNTIME_JSON set and no simulated runtime manifest at " + manifest.string() +
+                         " (build the pushpull_xr_sim target, or set XR_RUNTIME_JSON to its manifest)");
+    setenv("XR_RUNTIME_JSON", manifest.c_str(), 1);
+  }
+  const char* lavapipe = "/usr/share/vulkan/icd.d/lvp_icd.x86_64.json";
+  if (std::getenv("VK_ICD_FILENAMES") == nullptr && std::getenv("VK_DRIVER_FILES") == nullptr && fs::exists(lavapipe))
+    setenv("VK_ICD_FILENAMES", lavapipe, 1);
+  setenv("PUSHPULL_XR_SIM_INPUT", script.c_str(), 1);
+  setenv("PUSHPULL_XR_SIM_CAPTURE", eyes.c_str(), 1);
+  setenv("PUSHPULL_XR_SIM_CAPTURE_EVERY", std::to_string(std::max(0, o.capture_every)).c_str(), 1);
+  setenv("PUSHPULL_XR_SIM_WIDTH", std::to_string(o.eye_size.at(0)).c_str(), 1);
+  setenv("PUSHPULL_XR_SIM_HEIGHT", std::to_string(o.eye_size.at(1)).c_str(), 1);
+  const long rate = rec.rate_hz > 0.0 ? std::lround(rec.rate_hz) : 90;
+  setenv("PUSHPULL_XR_SIM_RATE", std::to_string(rate).c_str(), 1);
+  if (!rec.profile.empty()) setenv("PUSHPULL_XR_SIM_PROFILE", rec.profile.c_str(), 1);
+}
+
+Eigen::Vector3d vec3(const json& j) { return {j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>()}; }
+
+}  // namespace
+
+void run_replay(const ReplayOptions& o) {
+  const auto start = Clock::now();
+  const SessionRecording rec = read_session_recording(o.recording);
+  const json& header = rec.header;
+  // --model, else the model where it was relative to the recording (a recording moved or checked out with its
+  // model, as the bundled session), else the absolute path recorded.
+  std::string model_path = o.model.empty() ? header.at("model").get<std::string>() : o.model;
+  if (o.model.empty() && header.contains("model_relative")) {
+    const fs::path beside = fs::path(o.recording).parent_path() / header["model_relative"].get<std::string>();
+    if (fs::exists(beside)) model_path = beside.lexically_normal().string();
+  }
+  if (!fs::exists(model_path))
+    throw CommandError(model_path + ": the recorded model file does not exist (recording " + o.recording +
+                       "); pass --model FILE");
+  const std::string sha = sha256_file_hex(model_path);
+  if (sha != header.at("model_sha256").get<std::string>())
+    throw CommandError(model_path + ": SHA-256 " + sha + " differs from the recording's " +
+                       header.at("model_sha256").get<std::string>() + " (" + o.recording +
+                       " was made on another model file); refusing to replay");
+  if (rec.cut) std::printf("pushpull replay: %s: %s; replaying up to the cut\n", o.recording.c_str(), rec.cut->c_str());
+
+  const fs::path out = o.out;
+  std::error_code ec;
+  fs::create_directories(out / "eyes", ec);
+  if (ec) throw CommandError(out.string() + ": cannot create the output folder: " + ec.message());
+  for (const auto& entry : fs::directory_iterator(out / "eyes")) fs::remove(entry.path(), ec);
+  // What an earlier replay into the same folder wrote (it may have had more commits).
+  for (const auto& entry : fs::directory_iterator(out)) {
+    const std::string name = entry.path().filename().string();
+    if (entry.is_regular_file() && (name.rfind("commit-", 0) == 0 || name.rfind("final.", 0) == 0))
+      fs::remove(entry.path(), ec);
+  }
+
+  // The script: the recording's complete lines, the eyes captured one frame after every release and at the
+  // end, and the exit one frame after the last input.
+  const double rate = rec.rate_hz > 0.0 ? rec.rate_hz : 90.0;
+  const double frame = 1.0 / rate;
+  std::string script = rec.script;
+  std::vector<double> captures;
+  for (const json& r : rec.records)
+    if (r.value("record", "") == "release") captures.push_back(r.value("time", 0.0) + frame);
+  captures.push_back(rec.last_input_time + frame);
+  for (const double t : captures) script += json{{"t", t}, {"event", "capture"}}.dump() + "\n";
+  script += json{{"t", rec.last_input_time + 2.0 * frame}, {"event", "exit"}}.dump() + "\n";
+  const fs::path script_path = out / "input.jsonl";
+  deform::write_file_atomically(script_path, script);
+  point_at_simulated_runtime(o, rec, script_path, out / "eyes");
+
+  // The same review, from the header's options.
+  const json& h = header.at("options");
+  ReviewCommandOptions review;
+  review.model = model_path;
+  review.method = o.method.empty() ? h.at("method").get<std::string>() : o.method;
+  review.mu = o.mu.value_or(h.at("mu").get<double>());
+  review.handle_radius_m = h.at("handle_radius_m");
+  review.roi_radius_m = h.at("roi_radius_m");
+  review.up = h.at("up").get<std::vector<double>>();
+  review.front = h.at("front").get<std::vector<double>>();
+  review.distance_m = h.at("distance_m");
+  review.samples = 1;
+  review.colour = h.value("colour", "displacement");
+  review.life_size.scale = h.value("scale", 1.0);
+  if (h.contains("length_m") && h["length_m"].is_number()) review.life_size.length_m = h["length_m"].get<double>();
+  review.eye_size = o.eye_size;
+  review.record = (out / "replay-session.jsonl").string();
+  review.settle_drawn_frames = true;
+  if (o.capture_every <= 0)  // draw only the frames xr/sim captures (frame times are n / rate)
+    review.draw_frame = [captures, frame](double t) {
+      return std::any_of(captures.begin(), captures.end(), [&](double c) { return std::abs(t - c) < 0.5 * frame; });
+    };
+  const std::string ext = model_extension(model_path);
+  review.out = (out / ("final" + ext)).string();
+  const bool same_solver = lower(review.method) == lower(header.at("options").at("method").get<std::string>()) &&
+                           review.mu == header.at("options").at("mu").get<double>();
+  // Desktop recordings: the mouse gesture was recorded as a hand's aim ray (float poses, as OpenXR has them),
+  // so the replayed p0 and d are within float rounding of the desktop's double ones, not bit-identical.
+  const bool desktop = h.value("desktop", false);
+  const double d_tolerance = desktop ? 1e-5 / h.value("scale", 1.0) : 1e-9;  // model units
+  const bool compare_hashes = same_solver && !desktop;
+  if (desktop)
+    std::printf("pushpull replay: a desktop-mode recording: its mouse gestures replay as a hand's aim ray and "
+                "trigger; each commit's d is compared (within 0.01 mm at life size), not its hash\n");
+
+  assets::Model model;
+  try {
+    model = assets::load_model(model_path);
+  } catch (const std::exception& e) {
+    throw CommandError(e.what());
+  }
+  std::vector<CommitRecord> commits;
+  std::vector<std::string> checks;  // per commit: how it compared with the recording
+  std::string first_mismatch;
+  const std::size_t recorded = rec.commits.size();
+  review.on_commit = [&](const CommitRecord& c) {
+    commits.push_back(c);
+    const fs::path file = out / ("commit-" + two_digits(c.index) + ext);
+    write_model(file, model, *c.snapshot->positions);
+    std::string check;
+    if (c.index > recorded) {
+      check = "not compared (after the end of the recording)";
+    } else {
+      const json& r = rec.commits[c.index - 1].record;
+      const std::size_t line = rec.commits[c.index - 1].line;
+      if (compare_hashes) {
+        check = r.at("hash") == hash_text(c.hash) ? "match" : "MISMATCH";
+        if (check != "match" && first_mismatch.empty())
+          first_mismatch = "commit " + std::to_string(c.index) + " (recording line " + std::to_string(line) +
+                           "): hash " + hash_text(c.hash) + " differs from the recorded " +
+                           r.at("hash").get<std::string>() + " (tolerance: bit-identical positions)";
+      } else {
+        const double gap = r.contains("d") ? (vec3(r["d"]) - c.snapshot->d).norm() : 0.0;
+        check = gap <= d_tolerance ? "match (d)" : "MISMATCH (d)";
+        if (gap > d_tolerance && first_mismatch.empty()) {
+          char text[160];
+          std::snprintf(text, sizeof text, "d differs from the recorded one by %.3g model units (tolerance %.3g)",
+                        gap, d_tolerance);
+          first_mismatch = "commit " + std::to_string(c.index) + " (recording line " + std::to_string(line) +
+                           "): " + text +
+                           (desktop ? "; desktop recording" : "; hashes are not compared with another method or mu");
+        }
+      }
+    }
+    checks.push_back(check);
+    std::printf("pushpull replay: commit %zu/%zu  |d| %.1f mm  %d it  %s  hash %s  %s  (%.1f s)\n", c.index,
+                recorded, 1000.0 * h.value("scale", 1.0) * c.snapshot->d.norm(), c.snapshot->iteration,
+                c.snapshot->converged ? "converged" : "not converged", hash_text(c.hash).c_str(), check.c_str(),
+                seconds_since(start));
+    std::fflush(stdout);
+  };
+  const auto loop_start = Clock::now();
+  run_review(review);
+  const double loop_s = seconds_since(loop_start);
+  if (commits.size() < recorded && first_mismatch.empty())
+    first_mismatch = "commit " + std::to_string(commits.size() + 1) + " (recording line " +
+                     std::to_string(rec.commits[commits.size()].line) + ") was not reproduced (the replay made " +
+                     std::to_string(commits.size()) + " of " + std::to_string(recorded) + " commits)";
+
+  // Metrics, pictures and the report.
+  const auto report_start = Clock::now();
+  const double scale = header.value("life_size_scale", 1.0);
+  std::vector<ReportCommit> report;
+  for (const CommitRecord& c : commits) {
+    const deform::Snapshot& s = *c.snapshot;
+    const deform::Mesh& before_mesh = c.before ? *c.before : model.deform_mesh;
+    const std::string stem = "commit-" + two_digits(c.index);
+    std::vector<int> roi;
+    if (s.region) {
+      roi.insert(roi.end(), s.region->handle.begin(), s.region->handle.end());
+      roi.insert(roi.end(), s.region->fixed.begin(), s.region->fixed.end());
+      roi.insert(roi.end(), s.region->free.begin(), s.region->free.end());
+      std::sort(roi.begin(), roi.end());
+    }
+    DeformRunRecord record;
+    record.input = model_path;
+    record.output = stem + ext;
+    record.options.method = s.method;
+    record.options.mu = review.mu;
+    record.d = s.d;
+    record.vertices = long(s.positions->rows());
+    if (s.region) {
+      record.handle_count = long(s.region->handle.size());
+      record.fixed_count = long(s.region->fixed.size());
+      record.free_count = long(s.region->free.size());
+    }
+    record.result.iterations = s.iteration;
+    record.result.converged = s.converged;
+    // The snapshot does not carry the stop reason: with energy_tolerance 0 (the review's), converged means the
+    // error tolerance was met.
+    record.result.stop_reason = s.converged ? deform::StopReason::ErrorTolerance : deform::StopReason::MaxIterations;
+    record.result.error_estimate = s.error_estimate;
+    record.result.timing.factorize = s.factorize_ms;
+    record.result.timing.solve = s.solve_ms;
+    record.result.warnings = s.warnings;
+    record.life_size_scale = scale;
+    ReportCommit rc;
+    if (s.d.norm() > 0.0 && !roi.empty()) {
+      try {
+        // Three section planes perpendicular to d, spread across the region's extent along d (as deform's).
+        deform::MetricsOptions metrics_options;
+        const Eigen::Vector3d unit = s.d.normalized();
+        double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+        for (const int i : roi) {
+          lo = std::min(lo, before_mesh.V.row(i).dot(unit));
+          hi = std::max(hi, before_mesh.V.row(i).dot(unit));
+        }
+        for (int k = 1; k <= 3; ++k) metrics_options.section_offsets.push_back(lo + (hi - lo) * k / 4.0);
+        record.metrics = deform::evaluate_deformation(before_mesh, *s.positions, s.d, roi, metrics_options);
+      } catch (const std::exception& e) {
+        record.result.warnings.push_back(std::string("metrics: ") + e.what());
+      }
+    }
+    deform::write_file_atomically(out / (stem + ".metrics.json"), metrics_json(record));
+    rc.index = c.index;
+    rc.method = std::string(deform::method_name(s.method));
+    rc.d_mm = 1000.0 * scale * s.d.norm();
+    rc.iterations = s.iteration;
+    rc.converged = s.converged;
+    rc.error_estimate = s.error_estimate;
+    rc.metrics = record.metrics;
+    rc.d = s.d;
+    rc.scale = scale;
+    rc.hash = hash_text(c.hash);
+    if (c.index <= recorded) rc.recorded_hash = rec.commits[c.index - 1].record.at("hash");
+    rc.check = checks.at(c.index - 1);
+    if (rc.check == "match") rc.check = "match: bit-identical to the recording";
+    rc.model_file = stem + ext;
+    rc.metrics_file = stem + ".metrics.json";
+    if (o.pictures) {
+      const std::string before = stem + "-before" + ext;
+      write_model(out / before, model, before_mesh.V);
+      const Eigen::Vector3d p0 = s.region && !s.region->handle.empty()
+                                     ? Eigen::Vector3d(before_mesh.V.row(s.region->handle.front()).transpose())
+                                     : Eigen::Vector3d::Zero();
+      const Eigen::Vector3d p1 = p0 + s.d;
+      char arrow[256];
+      std::snprintf(arrow, sizeof arrow, " --arrow %.9g %.9g %.9g %.9g %.9g %.9g", scale * p0.x(), scale * p0.y(),
+                    scale * p0.z(), scale * p1.x(), scale * p1.y(), scale * p1.z());
+      std::string common = " --size " + std::to_string(o.picture_size[0]) + " " + std::to_string(o.picture_size[1]) +
+                           " --samples 1 --scale " + std::to_string(scale);
+      const auto& up = review.up;
+      common += " --up " + std::to_string(up[0]) + " " + std::to_string(up[1]) + " " + std::to_string(up[2]);
+      const std::string exe = fs::read_symlink("/proc/self/exe").string();
+      struct Picture {
+        std::string caption, file, args;
+      };
+      const std::vector<Picture> pictures{
+          {"before", stem + "-before.png", quoted((out / before).string()) + " --color material"},
+          {"after", stem + "-after.png",
+           quoted((out / before).string()) + " --deformed " + quoted((out / (stem + ext)).string()) +
+               " --color material" + arrow},
+          {"displacement (this push/pull)", stem + "-displacement.png",
+           quoted((out / before).string()) + " --deformed " + quoted((out / (stem + ext)).string()) +
+               " --color displacement" + arrow},
+          {"Gaussian curvature sign after", stem + "-curvature.png",
+           quoted((out / before).string()) + " --deformed " + quoted((out / (stem + ext)).string()) +
+               " --color curvature-sign"}};
+      for (const Picture& p : pictures) {
+        const std::string command = quoted(exe) + " render " + p.args + common + " --out " +
+                                    quoted((out / p.file).string()) + " > " + quoted((out / (p.file + ".log")).string()) +
+                                    " 2>&1";
+        if (std::system(command.c_str()) == 0) {
+          rc.pictures.push_back({p.caption, p.file});
+          fs::remove(out / (p.file + ".log"), ec);
+        } else {
+          std::printf("pushpull replay: warning: the %s picture of commit %zu failed (see %s)\n", p.caption.c_str(),
+                      c.index, (out / (p.file + ".log")).c_str());
+        }
+      }
+    }
+    report.push_back(std::move(rc));
+    std::printf("pushpull replay: report %zu/%zu (%.1f s)\n", report.size(), commits.size(), seconds_since(start));
+    std::fflush(stdout);
+  }
+  ReportSession session;
+  session.recording = o.recording;
+  session.model = model_path;
+  session.model_sha256 = sha;
+  session.runtime = header.value("runtime", "");
+  session.method = review.method;
+  session.mu = review.mu;
+  session.cut = rec.cut.value_or("");
+  std::set<std::string> eyes;
+  for (const auto& entry : fs::directory_iterator(out / "eyes"))
+    if (entry.path().extension() == ".png") eyes.insert("eyes/" + entry.path().filename().string());
+  session.eye_images.assign(eyes.begin(), eyes.end());
+  session.summary = std::to_string(commits.size()) + " commit(s) replayed of " + std::to_string(recorded) +
+                    " recorded; " + (first_mismatch.empty() ? "all checks passed" : "first mismatch: " + first_mismatch);
+  write_replay_report((out / "report.html").string(), session, report);
+  std::printf("pushpull replay: %s; time: loop %.1f s, metrics and pictures %.1f s, total %.1f s\n",
+              session.summary.c_str(), loop_s, seconds_since(report_start), seconds_since(start));
+  std::printf("pushpull replay: report %s\n", (out / "report.html").c_str());
+  if (rec.cut) std::printf("pushpull replay: replayed up to the cut: %s\n", rec.cut->c_str());
+  if (!first_mismatch.empty()) throw CommandError(o.recording + ": replay mismatch at " + first_mismatch);
+}
+
+}  // namespace pushpull::app

@@ -1,0 +1,102 @@
+// The review's session recording (`pushpull review --record FILE`): JSON Lines, written as the session goes and
+// flushed after every line, so a crash keeps everything up to the crash.
+//
+//   {"record":"header","format":"pushpull-session-1","model":..,"model_sha256":..,"T_stage_model":[16],..}
+//   {"t":0.0,"path":"/user/head","pose":{"p":[x,y,z],"q":[x,y,z,w]}}              input, xr/sim script format
+//   {"t":0.0,"path":"/user/hand/right/input/trigger/value","value":0.0}
+//   {"record":"press","time":0.5,"hand":"right","face":12,"p0":[..],"handle_radius":..,"roi_radius":..}
+//   {"record":"drag","time":0.53,"d":[..]}     {"record":"release","time":1.0,"p1":[..],"d":[..]}
+//   {"record":"commit","time":1.1,"index":1,"hash":"0x..","iterations":..,"converged":..}
+//   {"record":"undo","time":..} {"record":"redo","time":..} {"record":"profile","time":..,"profile":".."}
+//   {"record":"end","time":..,"commits":n,"hash":".."}
+//
+// Input lines carry "t" and an OpenXR path. t counts the loop's frames: frame n at n / rate (the "clock" record
+// gives the rate, whole Hz), exactly where xr/sim's virtual clock puts its frame n, so a replay reads at every
+// frame what the loop read at the same frame, whatever the headset's timing was; derived records carry "record" and "time" but no "t", so xr/sim skips them and the recording is
+// its input script unchanged. Poses: stage space, metres, the float values the loop read (written exactly);
+// aim poses and the head are written every frame (the runtime interpolates between lines, so holding and moving
+// are both reproduced at the recorded frame times); values only when they change; a button that went down is
+// written as 1 at that frame and 0 at the next. Derived positions (p0, p1, d) are model space, file units.
+// Hashes are deform::position_hash of the committed positions, as "0x" and 16 hex digits.
+//
+// Ownership: owns the file. Thread-safety: one thread (the frame loop).
+#pragma once
+
+#include "commit_watch.hpp"
+#include "review_interaction.hpp"
+
+#include "pushpull/xr/input.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <array>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <optional>
+#include <string>
+
+namespace pushpull::app {
+
+struct ReviewCommandOptions;
+struct ReviewSetup;
+
+// Where the runtime side of the session came from (header fields).
+struct RecordingContext {
+  std::string runtime;             // OpenXR runtime name, or "desktop"
+  std::string view_configuration;  // "stereo" (headset) or "desktop window"
+  int eye_width = 0, eye_height = 0;
+  double rate_hz = 0.0;  // display refresh rate (1 / predicted display period); 0 when unknown
+};
+
+// "0x" and 16 lowercase hex digits.
+[[nodiscard]] std::string hash_text(std::uint64_t hash);
+
+// The default recording path: out/recordings/review-YYYYMMDD-HHMMSS.jsonl under the current folder (UTC), with
+// -2, -3, ... when that file exists.
+[[nodiscard]] std::string default_recording_path();
+
+class SessionRecorder {
+ public:
+  // Creates the file (and its folder); an empty path records nothing. When the file cannot be created: throws
+  // CommandError naming it if `required` (the user named it), else warns on stderr and records nothing (the
+  // default path in a folder that cannot be written must not stop a review).
+  explicit SessionRecorder(const std::string& path, bool required = true);
+  [[nodiscard]] bool recording() const { return file_.is_open(); }
+  [[nodiscard]] const std::string& path() const { return path_; }
+
+  // The header: model file and SHA-256, life-size scale, T_stage_model (row-major 4x4, model -> stage),
+  // method, mu and every solver option, radii, placement options, pushpull version, runtime.
+  void write_header(const ReviewCommandOptions& options, const ReviewSetup& setup, const RecordingContext& context);
+  // One headset frame as the loop read it: t (frame clock, above), head pose (stage), both hands.
+  // `profile` is the interaction profile the runtime chose (names the button paths; a change is recorded).
+  void write_frame_input(double t, const std::optional<XrPosef>& head, const std::array<xr::HandInput, 2>& hands,
+                         const std::string& profile);
+  // A desktop gesture as the same kind of input: the cursor ray as the right aim pose (ray along -Z), the left
+  // mouse button as its trigger.
+  void write_pointer_input(double t, const Eigen::Vector3d& origin_stage, const Eigen::Vector3d& direction_stage,
+                           bool pressed);
+  // A runtime event at t as an xr/sim script line ({"t":..,"event":"loss"}): what the loop saw happen.
+  void write_event_input(double t, const std::string& event);
+  // press / release (commit or cancel) from the interaction; release carries p1 = p0 + d and d.
+  void write_interaction(double t, const InteractionEvent& event, double handle_radius, double roi_radius);
+  // A drag update: the d the interaction submitted (written when it changed).
+  void write_drag(double t, const Eigen::Vector3d& d);
+  // A commit the service finished: its index, hash and how the solve went.
+  void write_commit(double t, const CommitRecord& commit);
+  // Any other derived record ("undo", "redo", "end", ...): `fields` gets "record" and "time".
+  void write_record(const std::string& kind, double t, nlohmann::json fields = nlohmann::json::object());
+
+ private:
+  void write_line(const nlohmann::json& line);
+  void write_value(double t, const std::string& path, const nlohmann::json& value);
+
+  std::string path_;
+  std::ofstream file_;
+  std::string profile_;
+  std::map<std::string, nlohmann::json> last_value_;  // path -> last written value
+  std::map<std::string, bool> button_down_;           // path -> written as 1 at the previous frame
+  Eigen::Vector3d last_drag_d_ = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+};
+
+}  // namespace pushpull::app

@@ -1,0 +1,129 @@
+#include "session_recording.hpp"
+
+#include "commands.hpp"
+
+#include <fstream>
+#include <sstream>
+
+namespace pushpull::app {
+namespace {
+
+[[noreturn]] void corrupted(const std::string& path, std::size_t line, const std::string& what) {
+  throw CommandError(path + ":" + std::to_string(line) + ": corrupted line: " + what);
+}
+
+// The problem with an input line ("t" lines, read by xr/sim), or "" when it is well formed.
+std::string input_line_problem(const nlohmann::json& j) {
+  if (!j["t"].is_number()) return "\"t\" is not a number";
+  if (j.contains("event")) return j["event"].is_string() ? "" : "\"event\" is not a string";
+  if (!j.contains("path") || !j["path"].is_string()) return "an input line needs a string \"path\"";
+  if (j.contains("pose")) {
+    const auto& pose = j["pose"];
+    if (!pose.is_object() || !pose.contains("p") || !pose.contains("q") || !pose["p"].is_array() ||
+        pose["p"].size() != 3 || !pose["q"].is_array() || pose["q"].size() != 4)
+      return "\"pose\" must be {\"p\": [x, y, z], \"q\": [x, y, z, w]}";
+    for (const auto& v : pose["p"])
+      if (!v.is_number()) return "\"pose\" has a component that is not a number";
+    for (const auto& v : pose["q"])
+      if (!v.is_number()) return "\"pose\" has a component that is not a number";
+    return "";
+  }
+  if (j.contains("value")) {
+    const auto& v = j["value"];
+    if (v.is_number() || v.is_boolean()) return "";
+    if (v.is_array() && v.size() == 2 && v[0].is_number() && v[1].is_number()) return "";
+    return "\"value\" must be a number, a boolean or [x, y]";
+  }
+  return "an input line needs \"pose\" or \"value\"";
+}
+
+}  // namespace
+
+SessionRecording read_session_recording(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw CommandError(path + ": cannot open the session recording");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  const std::string text = buffer.str();
+  if (text.empty()) throw CommandError(path + ": the session recording is empty");
+
+  SessionRecording r;
+  r.path = path;
+  bool ended = false;
+  std::size_t begin = 0, number = 0;
+  while (begin < text.size()) {
+    ++number;
+    const std::size_t newline = text.find('\n', begin);
+    const bool complete = newline != std::string::npos;
+    const std::string line = text.substr(begin, complete ? newline - begin : std::string::npos);
+    begin = complete ? newline + 1 : text.size();
+    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+    nlohmann::json j;
+    try {
+      j = nlohmann::json::parse(line);
+    } catch (const nlohmann::json::exception& e) {
+      if (!complete) {  // the last line, cut while it was written
+        r.cut = "line " + std::to_string(number) + " is cut off (the session stopped while writing it)";
+        break;
+      }
+      corrupted(path, number, std::string("not JSON (") + e.what() + ")");
+    }
+    if (!j.is_object()) corrupted(path, number, "not a JSON object");
+    if (number == 1) {
+      if (j.value("record", "") != "header")
+        throw CommandError(path + ":1: not a pushpull session recording (the first line is not its header)");
+      if (!j.contains("model_sha256") || !j["model_sha256"].is_string() || !j.contains("model") ||
+          !j["model"].is_string())
+        corrupted(path, 1, "the header lacks \"model\" or \"model_sha256\"");
+      // What `pushpull replay` sets the review up from.
+      const nlohmann::json* options = j.contains("options") && j["options"].is_object() ? &j["options"] : nullptr;
+      if (options == nullptr) corrupted(path, 1, "the header lacks the review's \"options\"");
+      for (const char* key : {"method"})
+        if (!options->contains(key) || !(*options)[key].is_string())
+          corrupted(path, 1, std::string("header option \"") + key + "\" is missing or not a string");
+      for (const char* key : {"mu", "handle_radius_m", "roi_radius_m", "distance_m"})
+        if (!options->contains(key) || !(*options)[key].is_number())
+          corrupted(path, 1, std::string("header option \"") + key + "\" is missing or not a number");
+      for (const char* key : {"up", "front"}) {
+        const bool ok = options->contains(key) && (*options)[key].is_array() && (*options)[key].size() == 3 &&
+                        (*options)[key][0].is_number() && (*options)[key][1].is_number() &&
+                        (*options)[key][2].is_number();
+        if (!ok) corrupted(path, 1, std::string("header option \"") + key + "\" is not [x, y, z]");
+      }
+      r.header = j;
+    } else if (j.contains("t")) {
+      if (const std::string problem = input_line_problem(j); !problem.empty()) corrupted(path, number, problem);
+      r.last_input_time = std::max(r.last_input_time, j["t"].get<double>());
+    } else if (j.contains("record")) {
+      if (!j["record"].is_string()) corrupted(path, number, "\"record\" is not a string");
+      const std::string kind = j["record"];
+      if (kind == "commit") {
+        if (!j.contains("hash") || !j["hash"].is_string() || !j.contains("index"))
+          corrupted(path, number, "a commit record needs \"index\" and \"hash\"");
+        r.commits.push_back({number, j});
+      } else if (kind == "clock") {
+        r.rate_hz = j.value("rate_hz", 0.0);
+      } else if (kind == "profile" && r.profile.empty()) {
+        r.profile = j.value("profile", "");
+      } else if (kind == "end") {
+        ended = true;
+      }
+      j["line"] = number;
+      r.records.push_back(j);
+    } else {
+      corrupted(path, number, "neither an input line (\"t\") nor a record (\"record\")");
+    }
+    r.lines = number;
+    r.script += line;
+    r.script += '\n';
+  }
+  if (r.header.is_null())
+    throw CommandError(path + ":1: the header line is cut off (the session stopped while writing it); nothing "
+                       "to replay");
+  if (!ended && !r.cut)
+    r.cut = "no \"end\" record after line " + std::to_string(r.lines) +
+            " (the session crashed or the file was truncated)";
+  return r;
+}
+
+}  // namespace pushpull::app

@@ -1,0 +1,41 @@
+// Reading a session recording (session_recorder.hpp) for `pushpull replay`: the header, the derived records
+// (press, release, commit with its hash, undo, redo, end) and the input script for xr/sim, checked line by line.
+//
+// Errors (CommandError, "FILE:LINE: problem"): a line that is not a JSON object, or a broken input line, in the
+// middle of the file (corrupted); a first line that is not a header. A recording cut short (the session crashed
+// or the file was truncated: a last line without its newline that does not parse, or no "end" record) is not an
+// error: what precedes the cut is replayed and `cut` says where and why.
+// Thread-safety: plain values.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace pushpull::app {
+
+struct RecordedCommit {
+  std::size_t line = 0;  // 1-based line in the recording
+  nlohmann::json record;  // {"record":"commit","index":..,"hash":"0x..","d":[..],...}
+};
+
+struct SessionRecording {
+  std::string path;
+  nlohmann::json header;                     // line 1
+  std::vector<nlohmann::json> records;       // every derived record, in order, with "line" added
+  std::vector<RecordedCommit> commits;       // the commit records, in commit order
+  std::string script;                        // the complete lines before any cut, '\n'-terminated (for xr/sim)
+  double last_input_time = 0.0;              // largest "t" of an input line (seconds)
+  double rate_hz = 0.0;                      // display rate of the recorded session (0: unknown)
+  std::string profile;                       // the interaction profile the runtime chose ("" when none)
+  std::size_t lines = 0;                     // complete lines read
+  std::optional<std::string> cut;            // set when the recording stops early: where and why
+};
+
+// Reads and checks `path`; throws CommandError naming the file (and the line) and the problem.
+[[nodiscard]] SessionRecording read_session_recording(const std::string& path);
+
+}  // namespace pushpull::app

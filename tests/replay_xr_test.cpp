@@ -1,0 +1,308 @@
+// `pushpull review --record` and `pushpull replay` against the simulated OpenXR runtime (xr/sim) on lavapipe:
+// a scripted drag is recorded (header with the model's SHA-256, input by OpenXR path, press/release/commit
+// with hashes); replaying it reproduces every commit hash bit for bit and the same meshes twice; a truncated
+// recording replays up to the cut and says so; another model (SHA-256 mismatch) is refused; a corrupted line
+// is named by its number.
+#include "command_runner.hpp"
+
+#include "pushpull/deform/mesh_io.hpp"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+namespace fs = std::filesystem;
+using pushpull::testing::run_command;
+
+const std::string kHood = std::string(PUSHPULL_SOURCE_DIR) + "/examples/hood.off";
+const std::string kPlacement = " --up 0 0 1 --front 0 -1 0 --handle-radius 0.25 --roi-radius 0.9 --samples 1";
+
+fs::path test_dir() {
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  const fs::path dir = fs::temp_directory_path() / "pushpull_replay_xr_tests" / info->name();
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::string sim_env() {
+  std::string env = "env XR_RUNTIME_JSON=" + std::string(PUSHPULL_XR_SIM_MANIFEST);
+  const char* lvp = "/usr/share/vulkan/icd.d/lvp_icd.x86_64.json";
+  if (fs::exists(lvp)) env += std::string(" VK_ICD_FILENAMES=") + lvp;
+  return env;
+}
+
+// Two drags on the bonnet (pull 100 mm towards the reviewer, then push 40 mm down), an undo and a redo, with
+// the head and the hand as a script: 30 Hz virtual clock, 64x64 eyes, Touch controllers.
+const char* kScript =
+    R"({"t":0.0,"path":"/user/head","pose":{"p":[0,1.0,0],"q":[-0.32557,0,0,0.94552]}}
+{"t":0.0,"path":"/user/hand/right/input/aim/pose","pose":{"p":[0.0123,0.5,-0.65],"q":[-0.70710678,0,0,0.70710678]}}
+{"t":0.0,"path":"/user/hand/right/input/trigger/value","value":0.0}
+{"t":0.3,"path":"/user/hand/right/input/aim/pose","pose":{"p":[0.0123,0.5,-0.65],"q":[-0.70710678,0,0,0.70710678]}}
+{"t":0.3,"path":"/user/hand/right/input/trigger/value","value":1.0}
+{"t":0.8,"path":"/user/hand/right/input/aim/pose","pose":{"p":[0.0123,0.5,-0.55],"q":[-0.70710678,0,0,0.70710678]}}
+{"t":0.9,"path":"/user/hand/right/input/trigger/value","value":0.0}
+{"t":1.0,"path":"/user/hand/right/input/aim/pose","pose":{"p":[0.0123,0.5,-0.55],"q":[-0.70710678,0,0,0.70710678]}}
+{"t":1.2,"path":"/user/hand/right/input/aim/pose","pose":{"p":[0.1123,0.5,-0.95],"q":[-0.70710678,0.02,0,0.70710678]}}
+{"t":1.3,"path":"/user/hand/right/input/trigger/value","value":1.0}
+{"t":1.7,"path":"/user/hand/right/input/aim/pose","pose":{"p":[0.1123,0.46,-0.95],"q":[-0.70710678,0.02,0,0.70710678]}}
+{"t":1.8,"path":"/user/hand/right/input/trigger/value","value":0.0}
+{"t":2.0,"path":"/user/hand/right/input/a/click","value":1.0}
+{"t":2.1,"path":"/user/hand/right/input/a/click","value":0.0}
+{"t":2.2,"path":"/user/hand/right/input/b/click","value":1.0}
+{"t":2.3,"path":"/user/hand/right/input/b/click","value":0.0}
+{"t":2.6,"event":"exit"}
+)";
+
+std::vector<nlohmann::json> read_lines(const fs::path& file) {
+  std::vector<nlohmann::json> out;
+  std::ifstream in(file);
+  for (std::string line; std::getline(in, line);)
+    if (!line.empty()) out.push_back(nlohmann::json::parse(line));
+  return out;
+}
+
+std::vector<nlohmann::json> records(const std::vector<nlohmann::json>& lines, const std::string& kind) {
+  std::vector<nlohmann::json> out;
+  for (const auto& j : lines)
+    if (j.value("record", "") == kind) out.push_back(j);
+  return out;
+}
+
+// Records kScript with `pushpull review --record dir/session.jsonl`.
+fs::path record_session(const fs::path& dir) {
+  std::ofstream(dir / "script.jsonl") << kScript;
+  const auto r = run_command(sim_env() + " PUSHPULL_XR_SIM_INPUT=" + (dir / "script.jsonl").string() +
+                             " PUSHPULL_XR_SIM_WIDTH=64 PUSHPULL_XR_SIM_HEIGHT=64 PUSHPULL_XR_SIM_RATE=30"
+                             " PUSHPULL_XR_SIM_PROFILE=/interaction_profiles/oculus/touch_controller " +
+                             PUSHPULL_EXECUTABLE + " review " + kHood + kPlacement + " --record " +
+                             (dir / "session.jsonl").string());
+  EXPECT_EQ(r.status, 0) << r.output;
+  return dir / "session.jsonl";
+}
+
+pushpull::testing::CommandResult replay(const fs::path& recording, const fs::path& out,
+                                        const std::string& extra = "") {
+  return pushpull::testing::run_pushpull("replay " + recording.string() + " --out " + out.string() +
+                                         " --eye-size 64 64 " + extra);
+}
+
+TEST(ReplayXr, RecordingHasHeaderInputAndDerivedEvents) {
+  const fs::path dir = test_dir();
+  const auto lines = read_lines(record_session(dir));
+  ASSERT_FALSE(lines.empty());
+  const nlohmann::json& header = lines.front();
+  EXPECT_EQ(header.at("record"), "header");
+  const auto sum = run_command("sha256sum " + kHood);  // coreutils: an independent SHA-256
+  ASSERT_EQ(sum.status, 0) << sum.output;
+  EXPECT_EQ(header.at("model_sha256").get<std::string>(), sum.output.substr(0, 64));
+  EXPECT_EQ(header.at("method"), "asan");
+  EXPECT_EQ(header.at("T_stage_model").size(), 16u);
+  EXPECT_FALSE(header.at("runtime").get<std::string>().empty());
+  EXPECT_EQ(records(lines, "profile").at(0).at("profile"), "/interaction_profiles/oculus/touch_controller");
+  size_t aim = 0, trigger = 0;
+  for (const auto& j : lines) {
+    if (j.value("path", "") == "/user/hand/right/input/aim/pose") ++aim;
+    if (j.value("path", "") == "/user/hand/right/input/trigger/value") ++trigger;
+    if (j.contains("record")) {
+      EXPECT_FALSE(j.contains("t")) << j.dump();  // xr/sim must skip derived records
+    }
+  }
+  EXPECT_GE(aim, 60u);   // every frame of ~2.6 s at 30 Hz
+  EXPECT_EQ(trigger, 5u);  // 0, 1, 0, 1, 0: only changes
+  ASSERT_EQ(records(lines, "press").size(), 2u);
+  ASSERT_EQ(records(lines, "release").size(), 2u);
+  ASSERT_EQ(records(lines, "commit").size(), 2u);
+  EXPECT_EQ(records(lines, "undo").size(), 1u);
+  EXPECT_EQ(records(lines, "redo").size(), 1u);
+  EXPECT_FALSE(records(lines, "drag").empty());
+  const std::vector<double> d = records(lines, "release")[0].at("d");
+  EXPECT_NEAR(d[1], -0.1, 1e-6);  // the hand moved 100 mm towards the reviewer: model -Y
+  EXPECT_EQ(records(lines, "commit")[0].at("hash").get<std::string>().size(), 18u);
+  EXPECT_EQ(records(lines, "end").at(0).at("hash"), records(lines, "commit")[1].at("hash"));
+}
+
+std::vector<std::string> text_lines(const fs::path& file) {
+  std::vector<std::string> out;
+  std::ifstream in(file);
+  for (std::string line; std::getline(in, line);) out.push_back(line);
+  return out;
+}
+
+void write_lines(const fs::path& file, const std::vector<std::string>& lines) {
+  std::ofstream out(file);
+  for (const std::string& line : lines) out << line << '\n';
+}
+
+std::string file_bytes(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+TEST(ReplayXr, ReplayReproducesEveryCommitHashAndTheSameMeshesTwice) {
+  const fs::path dir = test_dir();
+  const fs::path session = record_session(dir);
+  const auto recorded = records(read_lines(session), "commit");
+  ASSERT_EQ(recorded.size(), 2u);
+
+  const auto first = replay(session, dir / "replay1");
+  ASSERT_EQ(first.status, 0) << first.output;
+  EXPECT_NE(first.output.find("2 commit(s) replayed of 2 recorded; all checks passed"), std::string::npos)
+      << first.output;
+  // The replay's own recording has the same commit hashes.
+  const auto replayed = records(read_lines(dir / "replay1" / "replay-session.jsonl"), "commit");
+  ASSERT_EQ(replayed.size(), 2u);
+  for (size_t i = 0; i < 2; ++i) EXPECT_EQ(replayed[i].at("hash"), recorded[i].at("hash"));
+  for (const char* file : {"commit-01.off", "commit-02.off", "final.off", "commit-01.metrics.json",
+                           "commit-02.metrics.json", "report.html", "commit-02-displacement.png"})
+    EXPECT_TRUE(fs::exists(dir / "replay1" / file)) << file << "\n" << first.output;
+  const auto metrics = nlohmann::json::parse(file_bytes(dir / "replay1" / "commit-01.metrics.json"));
+  EXPECT_NEAR(double(metrics.at("d").at(1)), -0.1, 1e-6);
+  EXPECT_GT(int(metrics.at("iterations")), 0);
+  // Measured against the state before the commit (for commit 2: after commit 1), not the original model.
+  EXPECT_NEAR(double(metrics.at("max_displacement")), 0.1, 1e-3);
+  const auto metrics2 = nlohmann::json::parse(file_bytes(dir / "replay1" / "commit-02.metrics.json"));
+  EXPECT_NEAR(double(metrics2.at("max_displacement")), std::abs(double(recorded[1].at("d").at(2))), 0.02);
+  const std::string report = file_bytes(dir / "replay1" / "report.html");
+  EXPECT_NE(report.find("Push/pull 2"), std::string::npos);
+  EXPECT_NE(report.find("100.0 mm"), std::string::npos);
+  EXPECT_NE(report.find("<polyline"), std::string::npos);  // the section curves
+  // The committed model moved 100 mm at most, where the hand pulled.
+  const auto rest = pushpull::deform::read_mesh(kHood);
+  const auto one = pushpull::deform::read_mesh(dir / "replay1" / "commit-01.off");
+  EXPECT_NEAR((one.V - rest.V).rowwise().norm().maxCoeff(), 0.1, 1e-3);
+
+  const auto second = replay(session, dir / "replay2", "--no-pictures");
+  ASSERT_EQ(second.status, 0) << second.output;
+  for (const char* file : {"commit-01.off", "commit-02.off", "final.off"})
+    EXPECT_EQ(file_bytes(dir / "replay1" / file), file_bytes(dir / "replay2" / file)) << file;
+  // Both eyes one frame after each release and at the end, drawn once the solver settled: the same images.
+  std::vector<fs::path> eyes;
+  for (const auto& e : fs::directory_iterator(dir / "replay1" / "eyes")) eyes.push_back(e.path().filename());
+  EXPECT_EQ(eyes.size(), 6u);  // 2 releases + the end, 2 eyes each
+  for (const fs::path& eye : eyes)
+    EXPECT_EQ(file_bytes(dir / "replay1" / "eyes" / eye), file_bytes(dir / "replay2" / "eyes" / eye)) << eye;
+}
+
+TEST(ReplayXr, AnotherMethodComparesDInsteadOfHashes) {
+  const fs::path dir = test_dir();
+  const auto r = replay(record_session(dir), dir / "arap", "--method arap-sr --no-pictures");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("match (d)"), std::string::npos) << r.output;
+  EXPECT_NE(file_bytes(dir / "arap" / "commit-01.metrics.json").find("\"arap-sr\""), std::string::npos);
+}
+
+TEST(ReplayXr, CompareReplaysEachMethodAndPutsThemSideBySide) {
+  const fs::path dir = test_dir();
+  const auto r = replay(record_session(dir), dir / "cmp", "--compare asan,arap-sr --no-pictures");
+  ASSERT_EQ(r.status, 0) << r.output;
+  for (const char* file : {"asan/commit-02.metrics.json", "arap-sr/commit-02.metrics.json", "compare.html"})
+    EXPECT_TRUE(fs::exists(dir / "cmp" / file)) << file << "\n" << r.output;
+  const std::string page = file_bytes(dir / "cmp" / "compare.html");
+  EXPECT_NE(page.find("arap-sr/report.html"), std::string::npos);
+  // The paper's point on the bonnet pulled forward: ASAN keeps the curvature signs, ARAP-s&r reverses many.
+  const auto asan = nlohmann::json::parse(file_bytes(dir / "cmp" / "asan" / "commit-01.metrics.json"));
+  const auto arap = nlohmann::json::parse(file_bytes(dir / "cmp" / "arap-sr" / "commit-01.metrics.json"));
+  EXPECT_LT(double(asan.at("gaussian_sign_reversal_fraction")), 0.01);
+  EXPECT_GT(double(arap.at("gaussian_sign_reversal_fraction")), 0.1);
+}
+
+TEST(ReplayXr, AChangedHashIsNamedAsTheFirstMismatch) {
+  const fs::path dir = test_dir();
+  const fs::path session = record_session(dir);
+  auto lines = text_lines(session);
+  size_t line = 0;
+  for (size_t i = 0; i < lines.size(); ++i)
+    if (lines[i].find("\"record\":\"commit\"") != std::string::npos) {
+      auto j = nlohmann::json::parse(lines[i]);
+      j["hash"] = "0x0123456789abcdef";
+      lines[i] = j.dump();
+      line = i + 1;
+      break;
+    }
+  ASSERT_GT(line, 0u);
+  write_lines(session, lines);
+  const auto r = replay(session, dir / "out", "--no-pictures");
+  EXPECT_NE(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("mismatch at commit 1 (recording line " + std::to_string(line) + ")"), std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("0x0123456789abcdef"), std::string::npos) << r.output;
+}
+
+TEST(ReplayXr, TruncatedRecordingReplaysUpToTheCut) {
+  const fs::path dir = test_dir();
+  const fs::path session = record_session(dir);
+  // Cut in the middle of the line after the first commit record, as a crash while writing would.
+  const std::string bytes = file_bytes(session);
+  const size_t commit = bytes.find("\"record\":\"commit\"");
+  ASSERT_NE(commit, std::string::npos);
+  const size_t next_line = bytes.find('\n', commit) + 1;
+  const size_t cut = next_line + 10;
+  ASSERT_LT(cut, bytes.size());
+  std::ofstream(session, std::ios::binary | std::ios::trunc) << bytes.substr(0, cut);
+  const size_t cut_line = size_t(std::count(bytes.begin(), bytes.begin() + long(next_line), '\n')) + 1;
+
+  const auto r = replay(session, dir / "out", "--no-pictures");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("line " + std::to_string(cut_line) + " is cut off"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("replayed up to the cut"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("commit 1/1"), std::string::npos) << r.output;
+  EXPECT_TRUE(fs::exists(dir / "out" / "commit-01.off"));
+
+  // Cut inside the header: nothing to replay, and it says so.
+  std::ofstream(session, std::ios::binary | std::ios::trunc) << bytes.substr(0, 40);
+  const auto header_cut = replay(session, dir / "out2", "--no-pictures");
+  EXPECT_NE(header_cut.status, 0) << header_cut.output;
+  EXPECT_NE(header_cut.output.find(session.string() + ":1: the header line is cut off"), std::string::npos)
+      << header_cut.output;
+}
+
+TEST(ReplayXr, AnotherModelIsRefusedBySha256) {
+  const fs::path dir = test_dir();
+  const fs::path session = record_session(dir);
+  // The same mesh with one more comment line: another file, another SHA-256.
+  std::ofstream(dir / "other.off", std::ios::binary) << file_bytes(kHood) << "# edited\n";
+  const auto r = replay(session, dir / "out", "--model " + (dir / "other.off").string());
+  EXPECT_NE(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find((dir / "other.off").string() + ": SHA-256"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("refusing to replay"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir / "out" / "final.off"));
+}
+
+TEST(ReplayXr, CorruptedLineIsNamedByItsNumber) {
+  const fs::path dir = test_dir();
+  const fs::path session = record_session(dir);
+  auto lines = text_lines(session);
+  ASSERT_GT(lines.size(), 20u);
+  lines[11] = lines[11].substr(0, lines[11].size() / 2) + "]]";  // line 12
+  write_lines(session, lines);
+  const auto r = replay(session, dir / "out", "--no-pictures");
+  EXPECT_NE(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find(session.string() + ":12: corrupted line"), std::string::npos) << r.output;
+}
+
+// The bundled session (examples/sessions): the paper's three push/pulls on the bundled car replay with the
+// recorded hashes (a change to the solver that moves them means recording it again: see its README).
+TEST(ReplayXr, BundledPaperSessionReplaysWithTheRecordedHashes) {
+  const fs::path dir = test_dir();
+  const auto r = replay(fs::path(PUSHPULL_SOURCE_DIR) / "examples/sessions/paper_scenarios.jsonl", dir / "out",
+                        "--no-pictures");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("3 commit(s) replayed of 3 recorded; all checks passed"), std::string::npos) << r.output;
+  for (const char* d : {"|d| 100.0 mm", "|d| 55.0 mm", "|d| 110.0 mm"})
+    EXPECT_NE(r.output.find(d), std::string::npos) << d << "\n" << r.output;
+  EXPECT_TRUE(fs::exists(dir / "out" / "final.glb"));
+}
+
+}  // namespace
