@@ -152,7 +152,7 @@ TEST(MetricsSignRule, FlatPanelsAreDrawnFlatAndCurvedSurfacesAreNot) {
 
 namespace {
 
-// The demo's case (scripts/demo): the bundled bonnet's front edge pulled 10 cm forward. Its curvature is
+// The hood example (scripts/demo-hood): the bundled bonnet's front edge pulled 10 cm forward. Its curvature is
 // convex but gentle (|K| L^2 between 1e-2 and 1), so the default band must keep it signed for the paper's
 // Fig. 12 finding to show: ARAP-s&r reverses part of it, ASAN none, and nothing of ASAN's goes flat.
 TEST(MetricsSignRule, DefaultBandKeepsTheDemoBonnetFinding) {
