@@ -4,6 +4,7 @@
 // recording replays up to the cut and says so; another model (SHA-256 mismatch) is refused; a corrupted line
 // is named by its number.
 #include "command_runner.hpp"
+#include "xr_sim_environment.hpp"
 
 #include "pushpull/deform/mesh_io.hpp"
 
@@ -23,23 +24,12 @@ namespace {
 namespace fs = std::filesystem;
 using pushpull::testing::run_command;
 
-const std::string kHood = std::string(PUSHPULL_SOURCE_DIR) + "/examples/hood.off";
-const std::string kPlacement = " --up 0 0 1 --front 0 -1 0 --handle-radius 0.25 --roi-radius 0.9 --samples 1";
+using pushpull::testing::kHood;
+const std::string& kPlacement = pushpull::testing::kHoodPlacement;
 
-fs::path test_dir() {
-  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const fs::path dir = fs::temp_directory_path() / "pushpull_replay_xr_tests" / info->name();
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path test_dir() { return pushpull::testing::fresh_test_dir("pushpull_replay_xr_tests"); }
 
-std::string sim_env() {
-  std::string env = "env XR_RUNTIME_JSON=" + std::string(PUSHPULL_XR_SIM_MANIFEST);
-  const char* lvp = "/usr/share/vulkan/icd.d/lvp_icd.x86_64.json";
-  if (fs::exists(lvp)) env += std::string(" VK_ICD_FILENAMES=") + lvp;
-  return env;
-}
+std::string sim_env() { return pushpull::testing::xr_sim_environment(); }
 
 // Two drags on the bonnet (pull 100 mm towards the reviewer, then push 40 mm down), an undo and a redo, with
 // the head and the hand as a script: 30 Hz virtual clock, 64x64 eyes, Touch controllers.

@@ -3,6 +3,7 @@
 // the eyes see the model in the displacement colours; a session lost mid-drag leaves the model as it was;
 // without a runtime the command says which runtime it looked for and how to point at one.
 #include "command_runner.hpp"
+#include "xr_sim_environment.hpp"
 
 #include "pushpull/deform/mesh_io.hpp"
 #include "pushpull/renderer/image_io.hpp"
@@ -23,15 +24,13 @@ namespace {
 namespace fs = std::filesystem;
 using pushpull::testing::run_command;
 
-const std::string kHood = std::string(PUSHPULL_SOURCE_DIR) + "/examples/hood.off";
 // hood.off is Z-up with its front edge at y = 0 facing -Y: stood on the stage floor with the front edge
 // towards the reviewer, 0.6 m away, it spans stage z -0.6 .. -1.8 and stage y 0 .. 0.11.
-const std::string kPlacement = " --up 0 0 1 --front 0 -1 0 --handle-radius 0.25 --roi-radius 0.9 --samples 1";
+using pushpull::testing::kHood;
+const std::string& kPlacement = pushpull::testing::kHoodPlacement;
 
 fs::path test_dir() {
-  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const fs::path dir = fs::temp_directory_path() / "pushpull_review_xr_tests" / info->name();
-  fs::remove_all(dir);
+  const fs::path dir = pushpull::testing::fresh_test_dir("pushpull_review_xr_tests");
   fs::create_directories(dir / "capture");
   return dir;
 }
@@ -63,9 +62,7 @@ struct ReviewRun {
 ReviewRun run_review(const fs::path& dir, const std::string& script, const std::string& arguments,
                      const std::string& extra_env = "") {
   std::ofstream(dir / "input.jsonl") << script;
-  std::string env = "env XR_RUNTIME_JSON=" + std::string(PUSHPULL_XR_SIM_MANIFEST);
-  const char* lvp = "/usr/share/vulkan/icd.d/lvp_icd.x86_64.json";
-  if (fs::exists(lvp)) env += std::string(" VK_ICD_FILENAMES=") + lvp;
+  std::string env = pushpull::testing::xr_sim_environment();
   env += " PUSHPULL_XR_SIM_INPUT=" + (dir / "input.jsonl").string() + " PUSHPULL_XR_SIM_CAPTURE=" +
          (dir / "capture").string() +
          " PUSHPULL_XR_SIM_WIDTH=256 PUSHPULL_XR_SIM_HEIGHT=256 PUSHPULL_XR_SIM_RATE=30"

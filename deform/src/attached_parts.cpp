@@ -125,22 +125,9 @@ AttachedParts::AttachedParts(const Mesh& rest, const RegionOfInterest& roi, cons
   if (parts_.empty()) return;
 
   const TriangleBvh carrier_tree(rest.V, rest.F, carrier_faces);
-  // How a part rides (see the header): on the surface when nearly all of its vertices lie within reach of
-  // the solved surface, else as a rigid whole when the surface under it moves coherently.
-  {
-    std::vector<long> near(parts_.size(), 0), total(parts_.size(), 0);
-    for (int v = 0; v < nv; ++v) {
-      const int part = part_index[static_cast<std::size_t>(label[static_cast<std::size_t>(v)])];
-      if (part < 0) continue;
-      ++total[static_cast<std::size_t>(part)];
-      near[static_cast<std::size_t>(part)] +=
-          carrier_tree.closest_point(rest.V, rest.V.row(v).transpose(), reach_) ? 1 : 0;
-    }
-    for (std::size_t k = 0; k < parts_.size(); ++k)
-      parts_[k].on_surface = static_cast<double>(near[k]) >= kOnSurfaceShare * static_cast<double>(total[k]);
-  }
   const detail::VertexGraph graph = detail::build_vertex_graph(nv, rest.F, carrier_faces);
   std::vector<int> slot_of_face(static_cast<std::size_t>(rest.F.rows()), -1);
+  std::vector<long> near(parts_.size(), 0);  // vertices within reach of the carrier, per part
   patch_start_.push_back(0);
   for (int v = 0; v < nv; ++v) {
     const int part = part_index[static_cast<std::size_t>(label[static_cast<std::size_t>(v)])];
@@ -148,6 +135,7 @@ AttachedParts::AttachedParts(const Mesh& rest, const RegionOfInterest& roi, cons
     parts_[static_cast<std::size_t>(part)].vertices.push_back(v);
     const Eigen::Vector3d p = rest.V.row(v).transpose();
     const auto hit = carrier_tree.closest_point(rest.V, p);
+    near[static_cast<std::size_t>(part)] += hit->distance <= reach_ ? 1 : 0;
     const int f = hit->face;
     const Eigen::Vector3d a = rest.V.row(rest.F(f, 0)), b = rest.V.row(rest.F(f, 1)),
                           c = rest.V.row(rest.F(f, 2));
@@ -170,6 +158,12 @@ AttachedParts::AttachedParts(const Mesh& rest, const RegionOfInterest& roi, cons
     carrier_slot_.push_back(slot);
     bary_.push_back(barycentric(hit->point, a, b, c));
     offset_.push_back(p - hit->point);
+  }
+  // How a part rides (see the header): on the surface when nearly all of its vertices lie within reach of
+  // the solved surface, else as a rigid whole when the surface under it moves coherently.
+  for (std::size_t k = 0; k < parts_.size(); ++k) {
+    parts_[k].on_surface = static_cast<double>(near[k]) >=
+                           kOnSurfaceShare * static_cast<double>(parts_[k].vertices.size());
   }
 }
 
