@@ -1,6 +1,7 @@
 #include "desktop_loop.hpp"
 
 #include "commands.hpp"
+#include "hand_sample.hpp"
 #include "review_interaction.hpp"
 #include "review_scene.hpp"
 #include "session_recorder.hpp"
@@ -12,6 +13,7 @@
 #include "pushpull/renderer/renderer.hpp"
 
 #include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -44,6 +46,19 @@ Eigen::Vector3d closest_on_line(const Eigen::Vector3d& p0, const Eigen::Vector3d
   if (denom < 1e-9) return p0;  // looking along the normal: no depth cue
   return p0 + ((b * e - d) / denom) * n;
 }
+
+// The camera as a head pose in stage space (OpenXR's view convention: looking along -Z, +Y up).
+std::optional<XrPosef> camera_pose(const renderer::View& view) {
+  const glm::mat4 camera = glm::inverse(view.view);
+  const glm::quat q = glm::quat_cast(glm::mat3(camera));
+  XrPosef pose;
+  pose.position = {camera[3].x, camera[3].y, camera[3].z};
+  pose.orientation = {q.x, q.y, q.z, q.w};
+  return pose;
+}
+
+// The profile desktop recordings name: it has a trigger value and A/B buttons for the pointer's undo/redo.
+constexpr const char* kDesktopProfile = "/interaction_profiles/oculus/touch_controller";
 
 }  // namespace
 
@@ -86,10 +101,8 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
     std::int64_t loop_frames = 0;
     double t = 0.0;
     recorder.write_record("clock", 0.0, {{"rate_hz", kRecordingRate}});
-    // The mouse gesture as a hand: outside a drag the cursor ray; during a drag the ray of the press moved by
-    // p1 - p0, so the headset gesture (d = the hand's travel) sees the same p0 and d.
     Eigen::Vector3d hand_origin = Eigen::Vector3d::Zero(), hand_direction(0, 0, -1);
-    Eigen::Vector3d press_origin = Eigen::Vector3d::Zero();
+    Eigen::Vector3d press_origin = Eigen::Vector3d::Zero(), press_direction(0, 0, -1);
     auto record_interaction = [&](const InteractionEvent& e) {
       log.write_interaction(e, life);
       recorder.write_interaction(t, e, interaction.handle_radius(), interaction.roi_radius());
@@ -125,27 +138,13 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
     while (!window.should_close() && (o.frames <= 0 || frames < o.frames)) {
       window.poll_events();
       t = double(std::llround(double(loop_frames++) * 1e9 / kRecordingRate)) * 1e-9;  // as xr/sim's script_time
-      bool quit = false;
+      bool quit = false, undo = false, redo = false, colour = false, method = false;
       for (int key : window.take_key_presses()) {
-        if (key == 256 /* GLFW_KEY_ESCAPE */) quit = true;
-        if (key == 'C') scene.set_colour(next_colour(scene.colour()));
-        if (!interaction.dragging()) {
-          if (key == 'U') {
-            service.undo();
-            log.write({{"event", "undo"}});
-            recorder.write_record("undo", t);
-          }
-          if (key == 'R') {
-            service.redo();
-            log.write({{"event", "redo"}});
-            recorder.write_record("redo", t);
-          }
-          if (key == 'M') {
-            const auto& all = deform::kAllMethods;
-            const auto it = std::find(all.begin(), all.end(), interaction.method());
-            interaction.set_method(it == all.end() || it + 1 == all.end() ? all.front() : *(it + 1));
-          }
-        }
+        quit = quit || key == 256 /* GLFW_KEY_ESCAPE */;
+        undo = undo || key == 'U';
+        redo = redo || key == 'R';
+        colour = colour || key == 'C';
+        method = method || key == 'M';
       }
       if (quit) break;
       const auto frame = window.acquire();
@@ -159,39 +158,66 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
       orbit.distance_scale = std::clamp(orbit.distance_scale * float(std::pow(0.9, p.scroll)), 0.05f, 10.0f);
       const renderer::View view = renderer::frame_bounds(bounds, orbit, aspect);
       const auto [origin, direction] = cursor_ray(view, p);
-      const bool was_dragging = dragging;
-      if (!dragging) hand_origin = origin, hand_direction = direction;
-      if (p.left && !last.left && !dragging) {
+      // The mouse as a controller: outside a drag the cursor ray; during a drag the ray of the press moved by
+      // p1 - p0 (the headset gesture's d is the hand's travel). It goes through the float aim pose the recording
+      // keeps, and through the same gesture as a headset hand, so a replay of the recording on the simulated
+      // runtime reproduces p0, d and every commit bit for bit.
+      if (p.left && !last.left && !interaction.dragging()) {
         // As in the headset loop: a press hits the committed surface, never one a pending commit replaces.
         service.wait_idle();
         interaction.sync_committed(*service.latest());
         if (const auto hit = interaction.hit(origin, direction)) {
-          if (const auto e = interaction.begin_drag(1, *hit)) {
-            record_interaction(*e);
-            dragging = true;
-            p0_stage = setup.placement.to_stage_point(hit->point);
-            const Eigen::Matrix3d A = setup.placement.T_stage_model.topLeftCorner<3, 3>();
-            normal_stage = (A * interaction.face_normal(hit->face)).normalized();
-            plane_normal = (p0_stage - origin).normalized();  // the view plane through p0
-            press_origin = origin;
-          }
+          p0_stage = setup.placement.to_stage_point(hit->point);
+          const Eigen::Matrix3d A = setup.placement.T_stage_model.topLeftCorner<3, 3>();
+          normal_stage = (A * interaction.face_normal(hit->face)).normalized();
+          plane_normal = (p0_stage - origin).normalized();  // the view plane through p0
+          press_origin = origin;
+          press_direction = direction;
         }
-      } else if (dragging && p.left) {
+      }
+      if (interaction.dragging() && p.left) {
         Eigen::Vector3d p1 = p0_stage;
         if (p.shift) {
           p1 = closest_on_line(p0_stage, normal_stage, origin, direction);
         } else if (std::abs(plane_normal.dot(direction)) > 1e-9) {
           p1 = origin + (plane_normal.dot(p0_stage - origin) / plane_normal.dot(direction)) * direction;
         }
-        interaction.drag(setup.placement.to_model_vector(p1 - p0_stage));
         hand_origin = press_origin + (p1 - p0_stage);
-        recorder.write_drag(t, interaction.current_d());
-      } else if (dragging && !p.left) {
-        dragging = false;
-        if (const auto e = interaction.end_drag(true)) record_interaction(*e);
+        hand_direction = press_direction;
+      } else if (!interaction.dragging()) {
+        hand_origin = origin, hand_direction = direction;
       }
       // Released this frame: the hand stays where the drag left it (the gesture's release reads d there).
-      recorder.write_pointer_input(t, hand_origin, hand_direction, dragging || (p.left && !was_dragging));
+      // Recorded as a headset frame would be: the camera as the head, the pointer as the right controller (its
+      // trigger the left button, its A and B buttons undo and redo), C as the left menu button.
+      std::array<xr::HandInput, 2> hands_in;
+      hands_in[1].T_stage_aim = pointer_pose(hand_origin, hand_direction);
+      hands_in[1].trigger = p.left ? 1.0f : 0.0f;
+      hands_in[1].undo_pressed = undo && !interaction.dragging();
+      hands_in[1].redo_pressed = redo && !interaction.dragging();
+      hands_in[0].menu_pressed = colour;
+      recorder.write_frame_input(t, camera_pose(view), hands_in, kDesktopProfile);
+      for (const InteractionEvent& e : interaction.update({hand_sample(hands_in[0]), hand_sample(hands_in[1])}))
+        record_interaction(e);
+      if (interaction.dragging()) recorder.write_drag(t, interaction.current_d());
+      dragging = interaction.dragging();
+      if (!dragging) {  // in the headset loop's order: after the gesture
+        if (hands_in[1].undo_pressed) {
+          service.undo();
+          log.write({{"event", "undo"}});
+          recorder.write_record("undo", t);
+        }
+        if (hands_in[1].redo_pressed) {
+          service.redo();
+          log.write({{"event", "redo"}});
+          recorder.write_record("redo", t);
+        }
+      }
+      if (colour) scene.set_colour(next_colour(scene.colour()));
+      if (method && !dragging) {
+        interaction.set_method(next_method(interaction.method()));
+        recorder.write_method(t, interaction.method());
+      }
       last = p;
       take_commits();
 
@@ -210,7 +236,7 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
                     snapshot->converged ? "converged" : "not converged", colour_name(scene.colour()));
       if (title != text) window.set_title(title = text);
     }
-    if (const auto e = interaction.end_drag(false)) record_interaction(*e);
+    if (const auto e = interaction.cancel()) record_interaction(*e);
     renderer.wait_idle();
     service.wait_idle();
     take_commits();

@@ -150,6 +150,9 @@ void run_replay(const ReplayOptions& o) {
   ReviewCommandOptions review;
   review.model = model_path;
   review.method = o.method.empty() ? h.at("method").get<std::string>() : o.method;
+  if (o.method.empty())  // with --method the whole session replays with that one
+    for (const json& r : rec.records)
+      if (r.value("record", "") == "method") review.method_changes.emplace_back(r.value("time", 0.0), r.value("method", ""));
   review.mu = o.mu.value_or(h.at("mu").get<double>());
   review.handle_radius_m = h.at("handle_radius_m");
   review.roi_radius_m = h.at("roi_radius_m");
@@ -171,14 +174,14 @@ void run_replay(const ReplayOptions& o) {
   review.out = (out / ("final" + ext)).string();
   const bool same_solver = lower(review.method) == lower(header.at("options").at("method").get<std::string>()) &&
                            review.mu == header.at("options").at("mu").get<double>();
-  // Desktop recordings: the mouse gesture was recorded as a hand's aim ray (float poses, as OpenXR has them),
-  // so the replayed p0 and d are within float rounding of the desktop's double ones, not bit-identical.
+  // Desktop recordings replay the same way: the desktop loop fed its mouse gesture through the float aim pose
+  // it recorded (hand_sample.hpp), so p0, d and the commits are bit-identical here too.
   const bool desktop = h.value("desktop", false);
-  const double d_tolerance = desktop ? 1e-5 / h.value("scale", 1.0) : 1e-9;  // model units
-  const bool compare_hashes = same_solver && !desktop;
+  const double d_tolerance = 1e-9;  // model units
+  const bool compare_hashes = same_solver;
   if (desktop)
-    std::printf("pushpull replay: a desktop-mode recording: its mouse gestures replay as a hand's aim ray and "
-                "trigger; each commit's d is compared (within 0.01 mm at life size), not its hash\n");
+    std::printf("pushpull replay: a desktop-mode recording: its mouse gestures replay as the right hand's aim ray "
+                "and trigger\n");
 
   assets::Model model;
   try {
@@ -215,7 +218,7 @@ void run_replay(const ReplayOptions& o) {
                         gap, d_tolerance);
           first_mismatch = "commit " + std::to_string(c.index) + " (recording line " + std::to_string(line) +
                            "): " + text +
-                           (desktop ? "; desktop recording" : "; hashes are not compared with another method or mu");
+                           "; hashes are not compared with another method or mu";
         }
       }
     }

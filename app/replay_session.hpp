@@ -12,9 +12,9 @@
 // Checks: every commit's hash (deform::position_hash over the committed positions) must be bit-identical to
 // the recording's when the method and mu are those recorded; with another --method or --mu the positions
 // differ by design and hashes are not compared, but each commit's d must equal the recorded one within 1e-9
-// model units (the same input gave the same push/pull). Desktop-mode recordings keep the mouse gesture as float
-// aim poses: their d is compared within 0.01 mm at life size, hashes not. The first mismatch makes the command fail, naming it
-// (after the outputs are written).
+// model units (the same input gave the same push/pull). Desktop-mode recordings are checked the same way (the
+// desktop loop feeds its mouse gesture through the float aim pose it records). The first mismatch makes the command
+// fail, naming it (after the outputs are written).
 // Thread-safety: runs on the calling thread (sets process environment variables for the runtime).
 #pragma once
 

@@ -19,6 +19,12 @@ Eigen::Vector3d to_eigen(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
 
 }  // namespace
 
+deform::Method next_method(deform::Method method) {
+  const auto& all = deform::kAllMethods;
+  const auto it = std::find(all.begin(), all.end(), method);
+  return it == all.end() || it + 1 == all.end() ? all.front() : *(it + 1);
+}
+
 ReviewInteraction::ReviewInteraction(deform::Service& service, const deform::Mesh& rest, StagePlacement placement,
                                      InteractionOptions options)
     : service_(service),
@@ -115,16 +121,6 @@ std::optional<InteractionEvent> ReviewInteraction::begin_drag(int hand, const de
   out.face = p0_.face;
   out.p0 = p0_.point;
   return out;
-}
-
-void ReviewInteraction::drag(const Eigen::Vector3d& d) {
-  if (dragging()) submit(d);
-}
-
-std::optional<InteractionEvent> ReviewInteraction::end_drag(bool commit) {
-  if (!dragging()) return std::nullopt;
-  // As the gesture: a release closer than 0.1 mm (life size) to p0 is a click, not a push/pull.
-  return finish(commit && submitted_ && last_d_.norm() * options_.scale >= 1e-4);
 }
 
 InteractionEvent ReviewInteraction::finish(bool commit) {

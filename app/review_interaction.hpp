@@ -51,6 +51,9 @@ struct InteractionEvent {
   std::uint64_t request = 0;                     // Committed: the committed request (Service::commit)
 };
 
+// The method after `method` in deform::kAllMethods, the first after the last (a key cycles through them).
+[[nodiscard]] deform::Method next_method(deform::Method method);
+
 class ReviewInteraction {
  public:
   ReviewInteraction(deform::Service& service, const deform::Mesh& rest, StagePlacement placement,
@@ -68,12 +71,6 @@ class ReviewInteraction {
   [[nodiscard]] deform::Method method() const { return options_.solver.method; }
   [[nodiscard]] double handle_radius() const { return options_.handle_radius; }
   [[nodiscard]] double roi_radius() const { return options_.roi_radius; }
-  // Direct drag control (desktop mode: the mouse instead of a gesture). begin_drag grabs the surface at `hit`
-  // (model space, from hit()); drag submits d (model space) when it changed; end_drag commits (true) or
-  // cancels (false). begin_drag is refused (nullopt) while a drag runs; drag/end_drag without one are no-ops.
-  std::optional<InteractionEvent> begin_drag(int hand, const deform::TriangleBvh::Hit& hit);
-  void drag(const Eigen::Vector3d& d);
-  std::optional<InteractionEvent> end_drag(bool commit);
   // The committed shape's unit face normal (model space) of a face from hit().
   [[nodiscard]] Eigen::Vector3d face_normal(int face) const;
   // Drops a drag in progress (session lost, focus lost): the service shows the committed state again.
@@ -91,6 +88,8 @@ class ReviewInteraction {
                                                             const Eigen::Vector3d& direction_stage) const;
 
  private:
+  // Grabs the surface at `hit` (model space) for `hand`'s gesture; nullopt while a drag runs.
+  std::optional<InteractionEvent> begin_drag(int hand, const deform::TriangleBvh::Hit& hit);
   void submit(const Eigen::Vector3d& d);
   InteractionEvent finish(bool commit);  // commit or cancel the running drag
 

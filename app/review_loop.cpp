@@ -3,6 +3,7 @@
 #include "commands.hpp"
 #include "desktop_loop.hpp"
 #include "grab_placement.hpp"
+#include "hand_sample.hpp"
 #include "mirror_view.hpp"
 #include "review_interaction.hpp"
 #include "review_setup.hpp"
@@ -34,27 +35,12 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// The hand's aim ray in stage space (the pose's -Z axis).
 // The controller's heading about stage +Y: where its ray points, or, when it points nearly straight up or down,
 // where its top (+Y) faces (the ray's heading is noise there).
 double heading(const HandSample& s) {
   const Eigen::Vector3d& f = s.direction_stage;
   const Eigen::Vector3d h = std::hypot(f.x(), f.z()) > 0.3 ? f : (f.y() < 0.0 ? s.up_stage : Eigen::Vector3d(-s.up_stage));
   return std::atan2(-h.x(), -h.z());
-}
-
-HandSample hand_sample(const xr::HandInput& in) {
-  HandSample s;
-  s.trigger = in.trigger;
-  s.tracked = in.T_stage_aim.has_value();
-  if (s.tracked) {
-    const XrPosef& p = *in.T_stage_aim;
-    const Eigen::Quaterniond q(p.orientation.w, p.orientation.x, p.orientation.y, p.orientation.z);
-    s.origin_stage = {p.position.x, p.position.y, p.position.z};
-    s.direction_stage = q.normalized() * Eigen::Vector3d(0.0, 0.0, -1.0);
-    s.up_stage = q.normalized() * Eigen::Vector3d(0.0, 1.0, 0.0);
-  }
-  return s;
 }
 
 // Frame work (from xrWaitFrame's return to xrEndFrame's return), split by whether the solver was busy.
@@ -166,6 +152,7 @@ void run_review(const ReviewCommandOptions& o) {
     CommitWatch commits;  // before the service: its worker calls into it until the service is destroyed
     deform::Service service(rest, deform::ServiceOptions{commits.callback()});
     ReviewInteraction interaction(service, *rest, placement, interaction_options);
+    std::size_t next_method_change = 0;  // into o.method_changes
     bool commands_pending = false;  // a commit, undo or redo was issued and the service may still run it
     long recording_rate_hz = 0;       // the headset's display rate, whole Hz (0 before the first frame)
     std::int64_t recording_frames = 0;  // frames the loop has read input for
@@ -281,6 +268,12 @@ void run_review(const ReviewCommandOptions& o) {
           }
           if (in.menu_pressed) scene.set_colour(next_colour(scene.colour()));
         }
+        // Replay: the method changes the recording made with a key, at the frames it made them.
+        while (next_method_change < o.method_changes.size() &&
+               o.method_changes[next_method_change].first <= t + 0.25 / double(recording_rate_hz)) {
+          interaction.set_method(deform::parse_method(o.method_changes[next_method_change++].second));
+          recorder.write_method(t, interaction.method());
+        }
         // Right thumbstick between drags: up/down grows/shrinks the handle, right/left the region (x2 per
         // second at full deflection; a dead zone keeps a resting thumb from drifting them).
         {
@@ -331,10 +324,9 @@ void run_review(const ReviewCommandOptions& o) {
             if (key == 'V')
               mirror_view.set_mode(mirror_view.mode() == MirrorMode::HeadsetEye ? MirrorMode::SmoothedFirstPerson
                                                                                  : MirrorMode::HeadsetEye);
-            if (key == 'M') {
-              const auto& all = deform::kAllMethods;
-              const auto it = std::find(all.begin(), all.end(), interaction.method());
-              interaction.set_method(it + 1 == all.end() || it == all.end() ? all.front() : *(it + 1));
+            if (key == 'M' && !interaction.dragging()) {
+              interaction.set_method(next_method(interaction.method()));
+              recorder.write_method(t, interaction.method());
             }
             if (key == 256 /* GLFW_KEY_ESCAPE */) xr.request_exit();
           }

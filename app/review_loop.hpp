@@ -11,6 +11,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace pushpull::app {
@@ -42,6 +43,9 @@ struct ReviewCommandOptions {
   // Called on the loop's thread for every commit the service finished, in order, as soon as the loop sees it
   // (and the last ones after the service went idle at the end). Used by `pushpull replay`.
   std::function<void(const CommitRecord&)> on_commit;
+  // Headset loop (replay): method changes made with a key during the recorded session, (recording time s, method
+  // name) in time order; each applies after the gesture of the frame at that time, as the key did.
+  std::vector<std::pair<double, std::string>> method_changes;
   // Headset loop: whether to draw the eyes of the frame at recording time t (s); empty: every frame. Frames not
   // drawn end without layers. `pushpull replay` draws only the frames the simulated runtime captures: the loop
   // computes the same either way, and a software rasterizer spends its time on the frames that are kept.

@@ -199,16 +199,8 @@ void SessionRecorder::write_frame_input(double t, const std::optional<XrPosef>& 
   }
 }
 
-void SessionRecorder::write_pointer_input(double t, const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
-                                          bool pressed) {
-  if (!file_.is_open()) return;
-  // The rotation taking -Z to the ray direction.
-  const Eigen::Quaterniond q = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d(0, 0, -1), direction.normalized());
-  XrPosef pose;
-  pose.position = {float(origin.x()), float(origin.y()), float(origin.z())};
-  pose.orientation = {float(q.x()), float(q.y()), float(q.z()), float(q.w())};
-  write_line({{"t", t}, {"path", "/user/hand/right/input/aim/pose"}, {"pose", pose_json(pose)}});
-  write_value(t, "/user/hand/right/input/trigger/value", pressed ? 1.0 : 0.0);
+void SessionRecorder::write_method(double t, deform::Method method) {
+  write_record("method", t, {{"method", std::string(deform::method_name(method))}});
 }
 
 void SessionRecorder::write_event_input(double t, const std::string& event) {

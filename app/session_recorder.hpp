@@ -72,10 +72,9 @@ class SessionRecorder {
   // `profile` is the interaction profile the runtime chose (names the button paths; a change is recorded).
   void write_frame_input(double t, const std::optional<XrPosef>& head, const std::array<xr::HandInput, 2>& hands,
                          const std::string& profile);
-  // A desktop gesture as the same kind of input: the cursor ray as the right aim pose (ray along -Z), the left
-  // mouse button as its trigger.
-  void write_pointer_input(double t, const Eigen::Vector3d& origin_stage, const Eigen::Vector3d& direction_stage,
-                           bool pressed);
+  // The method of the next push/pulls changed (a key in the window): a derived record that `pushpull replay`
+  // applies at the same frame.
+  void write_method(double t, deform::Method method);
   // A runtime event at t as an xr/sim script line ({"t":..,"event":"loss"}): what the loop saw happen.
   void write_event_input(double t, const std::string& event);
   // press / release (commit or cancel) from the interaction; release carries p1 = p0 + d and d.

@@ -2,8 +2,11 @@
 
 #include "commands.hpp"
 
+#include "pushpull/deform/method.hpp"
+
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 
 namespace pushpull::app {
 namespace {
@@ -101,6 +104,14 @@ SessionRecording read_session_recording(const std::string& path) {
         if (!j.contains("hash") || !j["hash"].is_string() || !j.contains("index"))
           corrupted(path, number, "a commit record needs \"index\" and \"hash\"");
         r.commits.push_back({number, j});
+      } else if (kind == "method") {
+        bool known = j.contains("method") && j["method"].is_string() && j.contains("time") && j["time"].is_number();
+        if (known) try {
+            (void)deform::parse_method(j["method"].get<std::string>());
+          } catch (const std::invalid_argument&) {
+            known = false;
+          }
+        if (!known) corrupted(path, number, "a method record needs \"time\" and a known \"method\"");
       } else if (kind == "clock") {
         r.rate_hz = j.value("rate_hz", 0.0);
       } else if (kind == "profile" && r.profile.empty()) {
