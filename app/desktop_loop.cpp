@@ -72,7 +72,7 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
   context_options.swapchain = true;
   context_options.validation = o.validation;
   renderer::Context context = renderer::Context::create(context_options);
-  EventLog log(o.events);
+  EventLog log(o.events, !o.quiet);
   log.write_start(o, setup, "desktop");
   SessionRecorder recorder(o.record.empty() ? default_recording_path() : o.record, !o.record.empty());
   {

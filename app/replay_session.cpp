@@ -3,6 +3,7 @@
 #include "commands.hpp"
 #include "commit_watch.hpp"
 #include "metrics_json.hpp"
+#include "progress_bar.hpp"
 #include "replay_report.hpp"
 #include "review_loop.hpp"
 #include "session_recorder.hpp"
@@ -166,6 +167,7 @@ void run_replay(const ReplayOptions& o) {
   review.eye_size = o.eye_size;
   review.record = (out / "replay-session.jsonl").string();
   review.settle_drawn_frames = true;
+  review.quiet = true;  // the replay prints its own line per commit
   if (o.capture_every <= 0)  // draw only the frames xr/sim captures (frame times are n / rate)
     review.draw_frame = [captures, frame](double t) {
       return std::any_of(captures.begin(), captures.end(), [&](double c) { return std::abs(t - c) < 0.5 * frame; });
@@ -189,6 +191,7 @@ void run_replay(const ReplayOptions& o) {
   } catch (const std::exception& e) {
     throw CommandError(e.what());
   }
+  ProgressBar bar;
   std::vector<CommitRecord> commits;
   std::vector<std::string> checks;  // per commit: how it compared with the recording
   std::string first_mismatch;
@@ -223,11 +226,20 @@ void run_replay(const ReplayOptions& o) {
       }
     }
     checks.push_back(check);
-    std::printf("pushpull replay: commit %zu/%zu  |d| %.1f mm  %d it  %s  hash %s  %s  (%.1f s)\n", c.index,
-                recorded, 1000.0 * h.value("scale", 1.0) * c.snapshot->d.norm(), c.snapshot->iteration,
-                c.snapshot->converged ? "converged" : "not converged", hash_text(c.hash).c_str(), check.c_str(),
-                seconds_since(start));
-    std::fflush(stdout);
+    char line[320];
+    std::snprintf(line, sizeof line, "pushpull replay: commit %zu/%zu  |d| %.1f mm  %d it  %s  hash %s  %s  (%.1f s)",
+                  c.index, recorded, 1000.0 * h.value("scale", 1.0) * c.snapshot->d.norm(), c.snapshot->iteration,
+                  c.snapshot->converged ? "converged" : "not converged", hash_text(c.hash).c_str(), check.c_str(),
+                  seconds_since(start));
+    bar.print(line);
+  };
+  // The bar follows the recording's virtual clock through the loop, then the report's commits.
+  const double total_s = std::max(rec.last_input_time, 1e-9);
+  review.on_frame = [&](double t) {
+    char text[160];
+    std::snprintf(text, sizeof text, "replaying %.1f / %.1f s of the session, %zu of %zu commit(s)", t, total_s,
+                  commits.size(), recorded);
+    bar.update(t / total_s, text);
   };
   const auto loop_start = Clock::now();
   run_review(review);
@@ -242,6 +254,10 @@ void run_replay(const ReplayOptions& o) {
   const double scale = header.value("life_size_scale", 1.0);
   std::vector<ReportCommit> report;
   for (const CommitRecord& c : commits) {
+    bar.update(double(c.index - 1) / double(commits.size()),
+               "report: metrics and pictures of commit " + std::to_string(c.index) + " of " +
+                   std::to_string(commits.size()),
+               true);
     const deform::Snapshot& s = *c.snapshot;
     const deform::Mesh& before_mesh = c.before ? *c.before : model.deform_mesh;
     const std::string stem = "commit-" + two_digits(c.index);
@@ -344,13 +360,16 @@ void run_replay(const ReplayOptions& o) {
           rc.pictures.push_back({p.caption, p.file});
           fs::remove(out / (p.file + ".log"), ec);
         } else {
-          std::printf("pushpull replay: warning: the %s picture of commit %zu failed (see %s)\n", p.caption.c_str(),
-                      c.index, (out / (p.file + ".log")).c_str());
+          bar.print("pushpull replay: warning: the " + p.caption + " picture of commit " + std::to_string(c.index) +
+                    " failed (see " + (out / (p.file + ".log")).string() + ")");
         }
       }
     }
     report.push_back(std::move(rc));
-    std::printf("pushpull replay: report %zu/%zu (%.1f s)\n", report.size(), commits.size(), seconds_since(start));
+    char line[128];
+    std::snprintf(line, sizeof line, "pushpull replay: report %zu/%zu (%.1f s)", report.size(), commits.size(),
+                  seconds_since(start));
+    bar.print(line);
     std::fflush(stdout);
   }
   ReportSession session;
@@ -368,6 +387,7 @@ void run_replay(const ReplayOptions& o) {
   session.summary = std::to_string(commits.size()) + " commit(s) replayed of " + std::to_string(recorded) +
                     " recorded; " + (first_mismatch.empty() ? "all checks passed" : "first mismatch: " + first_mismatch);
   write_replay_report((out / "report.html").string(), session, report);
+  bar.finish();
   std::printf("pushpull replay: %s; time: loop %.1f s, metrics and pictures %.1f s, total %.1f s\n",
               session.summary.c_str(), loop_s, seconds_since(report_start), seconds_since(start));
   std::printf("pushpull replay: report %s\n", (out / "report.html").c_str());

@@ -111,11 +111,12 @@ void run_review(const ReviewCommandOptions& o) {
     return run_desktop(o, setup);
   }
   xr::Session& xr = *session;
-  std::printf("pushpull review: %s on %s (OpenXR runtime \"%s\"), %ux%u per eye, %s space\n", o.model.c_str(),
+  if (!o.quiet)
+    std::printf("pushpull review: %s on %s (OpenXR runtime \"%s\"), %ux%u per eye, %s space\n", o.model.c_str(),
               xr.system_name().c_str(), xr.runtime_name().c_str(), xr.eye(0).width(), xr.eye(0).height(),
               xr.stage_is_local() ? "LOCAL (no STAGE)" : "STAGE");
 
-  EventLog log(o.events);
+  EventLog log(o.events, !o.quiet);
   log.write_start(o, setup, xr.runtime_name());
   SessionRecorder recorder(o.record.empty() ? default_recording_path() : o.record, !o.record.empty());
   {
@@ -126,7 +127,7 @@ void run_review(const ReviewCommandOptions& o) {
     context.eye_height = int(xr.eye(0).height());
     recorder.write_header(o, setup, context);
   }
-  if (recorder.recording()) std::printf("pushpull review: recording the session to %s\n", recorder.path().c_str());
+  if (recorder.recording() && !o.quiet) std::printf("pushpull review: recording the session to %s\n", recorder.path().c_str());
 
   bool lost = false;
   std::optional<VulkanValidation> validation;
@@ -194,6 +195,7 @@ void run_review(const ReviewCommandOptions& o) {
           recorder.write_record("clock", 0.0, {{"rate_hz", recording_rate_hz}});
         }
         t = double(std::llround(double(recording_frames++) * 1e9 / double(recording_rate_hz))) * 1e-9;
+        if (o.on_frame) o.on_frame(t);
         {
           std::optional<XrPosef> head;
           if (frame.should_render) {  // the head: between the eyes, looking as the left eye
@@ -380,7 +382,8 @@ void run_review(const ReviewCommandOptions& o) {
                {"commits", service.history_position()}});
     if (!o.out.empty()) {
       write_review_model(o.out, model, current.state->V);
-      std::printf("pushpull review: wrote %s (%zu committed push/pull(s))\n", o.out.c_str(),
+      if (!o.quiet)
+        std::printf("pushpull review: wrote %s (%zu committed push/pull(s))\n", o.out.c_str(),
                   service.history_position());
     }
     if (validation && validation->message_count() > 0)

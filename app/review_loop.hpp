@@ -32,6 +32,7 @@ struct ReviewCommandOptions {
   std::string out;
   std::string events;
   bool benchmark = false;
+  bool quiet = false;  // no status lines on stdout (start, press/commit, wrote); errors and warnings still show
   bool validation = false;  // Vulkan validation layer on the runtime's instance; any message fails the run
   bool mirror = false;   // the supervisor's GLFW window
   bool desktop = false;  // no headset: the window is the workspace (desktop_loop.hpp)
@@ -43,6 +44,9 @@ struct ReviewCommandOptions {
   // Called on the loop's thread for every commit the service finished, in order, as soon as the loop sees it
   // (and the last ones after the service went idle at the end). Used by `pushpull replay`.
   std::function<void(const CommitRecord&)> on_commit;
+  // Headset loop: called once per frame with the recording's time of the frame (s), after its input was read
+  // (`pushpull replay`'s progress bar).
+  std::function<void(double t)> on_frame;
   // Headset loop (replay): method changes made with a key during the recorded session, (recording time s, method
   // name) in time order; each applies after the gesture of the frame at that time, as the key did.
   std::vector<std::pair<double, std::string>> method_changes;

@@ -74,7 +74,7 @@ void write_review_model(const std::string& path, const assets::Model& model, con
   }
 }
 
-EventLog::EventLog(const std::string& path) {
+EventLog::EventLog(const std::string& path, bool print) : print_(print) {
   if (path.empty()) return;
   file_.open(path);
   if (!file_) throw CommandError(path + ": cannot write the event log");
@@ -106,7 +106,8 @@ void EventLog::write_interaction(const InteractionEvent& e, const LifeSize& life
                       {"face", e.face}, {"p0", to_json(e.p0)}, {"d", to_json(e.d)}};
   if (e.kind == InteractionEvent::Kind::Committed) line["request"] = e.request;
   write(line);
-  std::printf("pushpull review: %s at p0 = (%.4f, %.4f, %.4f), |d| = %.1f mm\n", names[int(e.kind)], e.p0.x(),
+  if (print_)
+    std::printf("pushpull review: %s at p0 = (%.4f, %.4f, %.4f), |d| = %.1f mm\n", names[int(e.kind)], e.p0.x(),
               e.p0.y(), e.p0.z(), life.to_mm(e.d.norm()));
 }
 

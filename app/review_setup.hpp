@@ -39,7 +39,8 @@ void write_review_model(const std::string& path, const assets::Model& model, con
 // JSON Lines event log (--events); writes nothing when the path is empty. Each line is flushed.
 class EventLog {
  public:
-  explicit EventLog(const std::string& path);
+  // print: also print press / commit / cancel lines on stdout.
+  EventLog(const std::string& path, bool print);
   void write(const nlohmann::json& line);
   // The start line: model, scale, method, radii, T_stage_model (row-major 4x4), where it runs.
   void write_start(const ReviewCommandOptions& options, const ReviewSetup& setup, const std::string& runtime);
@@ -48,6 +49,7 @@ class EventLog {
 
  private:
   std::ofstream file_;
+  bool print_ = true;
 };
 
 }  // namespace pushpull::app
