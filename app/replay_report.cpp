@@ -100,6 +100,8 @@ void write_replay_report(const std::string& path, const ReportSession& s, const 
       << "</td></tr>\n";
     h << "<tr><th>error estimate</th><td>"
       << (c.error_estimate ? number(*c.error_estimate) + " of |d|" : std::string("not given")) << "</td></tr>\n";
+    h << "<tr><th>region</th><td>" << c.region_vertices << " vertices; " << c.attached_parts
+      << " attached part(s) followed the surface</td></tr>\n";
     h << "<tr><th>Gaussian curvature sign reversals</th><td>" << m.sign_reversals << " of "
       << m.curvature_vertices << " vertices (" << number(100.0 * m.sign_reversal_fraction) << " %); any sign change "
       << m.sign_flips << "</td></tr>\n";

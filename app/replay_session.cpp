@@ -314,6 +314,8 @@ void run_replay(const ReplayOptions& o) {
     rc.iterations = s.iteration;
     rc.converged = s.converged;
     rc.error_estimate = s.error_estimate;
+    rc.region_vertices = roi.size();
+    rc.attached_parts = s.attached_parts;
     rc.metrics = record.metrics;
     rc.d = s.d;
     rc.scale = scale;

@@ -3,7 +3,7 @@
 examples/AsamVehicle (placed side-on: `pushpull review ... --front 0 0 1`, the car's +Z side towards the reviewer,
 its nose to the reviewer's right). Each is done as a reviewer would: walk and look there, aim, press, drag with a
 slightly unsteady hand, hold, release, look at the result. The release pose is exact so |d| is the paper's:
-elongating the hood (100 mm forward), changing the slope of the windshield (55 mm back at its top), displacing a
+elongating the hood (100 mm forward), changing the slope of the windshield (its top, the roof's front edge, 55 mm back), displacing a
 wheel housing (110 mm outwards). Deterministic (seeded).
 
 Usage: python3 make_paper_scenarios.py > paper_scenarios.script.jsonl
@@ -87,9 +87,10 @@ value(t, TRIGGER, 0.0)
 # 1. Hood: aim down at the hood 10 cm behind its front edge, pull 100 mm forward (model +X = stage +X).
 t = scenario(t, head=[1.2, 1.7, -0.2], hand=[1.68, 1.25, -1.25], direction=[0.0, -1.0, 0.0],
              d=[0.100, 0.0, 0.0], target=[1.7, 0.8, -1.4])
-# 2. Windshield: aim at its upper part, push its top 55 mm back (stage -X), less steep.
-t = scenario(t, head=[0.6, 1.75, -0.3], hand=[0.35, 1.55, -1.2], direction=[0.0, -1.0, 0.0],
-             d=[-0.055, 0.0, 0.0], target=[0.35, 1.1, -1.4])
+# 2. Windshield: aim at the roof's front edge above the windshield (the body; the glass is its own part and
+#    follows as an attached part), push it 55 mm back (stage -X): the windshield leans back.
+t = scenario(t, head=[0.7, 1.75, -0.3], hand=[0.26, 1.55, -1.41], direction=[0.0, -1.0, 0.0],
+             d=[-0.055, 0.0, 0.0], target=[0.26, 1.1, -1.41])
 # 3. Front wheel housing on the reviewer's side: aim at the arch above the wheel, pull it 110 mm outwards.
 t = scenario(t, head=[1.3, 1.3, 0.2], hand=[1.25, 0.72, -0.25], direction=[0.0, 0.0, -1.0],
              d=[0.0, 0.0, 0.110], target=[1.25, 0.6, -0.6])
