@@ -151,7 +151,9 @@ void run_review(const ReviewCommandOptions& o) {
     ReviewScene scene(renderer, model, placement, colour, life.scale());
     EyeTargets eyes(vk.device, xr.eye(0), xr.eye(1));
     CommitWatch commits;  // before the service: its worker calls into it until the service is destroyed
-    deform::Service service(rest, deform::ServiceOptions{commits.callback()});
+    deform::ServiceOptions service_options{commits.callback()};
+    service_options.worker_nice = o.solver_nice;  // frames first: the solver takes what the frame loop leaves
+    deform::Service service(rest, std::move(service_options));
     ReviewInteraction interaction(service, *rest, placement, interaction_options);
     std::size_t next_method_change = 0;  // into o.method_changes
     bool commands_pending = false;  // a commit, undo or redo was issued and the service may still run it

@@ -32,7 +32,8 @@ struct ReviewCommandOptions {
   std::string out;
   std::string events;
   bool benchmark = false;
-  bool quiet = false;  // no status lines on stdout (start, press/commit, wrote); errors and warnings still show
+  bool quiet = false;
+  int solver_nice = 10;  // deform::ServiceOptions::worker_nice of the review's service  // no status lines on stdout (start, press/commit, wrote); errors and warnings still show
   bool validation = false;  // Vulkan validation layer on the runtime's instance; any message fails the run
   bool mirror = false;   // the supervisor's GLFW window
   bool desktop = false;  // no headset: the window is the workspace (desktop_loop.hpp)

@@ -6,9 +6,9 @@ front and back edges; 81 x 61 vertices, triangulated with alternating diagonals 
 preferred direction. It is the bundled default of `scripts/demo`: pulling the crown up must keep the
 bonnet convex (the ASAN paper's Fig. 4 claim on a dome).
 """
+import argparse
 import pathlib
 
-NX, NY = 81, 61
 W, L = 1.5, 1.2
 
 
@@ -17,6 +17,12 @@ def height(x, y):
 
 
 def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--nx", type=int, default=81, help="vertices across (default 81)")
+    parser.add_argument("--ny", type=int, default=61, help="vertices along (default 61)")
+    parser.add_argument("--out", help="output .off (default examples/hood.off)")
+    args = parser.parse_args()
+    NX, NY = args.nx, args.ny
     verts, faces = [], []
     for j in range(NY):
         for i in range(NX):
@@ -31,7 +37,7 @@ def main():
                 faces += [(a, b, d), (a, d, c)]
             else:
                 faces += [(a, b, c), (b, d, c)]
-    out = pathlib.Path(__file__).resolve().parent.parent / "examples" / "hood.off"
+    out = pathlib.Path(args.out) if args.out else pathlib.Path(__file__).resolve().parent.parent / "examples" / "hood.off"
     with open(out, "w") as f:
         f.write("OFF\n# pushpull example: convex car bonnet, metres (scripts/make-example-hood.py)\n")
         f.write(f"{len(verts)} {len(faces)} 0\n")

@@ -2,6 +2,12 @@
 // through an atomic shared_ptr (see service.hpp).
 #include "pushpull/deform/service.hpp"
 
+#ifdef __linux__
+#include <sys/resource.h>
+#include <unistd.h>
+#endif
+
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
@@ -18,6 +24,15 @@
 
 namespace pushpull::deform {
 namespace {
+
+// setpriority on the calling thread (Linux threads have their own niceness).
+void lower_thread_priority(int nice) {
+#ifdef __linux__
+  if (nice > 0) (void)::setpriority(PRIO_PROCESS, static_cast<id_t>(::gettid()), std::min(nice, 19));
+#else
+  (void)nice;
+#endif
+}
 
 using Clock = std::chrono::steady_clock;
 
@@ -400,7 +415,10 @@ Service::Service(std::shared_ptr<const Mesh> initial, ServiceOptions options)
   state.entry.hash = position_hash(state.entry.state->V);
   impl_->states.push_back(std::move(state));
   impl_->publish(impl_->state_snapshot(Snapshot::Kind::Rest, 0, Clock::now()));
-  impl_->worker = std::thread([impl = impl_.get()] { impl->loop(); });
+  impl_->worker = std::thread([impl = impl_.get(), nice = impl_->options.worker_nice] {
+    lower_thread_priority(nice);
+    impl->loop();
+  });
 }
 
 Service::~Service() {

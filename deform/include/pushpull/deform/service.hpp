@@ -136,6 +136,10 @@ struct ServiceOptions {
   // Called on the worker with every snapshot right after its publication (tests, recording). Must be quick;
   // it may call submit(), commit(), undo(), redo() and cancel() (they never wait), nothing that blocks.
   std::function<void(const std::shared_ptr<const Snapshot>&)> on_publish;
+  // Scheduling niceness of the worker thread, 0 (as the caller) to 19 (runs only when nothing else wants the
+  // core). A frame loop sharing the machine's cores with the solver gives it > 0 so frames come first; results
+  // do not depend on it, only how soon they arrive. Linux (setpriority on the thread); ignored elsewhere.
+  int worker_nice = 0;
 };
 
 class Service {
