@@ -214,7 +214,8 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
         }
       }
       if (colour) scene.set_colour(next_colour(scene.colour()));
-      if (method && !dragging) {
+      scene.set_highlight(interaction.hover_handle(1));
+      if (method && !dragging && !o.fixed_method) {
         interaction.set_method(next_method(interaction.method()));
         recorder.write_method(t, interaction.method());
       }

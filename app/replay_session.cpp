@@ -151,6 +151,7 @@ void run_replay(const ReplayOptions& o) {
   ReviewCommandOptions review;
   review.model = model_path;
   review.method = o.method.empty() ? h.at("method").get<std::string>() : o.method;
+  review.fixed_method = !o.method.empty();
   if (o.method.empty())  // with --method the whole session replays with that one
     for (const json& r : rec.records)
       if (r.value("record", "") == "method") review.method_changes.emplace_back(r.value("time", 0.0), r.value("method", ""));

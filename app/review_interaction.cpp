@@ -30,23 +30,23 @@ ReviewInteraction::ReviewInteraction(deform::Service& service, const deform::Mes
     : service_(service),
       placement_(std::move(placement)),
       options_(std::move(options)),
-      committed_V_(rest.V),
-      F_(rest.F),
+      committed_(rest),
       bvh_(rest.V, rest.F),
       gestures_{xr::PushPullGesture(gesture_options(options_.scale)),
                 xr::PushPullGesture(gesture_options(options_.scale))} {}
 
 std::optional<deform::TriangleBvh::Hit> ReviewInteraction::hit(const Eigen::Vector3d& origin_stage,
                                                                const Eigen::Vector3d& direction_stage) const {
-  return bvh_.ray_hit(committed_V_, placement_.to_model_point(origin_stage),
+  return bvh_.ray_hit(committed_.V, placement_.to_model_point(origin_stage),
                       placement_.to_model_vector(direction_stage));
 }
 
 void ReviewInteraction::sync_committed(const deform::Snapshot& snapshot) {
   if (snapshot.revision == bvh_revision_ || !snapshot.rest) return;
-  if (bvh_revision_ != 0 || snapshot.rest->V != committed_V_) {
-    committed_V_ = snapshot.rest->V;
-    bvh_.refit(committed_V_);
+  if (bvh_revision_ != 0 || snapshot.rest->V != committed_.V) {
+    committed_.V = snapshot.rest->V;
+    bvh_.refit(committed_.V);
+    hover_handle_cache_.reset();
   }
   bvh_revision_ = snapshot.revision;
 }
@@ -141,9 +141,23 @@ InteractionEvent ReviewInteraction::finish(bool commit) {
 }
 
 Eigen::Vector3d ReviewInteraction::face_normal(int face) const {
-  const Eigen::Vector3d a = committed_V_.row(F_(face, 0)), b = committed_V_.row(F_(face, 1)),
-                        c = committed_V_.row(F_(face, 2));
+  const Eigen::MatrixXd& V = committed_.V;
+  const Eigen::MatrixXi& F = committed_.F;
+  const Eigen::Vector3d a = V.row(F(face, 0)), b = V.row(F(face, 1)), c = V.row(F(face, 2));
   return (b - a).cross(c - a).normalized();
+}
+
+const std::vector<int>& ReviewInteraction::hover_handle(int hand) {
+  static const std::vector<int> kNone;
+  const auto& hover = hovers_.at(size_t(hand));
+  if (!hover || dragging()) return kNone;
+  if (hover_handle_cache_ && hover_handle_cache_->face == hover->face && hover_handle_cache_->point == hover->point &&
+      hover_handle_cache_->radius == options_.handle_radius)
+    return hover_handle_cache_->vertices;
+  hover_handle_cache_ = HoverHandle{hover->face, hover->point, options_.handle_radius,
+                                    deform::surface_handle(committed_, {hover->face, hover->point},
+                                                           options_.handle_radius)};
+  return hover_handle_cache_->vertices;
 }
 
 std::optional<InteractionEvent> ReviewInteraction::cancel() {

@@ -12,6 +12,7 @@
 #include "stage_placement.hpp"
 
 #include "pushpull/deform/service.hpp"
+#include "pushpull/deform/surface_point.hpp"
 #include "pushpull/deform/triangle_bvh.hpp"
 #include "pushpull/xr/push_pull_gesture.hpp"
 
@@ -83,6 +84,10 @@ class ReviewInteraction {
   // Where each hand's ray meets the committed surface (model space), for the cursor.
   [[nodiscard]] const std::array<std::optional<deform::TriangleBvh::Hit>, 2>& hovers() const { return hovers_; }
   [[nodiscard]] const Eigen::Vector3d& current_d() const { return last_d_; }
+  // The vertices a press of `hand` would grab now (model vertices of its hover hit within the handle radius,
+  // along the surface, as the drag's handle will be); empty without a hit or during a drag. Cached per hit
+  // point and radius: O(handle patch) when the aim moves, nothing when it does not.
+  [[nodiscard]] const std::vector<int>& hover_handle(int hand);
   // Ray hit on the committed surface in model space (exposed for the benchmark).
   [[nodiscard]] std::optional<deform::TriangleBvh::Hit> hit(const Eigen::Vector3d& origin_stage,
                                                             const Eigen::Vector3d& direction_stage) const;
@@ -96,8 +101,14 @@ class ReviewInteraction {
   deform::Service& service_;
   StagePlacement placement_;
   InteractionOptions options_;
-  Eigen::MatrixXd committed_V_;
-  Eigen::MatrixXi F_;
+  deform::Mesh committed_;  // the committed shape (rest of the newest snapshot)
+  struct HoverHandle {
+    int face = -1;
+    Eigen::Vector3d point;
+    double radius = 0.0;
+    std::vector<int> vertices;
+  };
+  std::optional<HoverHandle> hover_handle_cache_;
   deform::TriangleBvh bvh_;
   std::uint64_t bvh_revision_ = 0;
   std::array<xr::PushPullGesture, 2> gestures_;

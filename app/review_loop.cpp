@@ -6,11 +6,13 @@
 #include "hand_sample.hpp"
 #include "mirror_view.hpp"
 #include "review_interaction.hpp"
+#include "review_menu.hpp"
 #include "review_setup.hpp"
 #include "session_recorder.hpp"
 #include "review_scene.hpp"
 #include "stage_placement.hpp"
 #include "vulkan_validation.hpp"
+#include "world_label.hpp"
 
 #include "pushpull/assets/model.hpp"
 #include "pushpull/deform/service.hpp"
@@ -41,6 +43,25 @@ double heading(const HandSample& s) {
   const Eigen::Vector3d& f = s.direction_stage;
   const Eigen::Vector3d h = std::hypot(f.x(), f.z()) > 0.3 ? f : (f.y() < 0.0 ? s.up_stage : Eigen::Vector3d(-s.up_stage));
   return std::atan2(-h.x(), -h.z());
+}
+
+// The readout by the hand: while dragging |d| and the solver's state, while aiming the method and sizes.
+std::vector<std::string> readout_lines(const ReviewInteraction& interaction, const deform::Snapshot& s,
+                                       const LifeSize& life) {
+  char a[96], b[96];
+  const std::string method(deform::method_name(interaction.method()));
+  if (!interaction.dragging()) {
+    std::snprintf(a, sizeof a, "%s", method.c_str());
+    std::snprintf(b, sizeof b, "handle %.0f mm  region %.0f mm", life.to_mm(interaction.handle_radius()),
+                  life.to_mm(interaction.roi_radius()));
+    return {a, b};
+  }
+  std::snprintf(a, sizeof a, "|d| %.1f mm", life.to_mm(interaction.current_d().norm()));
+  if (s.kind == deform::Snapshot::Kind::Error)
+    return {a, method + "  error: " + s.error.substr(0, 40)};
+  std::snprintf(b, sizeof b, "%s  %d it  %s", method.c_str(), s.iteration,
+                s.final ? (s.converged ? "converged" : "not converged") : "solving");
+  return {a, b};
 }
 
 // Frame work (from xrWaitFrame's return to xrEndFrame's return), split by whether the solver was busy.
@@ -170,6 +191,9 @@ void run_review(const ReviewCommandOptions& o) {
     FrameStats stats;
     bool sizes_changed = false;
     GrabPlacement grab(placement);
+    ReviewMenu menu;
+    WorldLabel hand_label(renderer, 0.02f, 600), menu_label(renderer, 0.03f, 1500);
+    Eigen::Vector3d head_position(0.0, 1.6, 0.0), head_forward(0.0, 0.0, -1.0);  // stage; the last seen
 
     auto log_event = [&](const InteractionEvent& e) {
       log.write_interaction(e, life);
@@ -206,6 +230,9 @@ void run_review(const ReviewCommandOptions& o) {
             head = XrPosef{l.orientation,
                            {(l.position.x + r.position.x) * 0.5f, (l.position.y + r.position.y) * 0.5f,
                             (l.position.z + r.position.z) * 0.5f}};
+            head_position = Eigen::Vector3d(head->position.x, head->position.y, head->position.z);
+            head_forward = Eigen::Quaterniond(l.orientation.w, l.orientation.x, l.orientation.y, l.orientation.z) *
+                           Eigen::Vector3d(0.0, 0.0, -1.0);
           }
           recorder.write_frame_input(t, head, {input.hand(xr::Hand::Left), input.hand(xr::Hand::Right)},
                                      input.current_profile(xr::Hand::Right));
@@ -236,6 +263,29 @@ void run_review(const ReviewCommandOptions& o) {
           }
           if (grab.grabbing())
             for (auto& hand : hands) hand.trigger = 0.0f;  // no push/pull while holding the model
+        }
+        // The method and colour-map panel (menu button): opens in front of the reviewer; while open the right
+        // stick chooses, the trigger applies, and nothing is pushed or pulled.
+        for (int h = 0; h < 2 && !interaction.dragging(); ++h) {
+          if (!input.hand(xr::Hand(h)).menu_pressed) continue;
+          menu.toggle(interaction.method());
+          if (menu.is_open()) {  // 0.5 m along the gaze, centred on it, where it was opened (world-locked)
+            menu_label.set_text(menu.lines(interaction.method(), scene.colour()), menu.selected_line());
+            menu_label.place(head_position + 0.5 * head_forward -
+                                 Eigen::Vector3d(0.0, 0.5 * double(menu_label.height()), 0.0),
+                             head_position);
+          }
+          break;
+        }
+        if (menu.is_open()) {
+          const xr::HandInput& right = input.hand(xr::Hand::Right);
+          const MenuChoice choice = menu.update(right.thumbstick.y, right.trigger);
+          if (choice.method && !o.fixed_method) {
+            interaction.set_method(*choice.method);
+            recorder.write_method(t, interaction.method());
+          }
+          if (choice.colour) scene.set_colour(*choice.colour);
+          for (auto& hand : hands) hand.trigger = 0.0f;
         }
         // A press while a commit, undo or redo is still being solved would hit the surface the reviewer no
         // longer sees and depend on the solver's timing: it waits for them (a stall only then), so the same
@@ -270,7 +320,6 @@ void run_review(const ReviewCommandOptions& o) {
             log.write({{"event", "redo"}});
             recorder.write_record("redo", t);
           }
-          if (in.menu_pressed) scene.set_colour(next_colour(scene.colour()));
         }
         // Replay: the method changes the recording made with a key, at the frames it made them.
         while (next_method_change < o.method_changes.size() &&
@@ -285,7 +334,7 @@ void run_review(const ReviewCommandOptions& o) {
           const double dt = double(frame.predicted_display_period) * 1e-9;
           auto factor = [&](float v) { return std::abs(v) < 0.2f ? 1.0 : std::exp2(double(v) * dt); };
           const double before = interaction.handle_radius() + interaction.roi_radius();
-          interaction.scale_sizes(factor(stick.y), factor(stick.x));
+          if (!menu.is_open()) interaction.scale_sizes(factor(stick.y), factor(stick.x));
           sizes_changed = sizes_changed || interaction.handle_radius() + interaction.roi_radius() != before;
           if (sizes_changed && std::abs(stick.x) < 0.2f && std::abs(stick.y) < 0.2f) {
             sizes_changed = false;
@@ -311,12 +360,33 @@ void run_review(const ReviewCommandOptions& o) {
             ++stats.snapshots;
           }
         }
+        // The handle a press would grab, highlighted on the surface; |d| and the solver's state by the hand.
+        {
+          int h = interaction.dragging() ? interaction.drag_hand() : -1;
+          for (int k : {1, 0})
+            if (h < 0 && hands[size_t(k)].tracked && interaction.hovers()[size_t(k)]) h = k;
+          static const std::vector<int> kNoVertices;
+          scene.set_highlight(h >= 0 && !interaction.dragging() ? interaction.hover_handle(h) : kNoVertices);
+          if (h >= 0 && hands[size_t(h)].tracked) {
+            hand_label.set_text(readout_lines(interaction, *snapshot, life));
+            hand_label.place(hands[size_t(h)].origin_stage + Eigen::Vector3d(0.0, 0.05, 0.0), head_position);
+          } else {
+            hand_label.hide();
+          }
+          if (menu.is_open())
+            menu_label.set_text(menu.lines(interaction.method(), scene.colour()), menu.selected_line());
+          else
+            menu_label.hide();
+        }
+        std::vector<renderer::Draw> draws = scene.draws();
+        for (const WorldLabel* label : {&hand_label, &menu_label})
+          if (const auto d = label->draw()) draws.push_back(*d);
         bool rendered = false;
         if (frame.should_render && (!o.draw_frame || o.draw_frame(t))) {
           const uint32_t left = xr.eye(0).acquire();
           const uint32_t right = xr.eye(1).acquire();
           const std::array<renderer::View, 2> views{eye_view(frame.eyes[0]), eye_view(frame.eyes[1])};
-          renderer.render(views, scene.draws(), scene.settings(), eyes.targets(left, right));
+          renderer.render(views, draws, scene.settings(), eyes.targets(left, right));
           rendered = true;
         }
         xr.end_frame(frame, rendered);
@@ -328,7 +398,7 @@ void run_review(const ReviewCommandOptions& o) {
             if (key == 'V')
               mirror_view.set_mode(mirror_view.mode() == MirrorMode::HeadsetEye ? MirrorMode::SmoothedFirstPerson
                                                                                  : MirrorMode::HeadsetEye);
-            if (key == 'M' && !interaction.dragging()) {
+            if (key == 'M' && !interaction.dragging() && !o.fixed_method) {
               interaction.set_method(next_method(interaction.method()));
               recorder.write_method(t, interaction.method());
             }
@@ -342,7 +412,7 @@ void run_review(const ReviewCommandOptions& o) {
             if (auto target = mirror->acquire()) {
               const VkExtent2D e = target->targets.extent;
               const renderer::View view = mirror_view.update(*last_eyes, dt, float(e.width) / float(e.height));
-              renderer.render(std::span(&view, 1), scene.draws(), scene.settings(), target->targets, target->sync);
+              renderer.render(std::span(&view, 1), draws, scene.settings(), target->targets, target->sync);
               mirror->present(*target);
               ++mirror_frames;
             }

@@ -33,6 +33,7 @@ struct ReviewCommandOptions {
   std::string events;
   bool benchmark = false;
   bool quiet = false;
+  bool fixed_method = false;  // the method stays `method` (keys and the menu do not change it; replay --method)
   int solver_nice = 10;  // deform::ServiceOptions::worker_nice of the review's service  // no status lines on stdout (start, press/commit, wrote); errors and warnings still show
   bool validation = false;  // Vulkan validation layer on the runtime's instance; any message fails the run
   bool mirror = false;   // the supervisor's GLFW window

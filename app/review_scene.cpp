@@ -103,7 +103,7 @@ void ReviewScene::upload(const deform::Snapshot& snapshot) {
   // The drag's region while its previews show; nothing once committed, cancelled or undone.
   const bool show = snapshot.kind == deform::Snapshot::Kind::Preview && snapshot.region != nullptr;
   std::vector<renderer::OverlayWeights> overlays;
-  if (show ? snapshot.region != shown_region_ : overlays_shown_) {
+  if (show ? snapshot.region != shown_region_ : (overlays_shown_ || highlight_shown_)) {
     overlays.assign(positions.size() / 3, renderer::OverlayWeights{});
     if (show) {
       const auto& role = snapshot.region->role;
@@ -118,9 +118,29 @@ void ReviewScene::upload(const deform::Snapshot& snapshot) {
     }
     shown_region_ = show ? snapshot.region : nullptr;
     overlays_shown_ = show;
+    highlight_shown_ = false;
+    highlight_.clear();
   }
   last_cpu_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   renderer_.update_vertices(mesh_, positions, normals, scalars, overlays);
+  positions_ = positions;
+}
+
+void ReviewScene::set_highlight(const std::vector<int>& vertices) {
+  // The drag's own overlays (region, handle, fixed border) win while its previews show.
+  if (overlays_shown_ || positions_.empty()) return;
+  if (vertices == highlight_ && highlight_shown_ == !vertices.empty()) return;
+  highlight_ = vertices;
+  std::vector<char> mark(size_t(rest_V_.rows()), 0);
+  for (int v : vertices)
+    if (v >= 0 && v < int(mark.size())) mark[size_t(v)] = 1;
+  std::vector<renderer::OverlayWeights> overlays(positions_.size() / 3, renderer::OverlayWeights{});
+  for (size_t r = 0; r < overlays.size(); ++r) {
+    const int d = render_.deform_vertex[r];
+    if (d >= 0 && mark[size_t(d)]) overlays[r].handle = 1.0f;
+  }
+  renderer_.update_vertices(mesh_, positions_, {}, {}, overlays);
+  highlight_shown_ = !vertices.empty();
 }
 
 std::vector<renderer::Draw> ReviewScene::draws() const { return {renderer::Draw{mesh_, T_stage_model_}}; }

@@ -36,6 +36,9 @@ class ReviewScene {
   // the calling thread: render positions, normals, scalars.
   void update(const std::shared_ptr<const deform::Snapshot>& snapshot);
   void set_colour(ReviewColour colour);
+  // Model (deform) vertices to highlight as the handle a press would grab (aiming, between drags); empty: none.
+  // Ignored while a drag's previews show their own overlays. Uploads overlays only when the set changes.
+  void set_highlight(const std::vector<int>& vertices);
   void set_placement(const StagePlacement& placement);
   [[nodiscard]] ReviewColour colour() const { return colour_; }
   [[nodiscard]] std::uint64_t generation() const { return generation_; }  // of the snapshot drawn
@@ -61,6 +64,9 @@ class ReviewScene {
   std::uint64_t generation_ = 0;
   std::shared_ptr<const deform::RegionOfInterest> shown_region_;  // whose roles the overlays show
   bool overlays_shown_ = false;
+  std::vector<int> highlight_;    // the handle-to-be under the aim
+  bool highlight_shown_ = false;  // its overlays are in the mesh
+  std::vector<float> positions_;  // the render positions last uploaded
   double last_cpu_ms_ = 0.0;
   std::shared_ptr<const deform::Snapshot> last_;
 };
