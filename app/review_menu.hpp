@@ -5,7 +5,7 @@
 // Thread-safety: one thread (the frame loop).
 #pragma once
 
-#include "review_scene.hpp"
+#include "review_colour.hpp"
 
 #include "pushpull/deform/method.hpp"
 

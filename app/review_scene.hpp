@@ -10,6 +10,7 @@
 #pragma once
 
 #include "render_model.hpp"
+#include "review_colour.hpp"
 #include "stage_placement.hpp"
 
 #include "pushpull/assets/model.hpp"
@@ -22,9 +23,6 @@
 
 namespace pushpull::app {
 
-enum class ReviewColour { Material, Displacement, CurvatureSign };
-ReviewColour next_colour(ReviewColour c);
-const char* colour_name(ReviewColour c);
 
 class ReviewScene {
  public:

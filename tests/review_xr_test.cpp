@@ -6,6 +6,7 @@
 #include "xr_sim_environment.hpp"
 
 #include "pushpull/deform/mesh_io.hpp"
+#include "pushpull/deform/method.hpp"
 #include "pushpull/renderer/image_io.hpp"
 
 #include <gtest/gtest.h>
@@ -295,6 +296,69 @@ TEST(ReviewXr, ThumbstickBetweenDragsScalesHandleAndRegion) {
   ASSERT_EQ(sizes.size(), 1u) << run.result.output;
   EXPECT_NEAR(double(sizes[0].at("handle_radius")), 0.5, 0.05);  // 0.25 m doubled
   EXPECT_NEAR(double(sizes[0].at("roi_radius")), 0.45, 0.05);    // 0.9 m halved
+}
+
+// The headset's own panel and readouts: aiming shows the handle-to-be and a readout by the hand; the menu
+// button opens the method panel, the stick moves to the row above the current method, the trigger applies it
+// (and does not push or pull while the panel is open); the next push/pull is solved with that method.
+TEST(ReviewXr, MenuPanelChoosesTheMethodOfTheNextPushPullAndReadoutsShow) {
+  const fs::path dir = test_dir();
+  const std::string aim = R"("pose":{"p":[0.0123,0.5,-0.65],"q":[-0.70710678,0,0,0.70710678]})";
+  const std::string script = R"({"t":0.0,"path":"/user/head","pose":{"p":[0,1.0,0],"q":[-0.32557,0,0,0.94552]}}
+{"t":0.0,"path":"/user/hand/right/input/aim/pose",)" + aim + R"(}
+{"t":0.0,"path":"/user/hand/right/input/trigger/value","value":0.0}
+{"t":0.3,"event":"capture"}
+{"t":0.5,"path":"/user/hand/left/input/menu/click","value":1.0}
+{"t":0.6,"path":"/user/hand/left/input/menu/click","value":0.0}
+{"t":0.7,"path":"/user/hand/right/input/thumbstick","value":[0.0,1.0]}
+{"t":0.8,"path":"/user/hand/right/input/thumbstick","value":[0.0,0.0]}
+{"t":0.9,"path":"/user/hand/right/input/trigger/value","value":1.0}
+{"t":1.0,"path":"/user/hand/right/input/trigger/value","value":0.0}
+{"t":1.1,"event":"capture"}
+{"t":1.2,"path":"/user/hand/left/input/menu/click","value":1.0}
+{"t":1.3,"path":"/user/hand/left/input/menu/click","value":0.0}
+{"t":1.5,"path":"/user/hand/right/input/aim/pose",)" + aim + R"(}
+{"t":1.5,"path":"/user/hand/right/input/trigger/value","value":1.0}
+{"t":2.0,"path":"/user/hand/right/input/aim/pose","pose":{"p":[0.0123,0.5,-0.55],"q":[-0.70710678,0,0,0.70710678]}}
+{"t":2.2,"path":"/user/hand/right/input/trigger/value","value":0.0}
+{"t":3.0,"event":"exit"}
+)";
+  const ReviewRun run = run_review(dir, script, "--record " + (dir / "session.jsonl").string());
+  ASSERT_EQ(run.result.status, 0) << run.result.output;
+  // One press only: the trigger inside the panel chose a row, it did not push or pull.
+  ASSERT_EQ(run.of("press").size(), 1u) << run.result.output;
+  ASSERT_EQ(run.of("commit").size(), 1u) << run.result.output;
+  std::vector<nlohmann::json> methods, commits;
+  std::ifstream in(dir / "session.jsonl");
+  for (std::string line; std::getline(in, line);) {
+    const auto j = nlohmann::json::parse(line);
+    if (j.value("record", "") == "method") methods.push_back(j);
+    if (j.value("record", "") == "commit") commits.push_back(j);
+  }
+  ASSERT_EQ(methods.size(), 1u);
+  ASSERT_EQ(commits.size(), 1u);
+  const auto& all = pushpull::deform::kAllMethods;
+  const auto asan = std::find(all.begin(), all.end(), pushpull::deform::Method::Asan);
+  ASSERT_NE(asan, all.begin());
+  const std::string above(pushpull::deform::method_name(*(asan - 1)));
+  EXPECT_EQ(methods[0].at("method"), above);
+  EXPECT_EQ(commits[0].at("method"), above);
+
+  // Frame 9 (t = 0.3): aiming, the handle-to-be is red on the blue (undisplaced) bonnet and the readout panel
+  // (near black) floats by the hand; frame 33 (t = 1.1): the open panel covers much more of the view.
+  auto count = [&](const std::string& file, auto predicate) {
+    const auto image = pushpull::renderer::read_png(dir / "capture" / file);
+    size_t n = 0;
+    for (size_t i = 0; i < image.pixels.size(); i += 4)
+      if (predicate(int(image.pixels[i]), int(image.pixels[i + 1]), int(image.pixels[i + 2]))) ++n;
+    return n;
+  };
+  auto dark = [](int r, int g, int b) { return r < 50 && g < 50 && b < 55; };  // the panels: linear 0.015
+  auto red = [](int r, int g, int b) { return r > g + 80 && r > b + 80; };
+  const size_t aiming_dark = count("frame_000009_left.png", dark);
+  EXPECT_GT(aiming_dark, 20u);
+  EXPECT_GT(count("frame_000009_left.png", red), 20u);
+  EXPECT_GT(count("frame_000033_left.png", dark), 3 * aiming_dark);
 }
 
 // ReviewXrWindow.*: run under xvfb-run (ctest: review_xr_window_xvfb); skipped where there is no display.
