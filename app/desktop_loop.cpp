@@ -2,6 +2,7 @@
 
 #include "commands.hpp"
 #include "hand_sample.hpp"
+#include "orbit_control.hpp"
 #include "review_interaction.hpp"
 #include "review_scene.hpp"
 #include "session_recorder.hpp"
@@ -115,17 +116,7 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
     };
 
     // Orbit around the model's box on the stage, from the reviewer's side.
-    const Eigen::MatrixXd& V = setup.rest->V;
-    renderer::Bounds bounds;
-    {
-      Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = -lo;
-      for (Eigen::Index i = 0; i < V.rows(); ++i) {
-        const Eigen::Vector3d p = setup.placement.to_stage_point(V.row(i).transpose());
-        lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
-      }
-      bounds.min = glm::vec3(lo.x(), lo.y(), lo.z());
-      bounds.max = glm::vec3(hi.x(), hi.y(), hi.z());
-    }
+    const renderer::Bounds bounds = stage_bounds(setup.rest->V, setup.placement);
     renderer::OrbitCamera orbit;
     orbit.azimuth_deg = 30.0f;
     orbit.elevation_deg = 25.0f;
@@ -151,11 +142,7 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
       const VkExtent2D extent = window.extent();
       const float aspect = float(std::max(1u, extent.width)) / float(std::max(1u, extent.height));
       const renderer::MirrorWindow::Pointer p = window.pointer();
-      if (p.right && last.right) {
-        orbit.azimuth_deg -= float(p.x - last.x) * 0.3f;
-        orbit.elevation_deg = std::clamp(orbit.elevation_deg + float(p.y - last.y) * 0.3f, -89.0f, 89.0f);
-      }
-      orbit.distance_scale = std::clamp(orbit.distance_scale * float(std::pow(0.9, p.scroll)), 0.05f, 10.0f);
+      orbit_with_pointer(orbit, p, last, p.right && last.right);
       const renderer::View view = renderer::frame_bounds(bounds, orbit, aspect);
       const auto [origin, direction] = cursor_ray(view, p);
       // The mouse as a controller: outside a drag the cursor ray; during a drag the ray of the press moved by
@@ -226,7 +213,9 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
       interaction.sync_committed(*snapshot);
       scene.update(snapshot);
       if (frame) {
-        renderer.render(std::span(&view, 1), scene.draws(), scene.settings(), frame->targets, frame->sync);
+        scene.set_legend_window(extent.width, extent.height);
+        renderer.render(std::span(&view, 1), scene.draws(), scene.settings(/*legend=*/true), frame->targets,
+                        frame->sync);
         window.present(*frame);
         ++frames;
       }

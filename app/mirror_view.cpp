@@ -1,5 +1,7 @@
 #include "mirror_view.hpp"
 
+#include "orbit_control.hpp"
+
 #include "pushpull/renderer/camera.hpp"
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -11,7 +13,46 @@
 namespace pushpull::app {
 
 const char* mirror_mode_name(MirrorMode mode) {
-  return mode == MirrorMode::HeadsetEye ? "headset eye" : "smoothed first person";
+  switch (mode) {
+    case MirrorMode::HeadsetEye:
+      return "headset eye";
+    case MirrorMode::SmoothedFirstPerson:
+      return "smoothed first person";
+    case MirrorMode::FreeOrbit:
+      return "free orbit";
+  }
+  return "?";
+}
+
+MirrorMode next_mirror_mode(MirrorMode mode) {
+  switch (mode) {
+    case MirrorMode::HeadsetEye:
+      return MirrorMode::SmoothedFirstPerson;
+    case MirrorMode::SmoothedFirstPerson:
+      return MirrorMode::FreeOrbit;
+    case MirrorMode::FreeOrbit:
+      return MirrorMode::HeadsetEye;
+  }
+  return MirrorMode::HeadsetEye;
+}
+
+void MirrorView::set_mode(MirrorMode mode) {
+  if (mode == MirrorMode::FreeOrbit && mode_ != MirrorMode::FreeOrbit) {
+    // Start from the reviewer's side: the orbit's azimuth is measured from +Z towards +X around +Y, the
+    // camera sits opposite to where the reviewer looks.
+    orbit_ = renderer::OrbitCamera{};
+    orbit_.azimuth_deg = float(head_yaw_ * 180.0 / std::numbers::pi);
+    orbit_.elevation_deg = 20.0f;
+  }
+  mode_ = mode;
+}
+
+void MirrorView::pointer(const renderer::MirrorWindow::Pointer& p) {
+  if (mode_ == MirrorMode::FreeOrbit) {
+    const bool held = last_pointer_ && (p.left || p.right) && (last_pointer_->left || last_pointer_->right);
+    orbit_with_pointer(orbit_, p, last_pointer_.value_or(p), held);
+  }
+  last_pointer_ = p;
 }
 
 renderer::View MirrorView::update(const std::array<xr::EyeView, 2>& eyes, double dt_s, float aspect) {
@@ -21,6 +62,11 @@ renderer::View MirrorView::update(const std::array<xr::EyeView, 2>& eyes, double
                     left.T_stage_eye.orientation.z);
   const auto& p0 = eyes[0].T_stage_eye.position;
   const auto& p1 = eyes[1].T_stage_eye.position;
+  {
+    const glm::vec3 f = q * glm::vec3(0.0f, 0.0f, -1.0f);
+    head_yaw_ = std::atan2(-double(f.x), -double(f.z));
+  }
+  if (mode_ == MirrorMode::FreeOrbit) return renderer::frame_bounds(bounds_, orbit_, aspect);
   renderer::View view;
   view.projection = renderer::perspective(fov_y, aspect, 0.05f, 100.0f);
   if (mode_ == MirrorMode::HeadsetEye) {

@@ -5,6 +5,7 @@
 #include "grab_placement.hpp"
 #include "hand_sample.hpp"
 #include "mirror_view.hpp"
+#include "orbit_control.hpp"
 #include "review_interaction.hpp"
 #include "review_menu.hpp"
 #include "review_setup.hpp"
@@ -165,6 +166,7 @@ void run_review(const ReviewCommandOptions& o) {
     std::optional<renderer::MirrorWindow> mirror;
     if (o.mirror) mirror.emplace(context, uint32_t(o.mirror_size[0]), uint32_t(o.mirror_size[1]), "pushpull review");
     MirrorView mirror_view;
+    mirror_view.set_orbit_bounds(stage_bounds(rest->V, placement));
     std::optional<std::array<xr::EyeView, 2>> last_eyes;
     std::string mirror_title;
     size_t mirror_frames = 0;
@@ -253,6 +255,7 @@ void run_review(const ReviewCommandOptions& o) {
           if (grab.update(grabbing)) {
             interaction.set_placement(grab.placement());
             scene.set_placement(grab.placement());
+            mirror_view.set_orbit_bounds(stage_bounds(rest->V, grab.placement()));
           }
           if (was_grabbing && !grab.grabbing()) {
             std::vector<double> T;
@@ -307,6 +310,7 @@ void run_review(const ReviewCommandOptions& o) {
             grab.reset();
             interaction.set_placement(grab.placement());
             scene.set_placement(grab.placement());
+            mirror_view.set_orbit_bounds(stage_bounds(rest->V, grab.placement()));
             log.write({{"event", "placement reset"}});
           } else if (in.undo_pressed) {
             service.undo();
@@ -395,9 +399,7 @@ void run_review(const ReviewCommandOptions& o) {
           mirror->poll_events();
           for (int key : mirror->take_key_presses()) {
             if (key == 'C') scene.set_colour(next_colour(scene.colour()));
-            if (key == 'V')
-              mirror_view.set_mode(mirror_view.mode() == MirrorMode::HeadsetEye ? MirrorMode::SmoothedFirstPerson
-                                                                                 : MirrorMode::HeadsetEye);
+            if (key == 'V') mirror_view.set_mode(next_mirror_mode(mirror_view.mode()));
             if (key == 'M' && !interaction.dragging() && !o.fixed_method) {
               interaction.set_method(next_method(interaction.method()));
               recorder.write_method(t, interaction.method());
@@ -405,6 +407,7 @@ void run_review(const ReviewCommandOptions& o) {
             if (key == 256 /* GLFW_KEY_ESCAPE */) xr.request_exit();
           }
           if (mirror->should_close()) xr.request_exit();
+          mirror_view.pointer(mirror->pointer());
           const auto now = Clock::now();
           const double dt = std::chrono::duration<double>(now - last_mirror).count();
           last_mirror = now;
@@ -412,7 +415,9 @@ void run_review(const ReviewCommandOptions& o) {
             if (auto target = mirror->acquire()) {
               const VkExtent2D e = target->targets.extent;
               const renderer::View view = mirror_view.update(*last_eyes, dt, float(e.width) / float(e.height));
-              renderer.render(std::span(&view, 1), draws, scene.settings(), target->targets, target->sync);
+              scene.set_legend_window(e.width, e.height);
+              renderer.render(std::span(&view, 1), draws, scene.settings(/*legend=*/true), target->targets,
+                              target->sync);
               mirror->present(*target);
               ++mirror_frames;
             }

@@ -2,15 +2,28 @@
 
 #include "pushpull/deform/metrics.hpp"
 #include "pushpull/renderer/camera.hpp"
+#include "pushpull/renderer/geometry.hpp"
 #include "pushpull/renderer/vk_check.hpp"
 
 #include <glm/gtc/quaternion.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <chrono>
 #include <stdexcept>
 
 namespace pushpull::app {
+namespace {
+
+// The smallest of 1, 2, 2.5, 5 times a power of ten that is >= mm (> 0).
+double round_up_mm(double mm) {
+  const double magnitude = std::pow(10.0, std::floor(std::log10(mm)));
+  for (const double m : {1.0, 2.0, 2.5, 5.0, 10.0})
+    if (m * magnitude >= mm * (1.0 - 1e-12)) return m * magnitude;
+  return 10.0 * magnitude;
+}
+
+}  // namespace
 
 ReviewScene::ReviewScene(renderer::Renderer& renderer, const assets::Model& model, const StagePlacement& placement,
                          ReviewColour colour, double life_size_scale)
@@ -51,6 +64,7 @@ void ReviewScene::set_colour(ReviewColour colour) {
   if (colour == colour_) return;
   colour_ = colour;
   if (last_) upload(*last_);
+  update_legend();
 }
 
 void ReviewScene::update(const std::shared_ptr<const deform::Snapshot>& snapshot) {
@@ -69,8 +83,10 @@ void ReviewScene::upload(const deform::Snapshot& snapshot) {
   if (colour_ == ReviewColour::Displacement) {
     const Eigen::VectorXd magnitude = (V - rest_V_).rowwise().norm();
     scalars = to_render_vertices(render_, magnitude);
-    // The colour map's top: the largest displacement seen, at least 1 mm at life size.
-    scalar_max_ = std::max(magnitude.size() ? magnitude.maxCoeff() : 0.0, 1e-3 / scale_);
+    // The colour map's top: the largest displacement, at least 1 mm at life size, rounded up to a round number
+    // of mm (1, 2, 2.5 or 5 times a power of ten), so the legend's scale changes only now and then in a drag.
+    const double largest_mm = 1000.0 * scale_ * (magnitude.size() ? magnitude.maxCoeff() : 0.0);
+    scalar_max_ = round_up_mm(std::max(largest_mm, 1.0)) / (1000.0 * scale_);
   } else if (colour_ == ReviewColour::CurvatureSign) {
     const deform::GaussianCurvature K = deform::gaussian_curvature(V, F_);
     const double threshold = deform::flat_curvature_threshold(deform::curvature_reference_length(rest_V_),
@@ -106,6 +122,35 @@ void ReviewScene::upload(const deform::Snapshot& snapshot) {
   last_cpu_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   renderer_.update_vertices(mesh_, positions, normals, scalars, overlays);
   positions_ = positions;
+  update_legend();
+}
+
+void ReviewScene::set_legend_window(uint32_t width, uint32_t height) {
+  if (width == legend_width_ && height == legend_height_) return;
+  legend_width_ = std::max(width, 1u);
+  legend_height_ = std::max(height, 1u);
+  legend_shown_.reset();
+  update_legend();
+}
+
+void ReviewScene::update_legend() {
+  const double top_mm = 1000.0 * scale_ * std::max(scalar_max_, 1e-3 / scale_);
+  const std::pair<ReviewColour, double> wanted{colour_, colour_ == ReviewColour::Displacement ? top_mm : 0.0};
+  if (legend_shown_ == wanted) return;
+  legend_shown_ = wanted;
+  // Lower-left corner, about a third of the window high (as `pushpull render` places it).
+  const float h = 0.32f, w = h * float(legend_height_) / float(legend_width_) * 0.55f;
+  const uint32_t px_h = std::max(110u, uint32_t(float(legend_height_) * h));
+  const uint32_t px_w = std::max(60u, uint32_t(float(px_h) * 0.55f));
+  if (colour_ == ReviewColour::Displacement) {
+    renderer_.set_legend(renderer::make_displacement_legend(float(top_mm), "|d| mm", px_w, px_h),
+                         {0.015f, 1.0f - h - 0.015f, 0.015f + w, 0.985f});
+  } else if (colour_ == ReviewColour::CurvatureSign) {
+    renderer_.set_legend(renderer::make_curvature_legend(px_w, px_h / 2),
+                         {0.015f, 1.0f - 0.5f * h - 0.015f, 0.015f + w, 0.985f});
+  } else {
+    renderer_.set_legend(std::nullopt);
+  }
 }
 
 void ReviewScene::set_highlight(const std::vector<int>& vertices) {
@@ -127,8 +172,9 @@ void ReviewScene::set_highlight(const std::vector<int>& vertices) {
 
 std::vector<renderer::Draw> ReviewScene::draws() const { return {renderer::Draw{mesh_, T_stage_model_}}; }
 
-renderer::FrameSettings ReviewScene::settings() const {
+renderer::FrameSettings ReviewScene::settings(bool legend) const {
   renderer::FrameSettings s;
+  s.show_legend = legend;
   s.up = {0.0f, 1.0f, 0.0f};  // stage
   switch (colour_) {
     case ReviewColour::Material:

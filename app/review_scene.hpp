@@ -19,6 +19,8 @@
 #include "pushpull/xr/session.hpp"
 
 #include <cstdint>
+#include <optional>
+#include <utility>
 #include <vector>
 
 namespace pushpull::app {
@@ -45,10 +47,14 @@ class ReviewScene {
   [[nodiscard]] double last_cpu_ms() const { return last_cpu_ms_; }
 
   [[nodiscard]] std::vector<renderer::Draw> draws() const;
-  [[nodiscard]] renderer::FrameSettings settings() const;
+  // legend: draw the colour map's legend (windows); the headset's eyes go without.
+  [[nodiscard]] renderer::FrameSettings settings(bool legend = false) const;
+  // The window the legend is drawn in (pixels): sizes the legend's texture and rectangle.
+  void set_legend_window(uint32_t width, uint32_t height);
 
  private:
   void upload(const deform::Snapshot& snapshot);
+  void update_legend();  // the renderer's legend for the colour map and its top (only when they change)
 
   renderer::Renderer& renderer_;
   RenderModel render_;
@@ -66,6 +72,8 @@ class ReviewScene {
   bool highlight_shown_ = false;  // its overlays are in the mesh
   std::vector<float> positions_;  // the render positions last uploaded
   double last_cpu_ms_ = 0.0;
+  uint32_t legend_width_ = 960, legend_height_ = 540;
+  std::optional<std::pair<ReviewColour, double>> legend_shown_;  // colour map and top (mm) of the legend
   std::shared_ptr<const deform::Snapshot> last_;
 };
 

@@ -382,6 +382,92 @@ TEST(ReviewXrWindow, MirrorWindowPresentsFramesAndLeavesTheCommitUnchanged) {
   EXPECT_EQ((a.V - b.V).cwiseAbs().maxCoeff(), 0.0);
 }
 
+// An X window dump (xwd -root) as RGB8 rows: ZPixmap, 24 or 32 bits per pixel, true colour (Xvfb's default).
+struct ScreenShot {
+  int width = 0, height = 0;
+  std::vector<uint8_t> rgb;
+};
+ScreenShot read_xwd(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  auto u32 = [&](size_t offset) {
+    return uint32_t(bytes.at(offset)) << 24 | uint32_t(bytes.at(offset + 1)) << 16 |
+           uint32_t(bytes.at(offset + 2)) << 8 | uint32_t(bytes.at(offset + 3));
+  };
+  ScreenShot shot;
+  const uint32_t header = u32(0), format = u32(8), width = u32(16), height = u32(20), byte_order = u32(28);
+  const uint32_t bits = u32(44), line = u32(48), red = u32(56), green = u32(60), blue = u32(64), colours = u32(76);
+  if (format != 2 || (bits != 32 && bits != 24)) return shot;  // only ZPixmap true colour
+  auto channel = [](uint32_t pixel, uint32_t mask) {
+    int shift = 0;
+    while (mask != 0 && (mask & 1u) == 0) mask >>= 1, ++shift;
+    return uint8_t(((pixel >> shift) & mask) * 255u / std::max(mask, 1u));
+  };
+  const size_t data = header + size_t(colours) * 12, step = bits / 8;
+  shot.width = int(width);
+  shot.height = int(height);
+  for (uint32_t y = 0; y < height; ++y)
+    for (uint32_t x = 0; x < width; ++x) {
+      const size_t at = data + size_t(y) * line + size_t(x) * step;
+      uint32_t pixel = 0;
+      for (size_t k = 0; k < step; ++k)
+        pixel |= uint32_t(bytes.at(at + k)) << (byte_order == 0 ? 8 * k : 8 * (step - 1 - k));
+      shot.rgb.push_back(channel(pixel, red));
+      shot.rgb.push_back(channel(pixel, green));
+      shot.rgb.push_back(channel(pixel, blue));
+    }
+  return shot;
+}
+
+// The mirror window as the X server shows it (a dump of the virtual screen after the commit) shows the scene the
+// eyes see: the bonnet in the displacement colours, in about the same proportions of red (moved) and blue.
+TEST(ReviewXrWindow, MirrorWindowOnScreenShowsTheEyesScene) {
+  if (std::getenv("DISPLAY") == nullptr) GTEST_SKIP() << "no DISPLAY (ctest runs this under xvfb-run)";
+  ASSERT_EQ(run_command("command -v xwd").status, 0) << "xwd is missing (scripts/setup installs x11-apps)";
+  const fs::path dir = test_dir();
+  const std::string script = script_start() + R"({"t":1.4,"path":"/user/hand/right/input/trigger/value","value":1.0}
+{"t":1.5,"path":"/user/hand/right/input/trigger/value","value":0.0}
+{"t":2.0,"event":"capture"}
+{"t":30.0,"event":"exit"}
+)";
+  std::ofstream(dir / "input.jsonl") << script;
+  const std::string env = pushpull::testing::xr_sim_environment() + " PUSHPULL_XR_SIM_INPUT=" +
+                          (dir / "input.jsonl").string() + " PUSHPULL_XR_SIM_CAPTURE=" + (dir / "capture").string() +
+                          " PUSHPULL_XR_SIM_WIDTH=256 PUSHPULL_XR_SIM_HEIGHT=256 PUSHPULL_XR_SIM_RATE=30"
+                          " PUSHPULL_XR_SIM_PROFILE=/interaction_profiles/oculus/touch_controller";
+  std::ofstream(dir / "drive.sh") << "set -e\n"
+      << env << " " << PUSHPULL_EXECUTABLE << " review " << kHood << kPlacement
+      << " --solver-nice 0 --mirror --mirror-size 320 240 --events " << (dir / "events.jsonl").string() << " > "
+      << (dir / "review.log").string() << " 2>&1 &\n"
+      << "pid=$!\nfor i in $(seq 600); do grep -q '\"commit\"' " << (dir / "events.jsonl").string()
+      << " 2>/dev/null && break; sleep 0.1; done\nsleep 1\nxwd -root -silent > " << (dir / "screen.xwd").string()
+      << "\nwait $pid\n";
+  const auto driven = run_command("timeout 300 bash " + (dir / "drive.sh").string());
+  ASSERT_EQ(driven.status, 0) << driven.output;
+  const ScreenShot screen = read_xwd(dir / "screen.xwd");
+  ASSERT_GT(screen.width, 0) << "could not read the screen dump";
+  auto fractions = [](const uint8_t* rgb, size_t pixels, size_t stride) {
+    size_t red = 0, blue = 0;
+    for (size_t i = 0; i < pixels; ++i) {
+      const int r = rgb[i * stride], g = rgb[i * stride + 1], b = rgb[i * stride + 2];
+      if (r > g + 80 && r > b + 80) ++red;
+      if (b > r + 80 && b > g + 40) ++blue;
+    }
+    return std::pair<size_t, size_t>{red, blue};
+  };
+  const auto [screen_red, screen_blue] = fractions(screen.rgb.data(), screen.rgb.size() / 3, 3);
+  const auto eye = pushpull::renderer::read_png(dir / "capture" / "frame_000060_left.png");
+  const auto [eye_red, eye_blue] = fractions(eye.pixels.data(), eye.pixels.size() / 4, 4);
+  ASSERT_GT(eye_red, 50u);
+  EXPECT_GT(screen_red, 50u);
+  EXPECT_GT(screen_blue, 50u);
+  const double eye_share = double(eye_red) / double(eye_red + eye_blue);
+  const double screen_share = double(screen_red) / double(screen_red + screen_blue);
+  std::printf("red share of the coloured pixels: mirror on screen %.3f (%zu red), left eye %.3f (%zu red)\n",
+              screen_share, screen_red, eye_share, eye_red);
+  EXPECT_NEAR(screen_share, eye_share, 0.5 * eye_share);
+}
+
 TEST(ReviewXrWindow, WithoutARuntimeItSaysSoAndOpensTheDesktopWindow) {
   if (std::getenv("DISPLAY") == nullptr) GTEST_SKIP() << "no DISPLAY (ctest runs this under xvfb-run)";
   const fs::path dir = test_dir();
@@ -410,20 +496,20 @@ TEST(ReviewXrWindow, DesktopMouseGesturesCommitAndTheirRecordingReplaysBitIdenti
       << PUSHPULL_EXECUTABLE << " review " << kHood << kPlacement
       << " --desktop --mirror-size 400 300 --record " << recording.string() << " --out " << out.string()
       << " > " << (dir / "review.log").string() << " 2>&1 &\n"
-      << R"(pid=$!
-wid=$(timeout 60 xdotool search --sync --name "pushpull review" | head -1)
+      << R"SH(pid=$!
+wid=$(timeout 60 xdotool search --sync --onlyvisible --name "pushpull review \(desktop\)" | head -1)
 sleep 1
 drag() { xdotool mousemove --window $wid $1 $2; sleep 0.3; xdotool mousedown 1
   for i in 1 2 3 4 5 6 7 8; do xdotool mousemove_relative -- $3 $4; sleep 0.05; done
   sleep 0.3; xdotool mouseup 1; sleep 1; }
-key() { xdotool key --window $wid $1; sleep 0.4; }
+key() { xdotool key $1; sleep 0.4; }  # to the window under the pointer (no window manager)
 drag 200 150 3 0
 key u; key r; key m; key m
 drag 150 170 0 -3
 key u
 key Escape
 wait $pid
-)";
+)SH";
   const auto driven = run_command("timeout 120 bash " + (dir / "drive.sh").string());
   std::ifstream log_file(dir / "review.log");
   const std::string log((std::istreambuf_iterator<char>(log_file)), std::istreambuf_iterator<char>());

@@ -441,7 +441,7 @@ void Renderer::Impl::record_view(VkCommandBuffer cmd, const PipelinePair& pipes,
       vkCmdDrawIndexed(cmd, sub.index_count, 1, sub.first_index, 0, 0);
     }
   }
-  if (legend_set != VK_NULL_HANDLE) {
+  if (legend_set != VK_NULL_HANDLE && settings.show_legend) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes.overlay.get());
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layouts.overlay2d.get(), 0, 1, &legend_set,
                             0, nullptr);

@@ -97,6 +97,7 @@ struct FrameSettings {
   glm::vec4 clear_colour{0.16f, 0.17f, 0.19f, 1.0f};  // linear
   float exposure = 1.0f;
   bool lighting = true;  // false: flat colours (exact colour-map values; tests, colour pickers)
+  bool show_legend = true;  // draw the legend set by Renderer::set_legend (a window: yes; the headset's eyes: no)
 };
 
 }  // namespace pushpull::renderer
