@@ -160,8 +160,7 @@ void run_review(const ReviewCommandOptions& o) {
         {vk.instance, vk.physical_device, vk.device, vk.queue_family_index, vk.queue});
     renderer::RendererOptions renderer_options;
     renderer_options.samples = VkSampleCountFlagBits(o.samples);
-    // render() calls per loop frame: eyes, and the mirror; two loop frames in flight either way.
-    renderer_options.frames_in_flight = o.mirror ? 4 : 2;
+    renderer_options.frames_in_flight = 2;  // loop frames: the eyes and the mirror are one render_frame()
     renderer::Renderer renderer(context, renderer_options);
     std::optional<renderer::MirrorWindow> mirror;
     if (o.mirror) mirror.emplace(context, uint32_t(o.mirror_size[0]), uint32_t(o.mirror_size[1]), "pushpull review");
@@ -385,16 +384,8 @@ void run_review(const ReviewCommandOptions& o) {
         std::vector<renderer::Draw> draws = scene.draws();
         for (const WorldLabel* label : {&hand_label, &menu_label})
           if (const auto d = label->draw()) draws.push_back(*d);
-        bool rendered = false;
-        if (frame.should_render && (!o.draw_frame || o.draw_frame(t))) {
-          const uint32_t left = xr.eye(0).acquire();
-          const uint32_t right = xr.eye(1).acquire();
-          const std::array<renderer::View, 2> views{eye_view(frame.eyes[0]), eye_view(frame.eyes[1])};
-          renderer.render(views, draws, scene.settings(), eyes.targets(left, right));
-          rendered = true;
-        }
-        xr.end_frame(frame, rendered);
         if (frame.should_render) last_eyes = frame.eyes;
+        // The mirror's input first: its keys act on this frame.
         if (mirror) {
           mirror->poll_events();
           for (int key : mirror->take_key_presses()) {
@@ -408,20 +399,43 @@ void run_review(const ReviewCommandOptions& o) {
           }
           if (mirror->should_close()) xr.request_exit();
           mirror_view.pointer(mirror->pointer());
+        }
+        // One loop frame, one submission: the eyes (when the runtime wants them and the frame is drawn) and the
+        // mirror window share one frame in flight and one upload of the newest snapshot.
+        std::vector<renderer::RenderPass> passes;
+        std::array<renderer::View, 2> eye_views;
+        renderer::RenderTargets eye_targets;
+        bool rendered = false;
+        if (frame.should_render && (!o.draw_frame || o.draw_frame(t))) {
+          const uint32_t left = xr.eye(0).acquire();
+          const uint32_t right = xr.eye(1).acquire();
+          eye_views = {eye_view(frame.eyes[0]), eye_view(frame.eyes[1])};
+          eye_targets = eyes.targets(left, right);
+          passes.push_back({eye_views, draws, scene.settings(), &eye_targets, {}});
+          rendered = true;
+        }
+        std::optional<renderer::MirrorWindow::Frame> mirror_target;
+        renderer::View mirror_camera;
+        if (mirror) {
           const auto now = Clock::now();
           const double dt = std::chrono::duration<double>(now - last_mirror).count();
           last_mirror = now;
-          if (last_eyes) {
-            if (auto target = mirror->acquire()) {
-              const VkExtent2D e = target->targets.extent;
-              const renderer::View view = mirror_view.update(*last_eyes, dt, float(e.width) / float(e.height));
-              scene.set_legend_window(e.width, e.height);
-              renderer.render(std::span(&view, 1), draws, scene.settings(/*legend=*/true), target->targets,
-                              target->sync);
-              mirror->present(*target);
-              ++mirror_frames;
-            }
+          if (last_eyes) mirror_target = mirror->acquire();
+          if (mirror_target) {
+            const VkExtent2D e = mirror_target->targets.extent;
+            mirror_camera = mirror_view.update(*last_eyes, dt, float(e.width) / float(e.height));
+            scene.set_legend_window(e.width, e.height);
+            passes.push_back({std::span(&mirror_camera, 1), draws, scene.settings(/*legend=*/true),
+                              &mirror_target->targets, mirror_target->sync});
           }
+        }
+        if (!passes.empty()) renderer.render_frame(passes);
+        xr.end_frame(frame, rendered);
+        if (mirror_target) {
+          mirror->present(*mirror_target);
+          ++mirror_frames;
+        }
+        if (mirror) {
           char title[256];
           std::snprintf(title, sizeof title, "pushpull review | %s%s | |d| %.1f mm | %d it %s | %s | %s",
                         std::string(deform::method_name(interaction.method())).c_str(),

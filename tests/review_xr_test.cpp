@@ -372,7 +372,9 @@ TEST(ReviewXrWindow, MirrorWindowPresentsFramesAndLeavesTheCommitUnchanged) {
   const ReviewRun plain = run_review(dir, script, "--out " + (dir / "plain.off").string());
   ASSERT_EQ(plain.result.status, 0) << plain.result.output;
   const ReviewRun mirrored =
-      run_review(dir, script, "--mirror --mirror-size 320 240 --out " + (dir / "mirrored.off").string());
+      run_review(dir, script,
+                 "--mirror --mirror-size 320 240 --validation --out " + (dir / "mirrored.off").string(),
+                 "XR_ENABLE_API_LAYERS=XR_APILAYER_LUNARG_core_validation");  // eyes + mirror in one submission
   ASSERT_EQ(mirrored.result.status, 0) << mirrored.result.output;
   const auto at = mirrored.result.output.find("mirror window presented ");
   ASSERT_NE(at, std::string::npos) << mirrored.result.output;

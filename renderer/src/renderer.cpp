@@ -17,6 +17,7 @@
 #include <map>
 #include <memory>
 #include <stdexcept>
+#include <string>
 #include <thread>
 
 namespace pushpull::renderer {
@@ -27,12 +28,18 @@ namespace {
 
 constexpr uint32_t kMaxMaterials = 4096;
 
-struct FrameSlot {
-  UniqueCommandPool pool;
+// What one pass of a frame records into: its own command buffer (its own submission batch, so a pass that
+// waits for a window's image does not hold back the others) and its own FrameDataGpu (views, lighting).
+struct PassResources {
   VkCommandBuffer cmd = VK_NULL_HANDLE;
-  UniqueFence fence;  // signalled when the GPU finished the frame that last used this slot
   Buffer frame_data;  // FrameDataGpu, host visible
   VkDescriptorSet frame_set = VK_NULL_HANDLE;
+};
+
+struct FrameSlot {
+  UniqueCommandPool pool;
+  UniqueFence fence;  // signalled when the GPU finished the frame that last used this slot (all its passes)
+  std::array<PassResources, Renderer::kMaxPasses> passes;
 };
 
 struct GpuMaterial {
@@ -232,24 +239,26 @@ Renderer::Renderer(const Context& context, const RendererOptions& options)
     alloc.commandPool = slot.pool.get();
     alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
     alloc.commandBufferCount = 1;
-    PP_VK_CHECK(vkAllocateCommandBuffers(device, &alloc, &slot.cmd));
     VkFenceCreateInfo fi{};
     fi.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO;
     fi.flags = VK_FENCE_CREATE_SIGNALED_BIT;
     VkFence fence = VK_NULL_HANDLE;
     PP_VK_CHECK(vkCreateFence(device, &fi, nullptr, &fence));
     slot.fence = UniqueFence(device, fence);
-    slot.frame_data = create_buffer(context, sizeof(FrameDataGpu), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
-    slot.frame_set = r.allocate_set(r.layouts.frame.get());
-    VkDescriptorBufferInfo buffer_info{slot.frame_data.buffer.get(), 0, sizeof(FrameDataGpu)};
-    VkWriteDescriptorSet write{};
-    write.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
-    write.dstSet = slot.frame_set;
-    write.dstBinding = 0;
-    write.descriptorCount = 1;
-    write.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
-    write.pBufferInfo = &buffer_info;
-    vkUpdateDescriptorSets(device, 1, &write, 0, nullptr);
+    for (PassResources& pass : slot.passes) {
+      PP_VK_CHECK(vkAllocateCommandBuffers(device, &alloc, &pass.cmd));
+      pass.frame_data = create_buffer(context, sizeof(FrameDataGpu), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
+      pass.frame_set = r.allocate_set(r.layouts.frame.get());
+      VkDescriptorBufferInfo buffer_info{pass.frame_data.buffer.get(), 0, sizeof(FrameDataGpu)};
+      VkWriteDescriptorSet write{};
+      write.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
+      write.dstSet = pass.frame_set;
+      write.dstBinding = 0;
+      write.descriptorCount = 1;
+      write.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+      write.pBufferInfo = &buffer_info;
+      vkUpdateDescriptorSets(device, 1, &write, 0, nullptr);
+    }
   }
 
   TextureRGBA8 white{1, 1, {255, 255, 255, 255}, false};
@@ -483,68 +492,88 @@ void Renderer::Impl::record_view(VkCommandBuffer cmd, const PipelinePair& pipes,
 
 void Renderer::render(std::span<const View> views, std::span<const Draw> draws, const FrameSettings& settings,
                       const RenderTargets& targets, const FrameSync& sync) {
+  const RenderPass pass{views, draws, settings, &targets, sync};
+  render_frame(std::span(&pass, 1));
+}
+
+void Renderer::render_frame(std::span<const RenderPass> passes) {
   Impl& r = *impl_;
   r.assert_owner();
-  if (views.empty() || views.size() > 2 || targets.views.size() != views.size())
-    throw std::invalid_argument("render: need 1 or 2 views and as many colour targets");
-  if (targets.extent.width == 0 || targets.extent.height == 0)
-    throw std::invalid_argument("render: zero-sized target");
+  if (passes.empty() || passes.size() > kMaxPasses)
+    throw std::invalid_argument("render_frame: need 1 to " + std::to_string(kMaxPasses) + " passes");
+  for (const RenderPass& pass : passes) {
+    if (pass.targets == nullptr) throw std::invalid_argument("render_frame: a pass without targets");
+    if (pass.views.empty() || pass.views.size() > 2 || pass.targets->views.size() != pass.views.size())
+      throw std::invalid_argument("render: need 1 or 2 views and as many colour targets");
+    if (pass.targets->extent.width == 0 || pass.targets->extent.height == 0)
+      throw std::invalid_argument("render: zero-sized target");
+  }
   const uint32_t slot_id = r.slot_index();
   FrameSlot& slot = r.slots[slot_id];
   r.wait_slot(slot_id);
-  const Attachments& attachments = r.ensure_attachments(targets.extent, targets.format);
-  PipelinePair& pipes = r.pipelines_for(targets.format);
 
-  FrameDataGpu data{};
-  for (size_t i = 0; i < views.size(); ++i) {
-    data.views[i].view_projection = views[i].projection * views[i].view;
-    data.views[i].eye_world = glm::vec4(glm::vec3(glm::inverse(views[i].view)[3]), 1.0f);
-  }
-  const glm::vec3 up = glm::normalize(settings.up);
-  // Key light from above, front-left of the first view.
-  const glm::mat3 R_world_eye = glm::transpose(glm::mat3(views[0].view));
-  const glm::vec3 key = glm::normalize(R_world_eye * glm::vec3(-0.4f, 0.0f, 0.6f) + up * 1.2f);
-  data.up_world = glm::vec4(up, 0.0f);
-  data.key_light_dir = glm::vec4(key, 0.0f);
-  data.colour_params = {settings.scalar_max, settings.curvature_epsilon, settings.exposure,
-                        settings.show_overlays ? 1.0f : 0.0f};
-  data.mode = {static_cast<uint32_t>(settings.color_mode), settings.lighting ? 1u : 0u, 0u, 0u};
-  std::memcpy(slot.frame_data.mapped, &data, sizeof(data));
-
-  VkCommandBuffer cmd = slot.cmd;
-  PP_VK_CHECK(vkResetCommandBuffer(cmd, 0));
-  VkCommandBufferBeginInfo begin{};
-  begin.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
-  begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-  PP_VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
+  std::array<VkCommandBufferSubmitInfo, kMaxPasses> cmd_infos{};
+  std::array<VkSemaphoreSubmitInfo, kMaxPasses> wait_infos{}, signal_infos{};
+  std::array<VkSubmitInfo2, kMaxPasses> submits{};
   r.last_upload_bytes = 0;
-  for (GpuMesh& mesh : r.meshes) r.last_upload_bytes += mesh.record_pending_uploads(cmd, slot_id);
-  for (uint32_t v = 0; v < views.size(); ++v)
-    r.record_view(cmd, pipes, targets.views[v], targets.extent, v, draws, settings, slot.frame_set, attachments);
-  PP_VK_CHECK(vkEndCommandBuffer(cmd));
+  for (size_t p = 0; p < passes.size(); ++p) {
+    const RenderPass& pass = passes[p];
+    const RenderTargets& targets = *pass.targets;
+    const FrameSettings& settings = pass.settings;
+    PassResources& res = slot.passes[p];
+    const Attachments& attachments = r.ensure_attachments(targets.extent, targets.format);
+    PipelinePair& pipes = r.pipelines_for(targets.format);
 
+    FrameDataGpu data{};
+    for (size_t i = 0; i < pass.views.size(); ++i) {
+      data.views[i].view_projection = pass.views[i].projection * pass.views[i].view;
+      data.views[i].eye_world = glm::vec4(glm::vec3(glm::inverse(pass.views[i].view)[3]), 1.0f);
+    }
+    const glm::vec3 up = glm::normalize(settings.up);
+    // Key light from above, front-left of the first view.
+    const glm::mat3 R_world_eye = glm::transpose(glm::mat3(pass.views[0].view));
+    const glm::vec3 key = glm::normalize(R_world_eye * glm::vec3(-0.4f, 0.0f, 0.6f) + up * 1.2f);
+    data.up_world = glm::vec4(up, 0.0f);
+    data.key_light_dir = glm::vec4(key, 0.0f);
+    data.colour_params = {settings.scalar_max, settings.curvature_epsilon, settings.exposure,
+                          settings.show_overlays ? 1.0f : 0.0f};
+    data.mode = {static_cast<uint32_t>(settings.color_mode), settings.lighting ? 1u : 0u, 0u, 0u};
+    std::memcpy(res.frame_data.mapped, &data, sizeof(data));
+
+    VkCommandBuffer cmd = res.cmd;
+    PP_VK_CHECK(vkResetCommandBuffer(cmd, 0));
+    VkCommandBufferBeginInfo begin{};
+    begin.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
+    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    PP_VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
+    if (p == 0)  // the frame's vertex uploads, once, before every pass (batches run in submission order)
+      for (GpuMesh& mesh : r.meshes) r.last_upload_bytes += mesh.record_pending_uploads(cmd, slot_id);
+    for (uint32_t v = 0; v < pass.views.size(); ++v)
+      r.record_view(cmd, pipes, targets.views[v], targets.extent, v, pass.draws, settings, res.frame_set,
+                    attachments);
+    PP_VK_CHECK(vkEndCommandBuffer(cmd));
+
+    cmd_infos[p].sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO;
+    cmd_infos[p].commandBuffer = cmd;
+    wait_infos[p].sType = VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO;
+    wait_infos[p].semaphore = pass.sync.wait;
+    wait_infos[p].stageMask = VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT;
+    signal_infos[p].sType = VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO;
+    signal_infos[p].semaphore = pass.sync.signal;
+    signal_infos[p].stageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+    VkSubmitInfo2& submit = submits[p];
+    submit.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2;
+    submit.waitSemaphoreInfoCount = pass.sync.wait != VK_NULL_HANDLE ? 1 : 0;
+    submit.pWaitSemaphoreInfos = &wait_infos[p];
+    submit.signalSemaphoreInfoCount = pass.sync.signal != VK_NULL_HANDLE ? 1 : 0;
+    submit.pSignalSemaphoreInfos = &signal_infos[p];
+    submit.commandBufferInfoCount = 1;
+    submit.pCommandBufferInfos = &cmd_infos[p];
+  }
+  // One submission, one fence for the slot: the fence's scope is every batch of this vkQueueSubmit2.
   VkFence fence = slot.fence.get();
   PP_VK_CHECK(vkResetFences(r.context.device(), 1, &fence));
-  VkCommandBufferSubmitInfo cmd_info{};
-  cmd_info.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO;
-  cmd_info.commandBuffer = cmd;
-  VkSemaphoreSubmitInfo wait_info{};
-  wait_info.sType = VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO;
-  wait_info.semaphore = sync.wait;
-  wait_info.stageMask = VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT;
-  VkSemaphoreSubmitInfo signal_info{};
-  signal_info.sType = VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO;
-  signal_info.semaphore = sync.signal;
-  signal_info.stageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-  VkSubmitInfo2 submit{};
-  submit.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2;
-  submit.waitSemaphoreInfoCount = sync.wait != VK_NULL_HANDLE ? 1 : 0;
-  submit.pWaitSemaphoreInfos = &wait_info;
-  submit.signalSemaphoreInfoCount = sync.signal != VK_NULL_HANDLE ? 1 : 0;
-  submit.pSignalSemaphoreInfos = &signal_info;
-  submit.commandBufferInfoCount = 1;
-  submit.pCommandBufferInfos = &cmd_info;
-  PP_VK_CHECK(vkQueueSubmit2(r.context.queue(), 1, &submit, fence));
+  PP_VK_CHECK(vkQueueSubmit2(r.context.queue(), uint32_t(passes.size()), submits.data(), fence));
   ++r.frame_index;
 }
 

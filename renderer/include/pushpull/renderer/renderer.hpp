@@ -76,7 +76,18 @@ struct Draw {
   bool on_top = false;        // drawn after the rest without depth test (the p0 -> p1 arrow)
 };
 
+// One pass of a loop frame: views into targets (the headset's eyes, or a window), with its own draws, settings
+// and synchronisation. The spans and the targets must stay valid during render_frame().
+struct RenderPass {
+  std::span<const View> views;
+  std::span<const Draw> draws;
+  FrameSettings settings;
+  const RenderTargets* targets = nullptr;
+  FrameSync sync;
+};
+
 struct RendererOptions {
+  // Loop frames (render or render_frame calls) the CPU may run ahead of the GPU; each owns a staging slot.
   uint32_t frames_in_flight = 2;
   VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_4_BIT;  // MSAA, resolved into the targets
 };
@@ -111,6 +122,13 @@ class Renderer {
   // targets.views. Returns without waiting for the GPU.
   void render(std::span<const View> views, std::span<const Draw> draws, const FrameSettings& settings,
               const RenderTargets& targets, const FrameSync& sync = {});
+
+  // One loop frame of several passes (at most kMaxPasses: the eyes and a mirror window), recorded and submitted
+  // together: one frame in flight and one staging slot for all of them, the vertex uploads recorded once before
+  // the first pass. Each pass is its own batch of the one submission (a window's acquire semaphore holds back
+  // only its pass); the frame's fence covers all. render() is render_frame() with one pass.
+  static constexpr size_t kMaxPasses = 2;
+  void render_frame(std::span<const RenderPass> passes);
 
   // Waits until the GPU has finished everything submitted.
   void wait_idle();
