@@ -168,7 +168,7 @@ void run_review(const ReviewCommandOptions& o) {
     mirror_view.set_orbit_bounds(stage_bounds(rest->V, placement));
     std::optional<std::array<xr::EyeView, 2>> last_eyes;
     std::string mirror_title;
-    size_t mirror_frames = 0;
+    size_t mirror_frames = 0, mirror_blits = 0;
     auto last_mirror = Clock::now();
     ReviewScene scene(renderer, model, placement, colour, life.scale());
     EyeTargets eyes(vk.device, xr.eye(0), xr.eye(1));
@@ -424,9 +424,20 @@ void run_review(const ReviewCommandOptions& o) {
           if (mirror_target) {
             const VkExtent2D e = mirror_target->targets.extent;
             mirror_camera = mirror_view.update(*last_eyes, dt, float(e.width) / float(e.height));
-            scene.set_legend_window(e.width, e.height);
-            passes.push_back({std::span(&mirror_camera, 1), draws, scene.settings(/*legend=*/true),
-                              &mirror_target->targets, mirror_target->sync});
+            // Headset-eye mode shows the left eye as drawn (a copy, no second drawing); the other modes draw
+            // their own view, with the colour-map legend.
+            const bool blit = rendered && mirror_view.mode() == MirrorMode::HeadsetEye && mirror->accepts_blit() &&
+                              renderer.can_blit(eye_targets.format, mirror_target->targets.format);
+            renderer::RenderPass pass{std::span(&mirror_camera, 1), draws, scene.settings(/*legend=*/true),
+                                      &mirror_target->targets, mirror_target->sync};
+            if (blit) {
+              pass.blit_from = &eye_targets.views[0];
+              pass.blit_from_extent = eye_targets.extent;
+              ++mirror_blits;
+            } else {
+              scene.set_legend_window(e.width, e.height);
+            }
+            passes.push_back(pass);
           }
         }
         if (!passes.empty()) renderer.render_frame(passes);
@@ -480,7 +491,9 @@ void run_review(const ReviewCommandOptions& o) {
     if (validation && validation->message_count() > 0)
       throw CommandError("Vulkan validation reported " + std::to_string(validation->message_count()) +
                          " message(s) (printed above)");
-    if (mirror) std::printf("pushpull review: mirror window presented %zu frames\n", mirror_frames);
+    if (mirror)
+      std::printf("pushpull review: mirror window presented %zu frames (%zu copied from the left eye)\n",
+                  mirror_frames, mirror_blits);
     if (o.benchmark) stats.print();
   }
 }

@@ -36,6 +36,7 @@ struct MirrorWindow::Impl {
   std::vector<UniqueSemaphore> rendered;  // one per swapchain image
   uint32_t next_acquire = 0;
   bool needs_recreate = false;
+  bool blit_target = false;  // the swapchain images take transfers (TRANSFER_DST usage)
   std::vector<int> key_presses;
   double scroll = 0.0;
 
@@ -97,10 +98,21 @@ struct MirrorWindow::Impl {
     info.imageExtent = extent;
     info.imageArrayLayers = 1;
     info.imageUsage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
+    blit_target = (caps.supportedUsageFlags & VK_IMAGE_USAGE_TRANSFER_DST_BIT) != 0;
+    if (blit_target) info.imageUsage |= VK_IMAGE_USAGE_TRANSFER_DST_BIT;
     info.imageSharingMode = VK_SHARING_MODE_EXCLUSIVE;
     info.preTransform = caps.currentTransform;
     info.compositeAlpha = VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR;
-    info.presentMode = VK_PRESENT_MODE_FIFO_KHR;  // always available; the mirror need not outrun the display
+    // The mirror must never hold back the loop that feeds a 90 Hz headset to a 60 Hz desktop display: mailbox
+    // (newest image wins), else immediate, else FIFO (always available; it blocks when the display is slower).
+    uint32_t mode_count = 0;
+    PP_VK_CHECK(vkGetPhysicalDeviceSurfacePresentModesKHR(context.physical_device(), surface, &mode_count, nullptr));
+    std::vector<VkPresentModeKHR> modes(mode_count);
+    PP_VK_CHECK(
+        vkGetPhysicalDeviceSurfacePresentModesKHR(context.physical_device(), surface, &mode_count, modes.data()));
+    info.presentMode = VK_PRESENT_MODE_FIFO_KHR;
+    for (VkPresentModeKHR wanted : {VK_PRESENT_MODE_IMMEDIATE_KHR, VK_PRESENT_MODE_MAILBOX_KHR})
+      if (std::find(modes.begin(), modes.end(), wanted) != modes.end()) info.presentMode = wanted;
     info.clipped = VK_TRUE;
     PP_VK_CHECK(vkCreateSwapchainKHR(context.device(), &info, nullptr, &swapchain));
     PP_VK_CHECK(vkGetSwapchainImagesKHR(context.device(), swapchain, &count, nullptr));
@@ -240,6 +252,10 @@ void MirrorWindow::set_title(const std::string& title) {
 }
 VkExtent2D MirrorWindow::extent() const {
   return impl_->extent;
+}
+
+bool MirrorWindow::accepts_blit() const {
+  return impl_->blit_target;
 }
 
 }  // namespace pushpull::renderer

@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <array>
 #include <cassert>
+#include <cmath>
 #include <cstring>
 #include <map>
 #include <memory>
@@ -133,8 +134,10 @@ struct Renderer::Impl {
   Attachments& ensure_attachments(VkExtent2D extent, VkFormat colour_format) {
     for (size_t i = 0; i < attachment_sets.size(); ++i) {
       Attachments& a = *attachment_sets[i];
-      if (a.extent.width == extent.width && a.extent.height == extent.height && a.colour_format == colour_format) {
-        std::rotate(attachment_sets.begin(), attachment_sets.begin() + long(i), attachment_sets.begin() + long(i) + 1);
+      if (a.extent.width == extent.width && a.extent.height == extent.height &&
+          a.colour_format == colour_format) {
+        std::rotate(attachment_sets.begin(), attachment_sets.begin() + long(i),
+                    attachment_sets.begin() + long(i) + 1);
         return *attachment_sets.front();  // most recently used first
       }
     }
@@ -203,6 +206,9 @@ struct Renderer::Impl {
     vkUpdateDescriptorSets(context.device(), static_cast<uint32_t>(writes.size()), writes.data(), 0, nullptr);
   }
 
+  // Copies `from` (COLOR_ATTACHMENT_OPTIMAL before and after) into `to`, scaled to cover it, centred.
+  void record_blit(VkCommandBuffer cmd, const ColorTarget& from, VkExtent2D from_extent,
+                   const ColorTarget& to, VkExtent2D to_extent);
   void record_view(VkCommandBuffer cmd, const PipelinePair& pipes, const ColorTarget& target,
                    VkExtent2D extent, uint32_t view_index, std::span<const Draw> draws,
                    const FrameSettings& settings, VkDescriptorSet frame_set, const Attachments& attachments);
@@ -247,7 +253,8 @@ Renderer::Renderer(const Context& context, const RendererOptions& options)
     slot.fence = UniqueFence(device, fence);
     for (PassResources& pass : slot.passes) {
       PP_VK_CHECK(vkAllocateCommandBuffers(device, &alloc, &pass.cmd));
-      pass.frame_data = create_buffer(context, sizeof(FrameDataGpu), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
+      pass.frame_data =
+          create_buffer(context, sizeof(FrameDataGpu), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
       pass.frame_set = r.allocate_set(r.layouts.frame.get());
       VkDescriptorBufferInfo buffer_info{pass.frame_data.buffer.get(), 0, sizeof(FrameDataGpu)};
       VkWriteDescriptorSet write{};
@@ -503,6 +510,12 @@ void Renderer::render_frame(std::span<const RenderPass> passes) {
     throw std::invalid_argument("render_frame: need 1 to " + std::to_string(kMaxPasses) + " passes");
   for (const RenderPass& pass : passes) {
     if (pass.targets == nullptr) throw std::invalid_argument("render_frame: a pass without targets");
+    if (pass.blit_from != nullptr) {
+      if (pass.targets->views.size() != 1 || pass.blit_from_extent.width == 0 ||
+          pass.blit_from_extent.height == 0)
+        throw std::invalid_argument("render_frame: a blit pass needs one target and a non-empty source");
+      continue;
+    }
     if (pass.views.empty() || pass.views.size() > 2 || pass.targets->views.size() != pass.views.size())
       throw std::invalid_argument("render: need 1 or 2 views and as many colour targets");
     if (pass.targets->extent.width == 0 || pass.targets->extent.height == 0)
@@ -521,43 +534,57 @@ void Renderer::render_frame(std::span<const RenderPass> passes) {
     const RenderTargets& targets = *pass.targets;
     const FrameSettings& settings = pass.settings;
     PassResources& res = slot.passes[p];
-    const Attachments& attachments = r.ensure_attachments(targets.extent, targets.format);
-    PipelinePair& pipes = r.pipelines_for(targets.format);
+    if (pass.blit_from != nullptr) {
+      VkCommandBuffer cmd = res.cmd;
+      PP_VK_CHECK(vkResetCommandBuffer(cmd, 0));
+      VkCommandBufferBeginInfo begin{};
+      begin.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
+      begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+      PP_VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
+      if (p == 0)
+        for (GpuMesh& mesh : r.meshes) r.last_upload_bytes += mesh.record_pending_uploads(cmd, slot_id);
+      r.record_blit(cmd, *pass.blit_from, pass.blit_from_extent, targets.views[0], targets.extent);
+      PP_VK_CHECK(vkEndCommandBuffer(cmd));
+    } else {
+      const Attachments& attachments = r.ensure_attachments(targets.extent, targets.format);
+      PipelinePair& pipes = r.pipelines_for(targets.format);
 
-    FrameDataGpu data{};
-    for (size_t i = 0; i < pass.views.size(); ++i) {
-      data.views[i].view_projection = pass.views[i].projection * pass.views[i].view;
-      data.views[i].eye_world = glm::vec4(glm::vec3(glm::inverse(pass.views[i].view)[3]), 1.0f);
+      FrameDataGpu data{};
+      for (size_t i = 0; i < pass.views.size(); ++i) {
+        data.views[i].view_projection = pass.views[i].projection * pass.views[i].view;
+        data.views[i].eye_world = glm::vec4(glm::vec3(glm::inverse(pass.views[i].view)[3]), 1.0f);
+      }
+      const glm::vec3 up = glm::normalize(settings.up);
+      // Key light from above, front-left of the first view.
+      const glm::mat3 R_world_eye = glm::transpose(glm::mat3(pass.views[0].view));
+      const glm::vec3 key = glm::normalize(R_world_eye * glm::vec3(-0.4f, 0.0f, 0.6f) + up * 1.2f);
+      data.up_world = glm::vec4(up, 0.0f);
+      data.key_light_dir = glm::vec4(key, 0.0f);
+      data.colour_params = {settings.scalar_max, settings.curvature_epsilon, settings.exposure,
+                            settings.show_overlays ? 1.0f : 0.0f};
+      data.mode = {static_cast<uint32_t>(settings.color_mode), settings.lighting ? 1u : 0u, 0u, 0u};
+      std::memcpy(res.frame_data.mapped, &data, sizeof(data));
+
+      VkCommandBuffer cmd = res.cmd;
+      PP_VK_CHECK(vkResetCommandBuffer(cmd, 0));
+      VkCommandBufferBeginInfo begin{};
+      begin.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
+      begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+      PP_VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
+      if (p == 0)  // the frame's vertex uploads, once, before every pass (batches run in submission order)
+        for (GpuMesh& mesh : r.meshes) r.last_upload_bytes += mesh.record_pending_uploads(cmd, slot_id);
+      for (uint32_t v = 0; v < pass.views.size(); ++v)
+        r.record_view(cmd, pipes, targets.views[v], targets.extent, v, pass.draws, settings, res.frame_set,
+                      attachments);
+      PP_VK_CHECK(vkEndCommandBuffer(cmd));
     }
-    const glm::vec3 up = glm::normalize(settings.up);
-    // Key light from above, front-left of the first view.
-    const glm::mat3 R_world_eye = glm::transpose(glm::mat3(pass.views[0].view));
-    const glm::vec3 key = glm::normalize(R_world_eye * glm::vec3(-0.4f, 0.0f, 0.6f) + up * 1.2f);
-    data.up_world = glm::vec4(up, 0.0f);
-    data.key_light_dir = glm::vec4(key, 0.0f);
-    data.colour_params = {settings.scalar_max, settings.curvature_epsilon, settings.exposure,
-                          settings.show_overlays ? 1.0f : 0.0f};
-    data.mode = {static_cast<uint32_t>(settings.color_mode), settings.lighting ? 1u : 0u, 0u, 0u};
-    std::memcpy(res.frame_data.mapped, &data, sizeof(data));
-
-    VkCommandBuffer cmd = res.cmd;
-    PP_VK_CHECK(vkResetCommandBuffer(cmd, 0));
-    VkCommandBufferBeginInfo begin{};
-    begin.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
-    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-    PP_VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
-    if (p == 0)  // the frame's vertex uploads, once, before every pass (batches run in submission order)
-      for (GpuMesh& mesh : r.meshes) r.last_upload_bytes += mesh.record_pending_uploads(cmd, slot_id);
-    for (uint32_t v = 0; v < pass.views.size(); ++v)
-      r.record_view(cmd, pipes, targets.views[v], targets.extent, v, pass.draws, settings, res.frame_set,
-                    attachments);
-    PP_VK_CHECK(vkEndCommandBuffer(cmd));
 
     cmd_infos[p].sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO;
-    cmd_infos[p].commandBuffer = cmd;
     wait_infos[p].sType = VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO;
     wait_infos[p].semaphore = pass.sync.wait;
-    wait_infos[p].stageMask = VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT;
+    wait_infos[p].stageMask = pass.blit_from != nullptr ? VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT
+                                                        : VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT;
+    cmd_infos[p].commandBuffer = res.cmd;
     signal_infos[p].sType = VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO;
     signal_infos[p].semaphore = pass.sync.signal;
     signal_infos[p].stageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
@@ -575,6 +602,49 @@ void Renderer::render_frame(std::span<const RenderPass> passes) {
   PP_VK_CHECK(vkResetFences(r.context.device(), 1, &fence));
   PP_VK_CHECK(vkQueueSubmit2(r.context.queue(), uint32_t(passes.size()), submits.data(), fence));
   ++r.frame_index;
+}
+
+bool Renderer::can_blit(VkFormat from, VkFormat to) const {
+  VkFormatProperties a{}, b{};
+  vkGetPhysicalDeviceFormatProperties(impl_->context.physical_device(), from, &a);
+  vkGetPhysicalDeviceFormatProperties(impl_->context.physical_device(), to, &b);
+  return (a.optimalTilingFeatures & VK_FORMAT_FEATURE_BLIT_SRC_BIT) != 0 &&
+         (a.optimalTilingFeatures & VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT) != 0 &&
+         (b.optimalTilingFeatures & VK_FORMAT_FEATURE_BLIT_DST_BIT) != 0;
+}
+
+void Renderer::Impl::record_blit(VkCommandBuffer cmd, const ColorTarget& from, VkExtent2D from_extent,
+                                 const ColorTarget& to, VkExtent2D to_extent) {
+  // The source as drawn by an earlier pass of this frame; the target's old contents are discarded.
+  image_barrier(cmd, from.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_BLIT_BIT,
+                VK_ACCESS_2_TRANSFER_READ_BIT, from.layer, 1);
+  image_barrier(cmd, to.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_NONE,
+                VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, to.layer, 1);
+  // Scale to cover the target, centred: the source's middle, cropped to the target's aspect.
+  const double sw = from_extent.width, sh = from_extent.height, tw = to_extent.width, th = to_extent.height;
+  double cw = sw, ch = sw * th / tw;
+  if (ch > sh) ch = sh, cw = sh * tw / th;
+  const int32_t x0 = int32_t(std::lround(0.5 * (sw - cw))), y0 = int32_t(std::lround(0.5 * (sh - ch)));
+  VkImageBlit region{};
+  region.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, from.layer, 1};
+  region.srcOffsets[0] = {x0, y0, 0};
+  region.srcOffsets[1] = {x0 + int32_t(std::lround(cw)), y0 + int32_t(std::lround(ch)), 1};
+  region.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, to.layer, 1};
+  region.dstOffsets[0] = {0, 0, 0};
+  region.dstOffsets[1] = {int32_t(to_extent.width), int32_t(to_extent.height), 1};
+  vkCmdBlitImage(cmd, from.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, to.image,
+                 VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region, VK_FILTER_LINEAR);
+  image_barrier(cmd, from.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_BLIT_BIT,
+                VK_ACCESS_2_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, from.layer,
+                1);
+  image_barrier(cmd, to.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                to.final_layout, VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE, to.layer, 1);
 }
 
 void Renderer::wait_idle() {

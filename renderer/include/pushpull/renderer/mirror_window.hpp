@@ -61,6 +61,8 @@ class MirrorWindow {
   };
   Pointer pointer();
   [[nodiscard]] VkExtent2D extent() const;
+  // Whether the swapchain images take transfers (Renderer::RenderPass::blit_from can fill them).
+  [[nodiscard]] bool accepts_blit() const;
 
  private:
   struct Impl;

@@ -84,6 +84,12 @@ struct RenderPass {
   FrameSettings settings;
   const RenderTargets* targets = nullptr;
   FrameSync sync;
+  // Instead of drawing: copy this image (a colour target drawn by an earlier pass of the same frame, left in
+  // COLOR_ATTACHMENT_OPTIMAL, which it is again afterwards) into the one target, scaled to cover it and
+  // centred (a mirror window showing an eye as it is). views and draws are ignored; the source needs
+  // TRANSFER_SRC usage and the target TRANSFER_DST (can_blit() says whether the formats allow it).
+  const ColorTarget* blit_from = nullptr;
+  VkExtent2D blit_from_extent{};
 };
 
 struct RendererOptions {
@@ -128,6 +134,8 @@ class Renderer {
   // the first pass. Each pass is its own batch of the one submission (a window's acquire semaphore holds back
   // only its pass); the frame's fence covers all. render() is render_frame() with one pass.
   static constexpr size_t kMaxPasses = 2;
+  // Whether an image of format `from` can be blitted, linearly filtered, into one of format `to`.
+  [[nodiscard]] bool can_blit(VkFormat from, VkFormat to) const;
   void render_frame(std::span<const RenderPass> passes);
 
   // Waits until the GPU has finished everything submitted.
