@@ -47,6 +47,9 @@ void ReviewInteraction::sync_committed(const deform::Snapshot& snapshot) {
     committed_.V = snapshot.rest->V;
     bvh_.refit(committed_.V);
     hover_handle_cache_.reset();
+    // What the hands aim at on the new shape (shown at once, not one frame late, and the same whichever frame
+    // the committed shape arrived at).
+    for (size_t h = 0; h < 2; ++h) hovers_[h] = rays_[h] ? hit(rays_[h]->first, rays_[h]->second) : std::nullopt;
   }
   bvh_revision_ = snapshot.revision;
 }
@@ -68,6 +71,7 @@ std::vector<InteractionEvent> ReviewInteraction::update(const std::array<HandSam
   std::vector<InteractionEvent> events;
   for (int h = 0; h < 2; ++h) {
     const HandSample& in = hands[size_t(h)];
+    rays_[size_t(h)] = in.tracked ? std::optional(std::pair(in.origin_stage, in.direction_stage)) : std::nullopt;
     hovers_[size_t(h)] = in.tracked ? hit(in.origin_stage, in.direction_stage) : std::nullopt;
     // One drag at a time: the other hand's gesture sees a released trigger while one hand drags.
     xr::ControllerSample sample;

@@ -22,6 +22,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <utility>
 #include <vector>
 
 namespace pushpull::app {
@@ -113,6 +114,7 @@ class ReviewInteraction {
   std::uint64_t bvh_revision_ = 0;
   std::array<xr::PushPullGesture, 2> gestures_;
   std::array<std::optional<deform::TriangleBvh::Hit>, 2> hovers_;
+  std::array<std::optional<std::pair<Eigen::Vector3d, Eigen::Vector3d>>, 2> rays_;  // last aim rays, stage
   int drag_hand_ = -1;
   std::uint64_t drag_id_ = 0;
   deform::SurfacePoint p0_;
