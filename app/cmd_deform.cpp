@@ -393,7 +393,8 @@ void add_deform_command(CLI::App& root) {
                   "Push/pull displacement d of the handle (metres at life size)")
       ->expected(3)
       ->required();
-  cmd->add_option("--method", o->method, "arap-s, arap-sr, arap-m, arap-n, sr-arap, arap-h or asan")
+  cmd->add_option("--method", o->method,
+                  "arap-s, arap-sr, arap-m, arap-n, sr-arap, arap-h, arap-sr-h or asan")
       ->capture_default_str();
   cmd->add_option("--mu", o->mu, "asan: stretch factor of the region along d_o (> 1)")->capture_default_str();
   cmd->add_option("--stretch-direction", o->stretch_direction, "asan: direction d_o (default: d)")
@@ -401,7 +402,8 @@ void add_deform_command(CLI::App& root) {
   cmd->add_option("--asan-base", o->asan_base, "asan: membrane energy, arap-sr or arap-m")
       ->capture_default_str();
   cmd->add_option("--alpha", o->alpha, "sr-arap: rotation smoothness weight")->capture_default_str();
-  cmd->add_option("--lambda", o->lambda, "arap-h: bending weight (relative to the mean vertex area)")
+  cmd->add_option("--lambda", o->lambda,
+                  "arap-h, arap-sr-h: bending weight (relative to the mean vertex area)")
       ->capture_default_str();
   cmd->add_option("--rings", o->rings, "arap-n: neighbourhood size n")->capture_default_str();
   cmd->add_option("--iterations", o->iterations, "Maximum local-global iterations")

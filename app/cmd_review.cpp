@@ -20,7 +20,8 @@ void add_review_command(CLI::App& root) {
       "right thumbstick between drags: handle radius (up/down) and region (left/right).\n"
       "Without a headset: XR_RUNTIME_JSON=build/xr/sim/pushpull_xr_sim.json runs it on the simulated runtime.");
   cmd->add_option("model", o->model, "Model file: .gltf .glb .drc .off .obj .ply")->required();
-  cmd->add_option("--method", o->method, "Deformation method (asan, arap-s, arap-sr, arap-m, arap-n, sr-arap, arap-h)")
+  cmd->add_option("--method", o->method,
+                  "Deformation method (asan, arap-s, arap-sr, arap-m, arap-n, sr-arap, arap-h, arap-sr-h)")
       ->capture_default_str();
   cmd->add_option("--mu", o->mu, "ASAN stiffness ratio")->capture_default_str();
   cmd->add_option("--handle-radius", o->handle_radius_m,

@@ -111,7 +111,7 @@ TEST_F(DeformCli, HandleAtAndRoiRadiusWithExactIterationCountWritesPly) {
 }
 
 TEST_F(DeformCli, ObjOutputAndOtherMethodsRun) {
-  for (const char* method : {"arap-m", "sr-arap", "arap-n", "arap-h", "arap-s"}) {
+  for (const char* method : {"arap-m", "sr-arap", "arap-n", "arap-h", "arap-sr-h", "arap-s"}) {
     const RunResult run =
         run_pushpull("deform " + kHemisphere.string() + " --handle " + path("handle.txt") + " --fixed " +
                      path("fixed.txt") + " --displacement 0.1 0 0.1 --iterations 5 --method " + method +

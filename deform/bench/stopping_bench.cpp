@@ -6,7 +6,8 @@
 // fixed), a 2.5K one pulled sideways, and the hemisphere of ../shared/data (cap pulled up, base fixed).
 // A row fails the check when the true error exceeds twice the estimate ("optimistic > 2x").
 //
-// Usage: stopping_bench [--quick]   (--quick: the 2.5K height field only)
+// Usage: stopping_bench [--quick] [--method NAME]...   (--quick: the 2.5K height field only; --method: only
+// these methods' rows, repeatable)
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -46,20 +47,22 @@ double true_error(const Eigen::MatrixXd& V, const Eigen::MatrixXd& reference, co
   return (V - reference).rowwise().norm().maxCoeff() / d.norm();
 }
 
+std::vector<pd::Method> g_methods(pd::kAllMethods.begin(), pd::kAllMethods.end());
+
 int run(const Problem& p) {
   int failures = 0;
   std::printf("\n%s: %ld vertices, region %zu, |d| = %g\n", p.name.c_str(),
               static_cast<long>(p.mesh.V.rows()), p.roi.size(), p.d.norm());
-  std::printf("%-8s | %6s %9s %9s %9s %6s | %-28s | %s\n", "method", "iters", "ms", "estimate", "true",
+  std::printf("%-9s | %6s %9s %9s %9s %6s | %-28s | %s\n", "method", "iters", "ms", "estimate", "true",
               "ratio", "reference (1e-9): iters, est", "paper (50 plain): true error");
-  for (const pd::Method method : pd::kAllMethods) {
+  for (const pd::Method method : g_methods) {
     pd::DeformOptions options;
     options.method = method;
     pd::DeformResult r;
     try {
       r = pd::deform(p.mesh, p.roi, p.d, options);
     } catch (const std::exception& error) {  // arap-s may refuse: its energy is not PSD
-      std::printf("%-8s | refused: %.90s...\n", std::string(pd::method_name(method)).c_str(), error.what());
+      std::printf("%-9s | refused: %.90s...\n", std::string(pd::method_name(method)).c_str(), error.what());
       std::fflush(stdout);
       continue;
     }
@@ -73,7 +76,7 @@ int run(const Problem& p) {
     const double ratio = truth / estimate;
     const bool honest = r.converged && ratio <= 2.0;
     failures += honest ? 0 : 1;
-    std::printf("%-8s | %5d%s %9.1f %9.1e %9.1e %6.2f | %6d%s %9.1e            | %8.1e%s\n",
+    std::printf("%-9s | %5d%s %9.1f %9.1e %9.1e %6.2f | %6d%s %9.1e            | %8.1e%s\n",
                 std::string(pd::method_name(method)).c_str(), r.iterations, r.converged ? " " : "*",
                 r.timing.factorize + r.timing.solve, estimate, truth, ratio, reference.iterations,
                 reference.converged ? " " : "*", reference.error_estimate.value_or(NAN),
@@ -87,7 +90,24 @@ int run(const Problem& p) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const bool quick = argc > 1 && std::strcmp(argv[1], "--quick") == 0;
+  bool quick = false;
+  std::vector<pd::Method> methods;
+  for (int a = 1; a < argc; ++a) {
+    if (std::strcmp(argv[a], "--quick") == 0) {
+      quick = true;
+    } else if (std::strcmp(argv[a], "--method") == 0 && a + 1 < argc) {
+      try {
+        methods.push_back(pd::parse_method(argv[++a]));
+      } catch (const std::exception& error) {
+        std::fprintf(stderr, "stopping_bench: %s\n", error.what());
+        return 2;
+      }
+    } else {
+      std::fprintf(stderr, "usage: stopping_bench [--quick] [--method NAME]...\n");
+      return 2;
+    }
+  }
+  if (!methods.empty()) g_methods = methods;
   std::printf(
       "stopping_bench: estimated vs true distance to the minimiser, relative to |d| (default rule: "
       "estimate <= 1e-2)\nratio = true / estimate (<= 2 required); * = not converged\n");

@@ -59,6 +59,11 @@ detail::ModelSpec model_spec(const DeformOptions& o) {
       spec.smooth_alpha = o.sr_arap_alpha;
       break;
     case Method::ArapH:
+      spec.structure = Method::ArapM;
+      spec.bending_lambda = o.arap_h_lambda;
+      spec.bending_own_rotation = true;
+      break;
+    case Method::ArapSrH:
       spec.structure = Method::ArapSR;
       spec.bending_lambda = o.arap_h_lambda;
       break;
@@ -177,10 +182,10 @@ void Deformer::Impl::setup() {
                              added + " model units (intrinsic mollification) to stay positive definite");
   }
 
-  // arap-h: vertices whose every mesh face is in Omega and whose every edge has two faces (mean curvature
-  // is defined there).
+  // arap-h, arap-sr-h: vertices whose every mesh face is in Omega and whose every edge has two faces (mean
+  // curvature is defined there).
   std::vector<char> bending_vertex(static_cast<std::size_t>(n), 0);
-  if (options.method == Method::ArapH) {
+  if (options.method == Method::ArapH || options.method == Method::ArapSrH) {
     std::vector<int> mesh_faces(static_cast<std::size_t>(nv), 0), omega_count(static_cast<std::size_t>(n), 0);
     for (int f = 0; f < m.F.rows(); ++f) {
       for (int c = 0; c < 3; ++c) ++mesh_faces[static_cast<std::size_t>(m.F(f, c))];

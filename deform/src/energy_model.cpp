@@ -179,7 +179,10 @@ EnergyModel build_energy_model(const Eigen::Matrix3Xd& P, const Eigen::MatrixX3i
     triplets.insert(triplets.end(), {Triplet(i, i, 0), Triplet(j, j, 0), Triplet(i, j, 0), Triplet(j, i, 0)});
   }
 
-  // arap-h bending: lambda B^T M^-1 B with B the rows of the cotangent Laplacian at complete vertices.
+  m.rank_one_begin = m.cluster_count;
+  // Bending (arap-h, arap-sr-h): lambda B^T M^-1 B with B the rows of the cotangent Laplacian at complete
+  // vertices; the coupling -2 lambda R_i : (L X)_i H_i^T goes to vertex i's arap-sr cluster (arap-sr-h) or
+  // to a new cluster of its own (arap-h).
   Eigen::SparseMatrix<double> bending_q;
   if (spec.bending_lambda > 0.0) {
     std::vector<Triplet> lt;
@@ -206,12 +209,30 @@ EnergyModel build_energy_model(const Eigen::Matrix3Xd& P, const Eigen::MatrixX3i
       const double lambda = spec.bending_lambda * mean_area;
       const Eigen::Matrix3Xd LP = (L * P.transpose()).transpose();  // 3 by n
       std::vector<Triplet> bt;
+      std::vector<Eigen::Vector3d> axes;
       for (std::size_t r = 0; r < rows.size(); ++r) {
         const int i = rows[r];
         const Eigen::Vector3d H = LP.col(i) / area(i);
         m.static_constant += lambda * area(i) * H.squaredNorm();
-        for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(L, i); it; ++it) {
+        for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(L, i); it; ++it)
           bt.emplace_back(static_cast<int>(r), static_cast<int>(it.col()), it.value() / std::sqrt(area(i)));
+        if (spec.bending_own_rotation) {
+          // H = 0 (flat at rest): the term lambda A_i |H'_i|^2 has no rotation and lives in Q alone.
+          if (!(H.squaredNorm() > 0.0)) continue;
+          const int cluster = m.cluster_count++;
+          for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(L, i); it; ++it)
+            b.term(cluster, static_cast<int>(it.col()));
+          m.cluster_start.push_back(static_cast<int>(m.term_vertex.size()));
+          const Eigen::Index old_terms = m.static_term_g.cols();
+          m.static_term_g.conservativeResize(3, static_cast<Eigen::Index>(m.term_vertex.size()));
+          m.static_term_g.rightCols(m.static_term_g.cols() - old_terms).setZero();
+          int t = m.cluster_start[static_cast<std::size_t>(cluster)];
+          for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(L, i); it; ++it, ++t)
+            m.static_term_g.col(t) += lambda * it.value() * H;
+          axes.push_back(H.normalized());
+          continue;
+        }
+        for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(L, i); it; ++it) {
           // The term (cluster i, vertex j) exists: cluster i holds i's one-ring (arap-sr structure).
           int t = m.cluster_start[static_cast<std::size_t>(i)];
           while (t < m.cluster_start[static_cast<std::size_t>(i) + 1] &&
@@ -222,6 +243,9 @@ EnergyModel build_energy_model(const Eigen::Matrix3Xd& P, const Eigen::MatrixX3i
           m.static_term_g.col(t) += lambda * it.value() * H;
         }
       }
+      m.rank_one_axis.resize(3, static_cast<Eigen::Index>(axes.size()));
+      for (std::size_t k = 0; k < axes.size(); ++k)
+        m.rank_one_axis.col(static_cast<Eigen::Index>(k)) = axes[k];
       Eigen::SparseMatrix<double> Bs(static_cast<Eigen::Index>(rows.size()), n);  // M^-1/2 B
       Bs.setFromTriplets(bt.begin(), bt.end());
       bending_q = lambda * Eigen::SparseMatrix<double>(Bs.transpose() * Bs);

@@ -21,7 +21,10 @@ struct ModelSpec {
   Method structure = Method::ArapSR;  // ArapS, ArapSR, ArapM or ArapN: how clusters are formed
   int n_rings = 1;                    // ArapN
   double smooth_alpha = 0.0;          // > 0: sr-arap rotation smoothing (alpha)
-  double bending_lambda = 0.0;        // > 0: arap-h bending (lambda / mean vertex area)
+  double bending_lambda = 0.0;        // > 0: arap-h / arap-sr-h bending (lambda / mean vertex area)
+  // Bending rotations: true (arap-h) = one extra cluster per bending vertex with its own rotation; false
+  // (arap-sr-h) = the bending term joins vertex i's own cluster (per-vertex structures only).
+  bool bending_own_rotation = false;
 };
 
 struct EnergyModel {
@@ -35,6 +38,11 @@ struct EnergyModel {
   double constant = 0.0;           // C, current weights
 
   // Rotation smoothing (sr-arap): neighbours of cluster c are smooth_cluster[smooth_start[c] .. [c+1]).
+  // Clusters [rank_one_begin, cluster_count) (arap-h bending) have covariances u h_c^T with a known unit
+  // h_c = rank_one_axis.col(c - rank_one_begin): their optimal rotation is any one turning h_c onto u.
+  int rank_one_begin = 0;
+  Eigen::Matrix3Xd rank_one_axis;
+
   double smooth_scale = 0.0;
   std::vector<int> smooth_start, smooth_cluster;
   std::vector<double> smooth_weight;

@@ -7,8 +7,9 @@
 
 namespace pushpull::deform::detail {
 
-ContractionEstimate::ContractionEstimate(int window, Eigen::Index dimension)
+ContractionEstimate::ContractionEstimate(int window, Eigen::Index dimension, Policy policy)
     : window_(window),
+      policy_(policy),
       dX_(dimension, window),
       dG_(dimension, window),
       xx_(Eigen::MatrixXd::Zero(window, window)),
@@ -48,15 +49,23 @@ void ContractionEstimate::add(const Eigen::Ref<const Eigen::VectorXd>& x,
   for (Eigen::Index k = 0; k < eigen.eigenvalues().size(); ++k)
     largest = std::max(largest, std::abs(eigen.eigenvalues()(k)));
   if (!std::isfinite(largest)) return;
-  recent_[static_cast<std::size_t>(estimates_++ % recent_.size())] = std::min(largest, kMaxRate);
-  rate_ = 0.0;
+  recent_[static_cast<std::size_t>(estimates_++ % recent_.size())] = largest;
+  double recent_largest = 0.0;
   for (std::size_t k = 0; k < std::min<std::size_t>(recent_.size(), static_cast<std::size_t>(estimates_));
        ++k)
-    rate_ = std::max(rate_, recent_[k]);
+    recent_largest = std::max(recent_largest, recent_[k]);
+  if (policy_ == Policy::Cautious) {
+    expanding_ = recent_largest >= 1.0;
+    whole_solve_ = std::max(whole_solve_, std::min(largest, kCautiousMaxRate));
+    rate_ = whole_solve_;
+  } else {
+    rate_ = std::min(recent_largest, kMaxRate);
+  }
 }
 
 std::optional<double> ContractionEstimate::rate() const {
-  if (pairs_ < window_) return std::nullopt;
+  if (pairs_ < window_ || expanding_) return std::nullopt;
+  if (policy_ == Policy::Cautious && estimates_ < static_cast<long>(recent_.size())) return std::nullopt;
   return rate_;
 }
 

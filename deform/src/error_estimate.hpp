@@ -8,8 +8,16 @@
 // the secant pairs the iterations provide: with dX = [x_k - x_{k-1}, ...] and dG = [G(x_k) - G(x_{k-1}),
 // ...] over a window, dG ~ J dX, and the eigenvalues of C = argmin |dX C - dG| (Ritz values of J on the
 // span of the recent steps) approximate J's extreme eigenvalues; Anderson's steps span a Krylov-like space
-// that holds exactly the slowly contracting modes that set rho. The largest |Ritz value| seen over the
-// solve is kept (rho only matters near the end, and an early underestimate must not survive).
+// that holds exactly the slowly contracting modes that set rho. Two policies:
+// - Recent (every method but those below): the largest |Ritz value| of the last 10 estimates, clamped to
+//   kMaxRate (rho only matters near the end, and an early underestimate must not survive).
+// - Cautious (per-triangle rotations: arap-m, arap-h, asan on arap-m): the largest of the whole solve,
+//   clamped to kCautiousMaxRate, no rate before 10 estimates and none while one of the last 10 is >= 1. Their
+//   soft fold modes contract at rates within 1e-4 of 1, and arap-h's non-convex energy has saddles where the
+//   plain step's move falls to 1e-7 |d| and then grows again (Ritz values > 1): with the Recent rule arap-h
+//   stopped on estimates 2.6-100x below its true distance (stopping_bench). Applying the >= 1 rule to every
+//   method cost sr-arap its convergence (its Gauss-Seidel rotations give Ritz values >= 1 too), hence the two
+//   policies.
 // The estimate is then rho_hat-scaled largest per-vertex residual; the benchmark checks it against
 // references solved to 1e-9 for every method (deform_bench).
 // Thread-safety: none; one per solve.
@@ -23,23 +31,30 @@ namespace pushpull::deform::detail {
 
 class ContractionEstimate {
  public:
-  ContractionEstimate(int window, Eigen::Index dimension);
+  enum class Policy { Recent, Cautious };
+  ContractionEstimate(int window, Eigen::Index dimension, Policy policy = Policy::Recent);
   // x: the iterate, g = G(x). Call once per iteration.
   void add(const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Ref<const Eigen::VectorXd>& g);
-  // The estimated rate in [0, kMaxRate], once at least `window` secant pairs have been seen.
+  // The estimated rate in [0, kMaxRate] (Cautious: [0, kCautiousMaxRate]), once at least `window` secant
+  // pairs have been seen (Cautious: 10 estimates); Cautious: empty while a recent Ritz value says the
+  // iterates move away (>= 1).
   [[nodiscard]] std::optional<double> rate() const;
 
   static constexpr double kMaxRate = 0.9999;
+  static constexpr double kCautiousMaxRate = 0.99999;
 
  private:
   int window_;
+  Policy policy_;
   int pairs_ = 0;  // secant pairs seen
   bool has_previous_ = false;
   Eigen::VectorXd previous_x_, previous_g_;
   Eigen::MatrixXd dX_, dG_;          // dimension by window, circular
   Eigen::MatrixXd xx_, xg_;          // window by window: dX^T dX, dX^T dG
-  double rate_ = 0.0;                // largest |Ritz value| of the recent estimates
-  std::array<double, 10> recent_{};  // the last few estimates, circular
+  double rate_ = 0.0;                // largest |Ritz value| of the recent estimates (or whole solve)
+  double whole_solve_ = 0.0;         // largest |Ritz value| of the whole solve (Cautious)
+  bool expanding_ = false;           // a recent |Ritz value| >= 1
+  std::array<double, 10> recent_{};  // the last few estimates (unclamped), circular
   long estimates_ = 0;
 };
 

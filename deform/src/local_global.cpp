@@ -90,7 +90,12 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
   std::optional<detail::Anderson> anderson;
   if (options.anderson_window > 0 && n_free > 0) anderson.emplace(options.anderson_window, 3 * n_free);
   constexpr int kRateWindow = 8;
-  detail::ContractionEstimate contraction(kRateWindow, 3 * n_free);
+  // Per-triangle rotations: the cautious rate (error_estimate.hpp says why).
+  const bool triangle_rotations = options.method == Method::ArapM || options.method == Method::ArapH ||
+                                  (options.method == Method::Asan && options.asan_base == Method::ArapM);
+  detail::ContractionEstimate contraction(kRateWindow, 3 * n_free,
+                                          triangle_rotations ? detail::ContractionEstimate::Policy::Cautious
+                                                             : detail::ContractionEstimate::Policy::Recent);
 
   Eigen::Matrix3Xd X_next =
       X;  // its constrained columns stay X's; the free ones are rewritten each iteration

@@ -110,7 +110,9 @@ double Deformer::Impl::local_step(const Eigen::Matrix3Xd& X, std::vector<Eigen::
       for (int c = c0; c < c1; ++c) {
         const Eigen::Matrix3d A = covariance(x, g, vertex, start[c], start[c + 1]);
         Eigen::Matrix3d& Rc = R[static_cast<std::size_t>(c)];
-        Rc = detail::closest_rotation(A, q[static_cast<std::size_t>(c)], 20, accept);
+        Rc = c < m.rank_one_begin ? detail::closest_rotation(A, q[static_cast<std::size_t>(c)], 20, accept)
+                                  : detail::rotation_onto(A, m.rank_one_axis.col(c - m.rank_one_begin),
+                                                          q[static_cast<std::size_t>(c)]);
         sum += (Rc.array() * A.array()).sum();
         if (!b) continue;
         for (int t = start[c]; t < start[c + 1]; ++t) {

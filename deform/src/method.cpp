@@ -19,6 +19,8 @@ std::string_view method_name(Method method) {
       return "sr-arap";
     case Method::ArapH:
       return "arap-h";
+    case Method::ArapSrH:
+      return "arap-sr-h";
     case Method::Asan:
       return "asan";
   }

@@ -63,4 +63,12 @@ Eigen::Matrix3d closest_rotation(const Eigen::Matrix3d& A, Eigen::Quaterniond& q
   return R;
 }
 
+Eigen::Matrix3d rotation_onto(const Eigen::Matrix3d& A, const Eigen::Vector3d& h, Eigen::Quaterniond& q) {
+  const Eigen::Vector3d u = A * h;
+  const double scale = A.cwiseAbs().maxCoeff();
+  if (!(u.norm() > 1e-12 * scale) || !u.allFinite()) return q.toRotationMatrix();
+  q = Eigen::Quaterniond::FromTwoVectors(h, u);
+  return q.toRotationMatrix();
+}
+
 }  // namespace pushpull::deform::detail

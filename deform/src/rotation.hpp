@@ -24,4 +24,10 @@ namespace pushpull::deform::detail {
 Eigen::Matrix3d closest_rotation(const Eigen::Matrix3d& A, Eigen::Quaterniond& q, int max_steps = 20,
                                  double accept_step = 1e-4);
 
+// The same maximum for a covariance of rank one, A = u h^T with h a known unit vector (the arap-h bending
+// clusters): R : A = u . R h is largest for every R with R h = u / |u|, a circle of rotations. Returns the
+// smallest one (about the axis h x u) and stores it in q; A h ~ 0 (any R is optimal) returns the warm start
+// q.
+Eigen::Matrix3d rotation_onto(const Eigen::Matrix3d& A, const Eigen::Vector3d& h, Eigen::Quaterniond& q);
+
 }  // namespace pushpull::deform::detail

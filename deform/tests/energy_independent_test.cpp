@@ -27,9 +27,11 @@ struct Term {
   Eigen::Vector3d e;
 };
 
-// One bending term (arap-h) of vertex i: (lambda / A_i) |sum_j L_ij x_j - R_i (L P)_i|^2.
+// One bending term (arap-h, arap-sr-h) of vertex i: (lambda / A_i) |sum_j L_ij x_j - R (L P)_i|^2, R the
+// rotation of cluster `rotation` (arap-h: one of its own; arap-sr-h: vertex i's arap-sr cluster).
 struct Bend {
   int i;
+  int rotation;
   double scale;                             // lambda / A_i
   std::vector<std::pair<int, double>> row;  // (j, L_ij)
   Eigen::Vector3d LP;
@@ -71,7 +73,7 @@ std::vector<Eigen::Matrix3d> rotations(const Formula& f, const Eigen::MatrixXd& 
   for (const Bend& b : f.bends) {
     Eigen::Vector3d LX = Eigen::Vector3d::Zero();
     for (const auto& [j, l] : b.row) LX += l * X.row(j).transpose();
-    S[static_cast<std::size_t>(b.i)] += b.scale * LX * b.LP.transpose();
+    S[static_cast<std::size_t>(b.rotation)] += b.scale * LX * b.LP.transpose();
   }
   std::vector<Eigen::Matrix3d> R(S.size());
   for (std::size_t c = 0; c < S.size(); ++c) R[c] = polar(S[c]);
@@ -100,7 +102,7 @@ double energy(const Formula& f, const Eigen::MatrixXd& X, const std::vector<Eige
   for (const Bend& b : f.bends) {
     Eigen::Vector3d LX = Eigen::Vector3d::Zero();
     for (const auto& [j, l] : b.row) LX += l * X.row(j).transpose();
-    E += b.scale * (LX - R[static_cast<std::size_t>(b.i)] * b.LP).squaredNorm();
+    E += b.scale * (LX - R[static_cast<std::size_t>(b.rotation)] * b.LP).squaredNorm();
   }
   for (const auto& [k, l, w] : f.smooth_edges)
     E += f.smooth * w * (R[static_cast<std::size_t>(k)] - R[static_cast<std::size_t>(l)]).squaredNorm();
@@ -119,7 +121,7 @@ Eigen::MatrixXd gradient(const Formula& f, const Eigen::MatrixXd& X, const std::
   for (const Bend& b : f.bends) {
     Eigen::Vector3d LX = Eigen::Vector3d::Zero();
     for (const auto& [j, l] : b.row) LX += l * X.row(j).transpose();
-    const Eigen::Vector3d r = 2.0 * b.scale * (LX - R[static_cast<std::size_t>(b.i)] * b.LP);
+    const Eigen::Vector3d r = 2.0 * b.scale * (LX - R[static_cast<std::size_t>(b.rotation)] * b.LP);
     for (const auto& [j, l] : b.row) G.row(j) += l * r.transpose();
   }
   return G;
@@ -183,9 +185,10 @@ Formula formula(const Mesh& m, Method method, const DeformOptions& o, const Eige
       spoke[{std::min(i, j), std::max(i, j)}] += corner_weight(m.V, face, k);
     }
   }
-  const Method structure = method == Method::Asan                                  ? o.asan_base
-                           : (method == Method::SrArap || method == Method::ArapH) ? Method::ArapSR
-                                                                                   : method;
+  const Method structure = method == Method::Asan                                    ? o.asan_base
+                           : (method == Method::SrArap || method == Method::ArapSrH) ? Method::ArapSR
+                           : method == Method::ArapH                                 ? Method::ArapM
+                                                                                     : method;
   switch (structure) {
     case Method::ArapS: {  // cluster k: its spokes, both directions
       f.clusters = nv;
@@ -230,9 +233,10 @@ Formula formula(const Mesh& m, Method method, const DeformOptions& o, const Eige
     f.smooth = o.sr_arap_alpha * area;
     for (const auto& [edge, w] : spoke) f.smooth_edges.emplace_back(edge.first, edge.second, std::abs(w));
   }
-  if (method == Method::ArapH) {
+  if (method == Method::ArapH || method == Method::ArapSrH) {
     // H = M^-1 L p at interior vertices (complete one-ring), A_i = a third of the incident faces' area,
-    // lambda = arap_h_lambda * mean A_i over those vertices.
+    // lambda = arap_h_lambda * mean A_i over those vertices. arap-h: a rotation per interior vertex, after
+    // the triangles' ones; arap-sr-h: the vertex's own arap-sr rotation.
     Eigen::VectorXd A = Eigen::VectorXd::Zero(nv);
     for (int face = 0; face < nf; ++face) {
       const double a = triangle_area(m.V, m.F, face);
@@ -250,6 +254,7 @@ Formula formula(const Mesh& m, Method method, const DeformOptions& o, const Eige
     for (int v : interior) {
       Bend b;
       b.i = v;
+      b.rotation = method == Method::ArapH ? f.clusters++ : v;
       b.scale = lambda / A(v);
       double diagonal = 0.0;
       b.LP = Eigen::Vector3d::Zero();
@@ -329,7 +334,7 @@ TEST_P(EnergyIndependent, EnergyGradientAndGlobalStepMatchTheFormula) {
     };
     for (const Term& t : f.terms)
       add({{t.i, 1.0}, {t.j, -1.0}}, R[static_cast<std::size_t>(t.cluster)] * t.e, t.w);
-    for (const Bend& b : f.bends) add(b.row, R[static_cast<std::size_t>(b.i)] * b.LP, b.scale);
+    for (const Bend& b : f.bends) add(b.row, R[static_cast<std::size_t>(b.rotation)] * b.LP, b.scale);
     const Eigen::MatrixXd Y = H.ldlt().solve(B);
     double worst = 0.0;
     for (int k = 0; k < nf; ++k)
@@ -362,6 +367,11 @@ TEST(EnergyParameters, EachParameterMatters) {
   EXPECT_LT((solve(Method::ArapN, 1, 0.02, 1.0) - sr).norm(), 1e-9);  // n = 1 is
   EXPECT_GT((solve(Method::SrArap, 2, 0.5, 1.0) - solve(Method::SrArap, 2, 0.0, 1.0)).norm(), 1e-4);
   EXPECT_GT((solve(Method::ArapH, 2, 0.02, 5.0) - solve(Method::ArapH, 2, 0.02, 0.0)).norm(), 1e-4);
+  EXPECT_LT((solve(Method::ArapH, 2, 0.02, 0.0) - solve(Method::ArapM, 2, 0.02, 1.0)).norm(), 1e-9);
+  EXPECT_GT((solve(Method::ArapSrH, 2, 0.02, 5.0) - solve(Method::ArapSrH, 2, 0.02, 0.0)).norm(), 1e-4);
+  EXPECT_LT((solve(Method::ArapSrH, 2, 0.02, 0.0) - sr).norm(), 1e-9);
+  // The two bending variants are different energies (own rotations on arap-m vs borrowed arap-sr ones).
+  EXPECT_GT((solve(Method::ArapH, 2, 0.02, 5.0) - solve(Method::ArapSrH, 2, 0.02, 5.0)).norm(), 1e-4);
 }
 
 }  // namespace

@@ -21,12 +21,23 @@
 // - sr-arap (Levi & Gotsman 2014, "Smooth rotation enhanced as-rigid-as-possible mesh animation"):
 //   E = E_arap-sr + alpha A sum_{edges (k,l)} |w_kl| ||R_k - R_l||_F^2, A = total area of Omega.
 //   Local step: a Gauss-Seidel sweep R_k = polar(S_k + alpha A sum_l |w_kl| R_l); global step unchanged.
-// - arap-h (membrane + bending, in the spirit of Zhao et al.'s hybrid energy): E = E_arap-sr
-//   + lambda sum_i A_i |H'_i - R_i H_i|^2, H = M^-1 L p the mean-curvature normal (L the cotangent
-//   Laplacian of Omega, M the lumped barycentric areas A_i = area of the incident faces / 3), summed over
-//   the Omega vertices whose whole one-ring is in Omega and off the mesh border; R_i is the vertex's
-//   membrane rotation; lambda = arap_h_lambda * mean(A_i). Global matrix L_w + lambda L^T M^-1 L (SPD,
-//   prefactored).
+// - arap-h (Zhao et al.'s hybrid as Le Vaou et al. 2020, section 3.3, describe it: "ARAP-m plus an energy
+//   term on the variation of the discrete mean curvature, weighted linearly"):
+//   E = E_arap-m + lambda sum_i A_i min_{R_i in SO(3)} |H'_i - R_i H_i|^2,
+//   H = M^-1 L p the mean-curvature normal at rest, H' = M^-1 L p' its linearisation at the deformed
+//   positions (L the cotangent Laplacian of the rest Omega, M the lumped barycentric areas A_i = area of the
+//   incident faces / 3, both fixed, so the term is quadratic in p' for fixed R_i), summed over the Omega
+//   vertices whose whole one-ring is in Omega and off the mesh border; lambda = arap_h_lambda * mean(A_i).
+//   Each bending vertex has its own rotation R_i, fitted in the local step next to the per-triangle
+//   rotations of arap-m: the term's covariance (L p')_i H_i^T has rank one, so R_i is any rotation turning
+//   H_i onto (L p')_i (the solver takes the smallest) and the term equals lambda A_i (|H'_i| - |H_i|)^2:
+//   invariant to rigid motions, it penalises the change of the mean curvature's magnitude. Vertices with
+//   H_i = 0 keep lambda A_i |H'_i|^2. Global matrix L_w + lambda L^T M^-1 L (SPD, prefactored); lambda = 0
+//   is arap-m. Zhao et al. weigh the terms as (1 - w) E_m + w E_b, the same minimiser as lambda = w / (1 - w)
+//   here (the option arap_h_lambda = lambda / mean(A_i) is free of units).
+// - arap-sr-h (this project's earlier arap-h, kept for comparison): the same bending term on the arap-sr
+//   structure, with R_i the arap-sr rotation of vertex i's cluster instead of a rotation of its own:
+//   E = E_arap-sr + lambda sum_i A_i |H'_i - R_i H_i|^2, R_i shared with the membrane term of cluster i.
 // - asan (Le Vaou et al. 2020, CAD 121, sections 4.2 and 4.4): stretch a copy of Omega,
 //   tau(p) = p + (mu - 1) (p . d_o) / |d_o|^2 d_o, take the half cotangents of the stretched triangles and
 //   use them as the weights of arap-sr (asan_base = ArapSR, the paper's choice) or arap-m on the real
@@ -36,10 +47,10 @@
 // the region satisfy the triangle inequality by eps = 1e-4 x the region's mean edge length is added to all
 // its edges, and each triangle's three cotangents are those of that valid triangle. Each triangle's
 // stiffness is then positive semidefinite by construction, so the global matrix is positive definite and
-// the energy never negative for arap-sr, arap-m, arap-n, sr-arap, arap-h and asan on any input (slivers,
-// needles, caps); sliver weights stay bounded (|cot| <~ longest edge / eps); well-shaped triangles change
-// by at most eps / edge length (nothing changes when no triangle needs it). Clamping each cotangent, as
-// before, broke cot a cot b + cot b cot c + cot c cot a = 1 and made the matrix indefinite on slivers.
+// the energy never negative for arap-sr, arap-m, arap-n, sr-arap, arap-h, arap-sr-h and asan on any input
+// (slivers, needles, caps); sliver weights stay bounded (|cot| <~ longest edge / eps); well-shaped triangles
+// change by at most eps / edge length (nothing changes when no triangle needs it). Clamping each cotangent,
+// as before, broke cot a cot b + cot b cot c + cot c cot a = 1 and made the matrix indefinite on slivers.
 // asan mollifies the stretched copy with the same eps (relative to the rest mesh; cotangent.hpp says why).
 // arap-s: its global matrix is twice the cotangent Laplacian, positive definite too, but its per-vertex
 // spoke energies can have negative weights (the paper's Fig. 3), so its energy can be negative: solve
@@ -93,7 +104,8 @@ struct IterationReport {
   double energy = 0.0;    // energy of the current positions (model units^2)
   double max_move = 0.0;  // largest vertex move of this iteration's plain step / reference length
   // Estimated largest vertex distance of these positions to the exact minimiser / reference length (see
-  // DeformOptions::tolerance); empty for the first few iterations, until the contraction rate is known.
+  // DeformOptions::tolerance); empty for the first few iterations, until the contraction rate is known, and
+  // while the iterates move away from a fixed point (a saddle of a non-convex energy such as arap-h's).
   std::optional<double> error_estimate;
   // #V by 3 full-mesh positions after this iteration: an immutable copy the receiver may keep (e.g. publish
   // as a preview snapshot to another thread). Never null.
@@ -120,7 +132,10 @@ struct DeformOptions {
   // bounding-box diagonal if nothing moves). Default 1e-2: 1 mm on a 100 mm pull. The estimate is
   // |r| / (1 - rho): r the plain local-global step's largest vertex move, rho the contraction rate of that
   // step estimated from the iterates (Ritz values over a window of secant pairs; src/error_estimate.hpp);
-  // deform_bench checks it against references solved to 1e-9 for every method. 0 = off.
+  // deform_bench checks it against references solved to 1e-9 for every method. 0 = off. Per-triangle
+  // rotations (arap-m, arap-h, asan on arap-m) use a cautious rate (the largest of the solve, none while the
+  // iterates move away from a saddle), so they often run to max_iterations unconverged rather than claim an
+  // accuracy they do not have (stopping_bench).
   double tolerance = 1e-2;
   // Also stop when |E_k - E_{k-1}| <= energy_tolerance * E_{k-1}. 0 = off (the default: a small energy change
   // says little about the distance to the minimiser on stiff problems).
@@ -132,7 +147,7 @@ struct DeformOptions {
   int anderson_window = 5;
   int arap_n_rings = 2;         // arap-n: n >= 1
   double sr_arap_alpha = 0.02;  // sr-arap: alpha >= 0 (dimensionless)
-  double arap_h_lambda = 1.0;   // arap-h: lambda / mean vertex area (dimensionless), >= 0
+  double arap_h_lambda = 1.0;   // arap-h, arap-sr-h: lambda / mean vertex area (dimensionless), >= 0
   // Validate the mesh in the constructor (throws MeshValidationError); turning it off skips O(F log F) work.
   bool validate = true;
   // Threads a solve may use: 0 = automatic (one helper thread on large regions), 1 = the calling thread
