@@ -62,6 +62,10 @@ void add_review_command(CLI::App& root) {
                 "redo, C colour map, M method, Esc quit");
   cmd->add_option("--frames", o->frames, "Desktop mode: stop after N frames (0: when the window closes)");
   cmd->add_flag("--benchmark", o->benchmark, "Print the frame time, idle versus with the solver running");
+  cmd->add_option("--reconnect", o->reconnect_s,
+                  "After the OpenXR session is lost, wait this many seconds for the headset to come back and go on "
+                  "(0: end the review)")
+      ->check(CLI::Range(0.0, 86400.0));
   cmd->add_option("--solver-nice", o->solver_nice,
                   "Scheduling niceness of the solver's thread, 0 (as the frame loop) to 19 (only what frames leave)")
       ->check(CLI::Range(0, 19));

@@ -73,9 +73,11 @@ std::vector<InteractionEvent> ReviewInteraction::update(const std::array<HandSam
     const HandSample& in = hands[size_t(h)];
     rays_[size_t(h)] = in.tracked ? std::optional(std::pair(in.origin_stage, in.direction_stage)) : std::nullopt;
     hovers_[size_t(h)] = in.tracked ? hit(in.origin_stage, in.direction_stage) : std::nullopt;
+    // After a cancelled drag (session or focus lost) a trigger still held does not grab again: it must be let go.
+    if (!armed_[size_t(h)] && in.tracked && in.trigger <= 0.1f) armed_[size_t(h)] = true;
     // One drag at a time: the other hand's gesture sees a released trigger while one hand drags.
     xr::ControllerSample sample;
-    sample.trigger = (drag_hand_ < 0 || drag_hand_ == h) ? in.trigger : 0.0f;
+    sample.trigger = armed_[size_t(h)] && (drag_hand_ < 0 || drag_hand_ == h) ? in.trigger : 0.0f;
     sample.tracked = in.tracked;
     sample.hand_position = to_glm(placement_.to_model_point(in.origin_stage));
     if (hovers_[size_t(h)]) sample.surface_hit = to_glm(hovers_[size_t(h)]->point);
@@ -170,6 +172,7 @@ std::optional<InteractionEvent> ReviewInteraction::cancel() {
   xr::ControllerSample lost;
   lost.tracked = false;
   gestures_[size_t(drag_hand_)].update(lost);
+  armed_ = {false, false};
   return finish(false);
 }
 

@@ -75,7 +75,8 @@ class ReviewInteraction {
   [[nodiscard]] double roi_radius() const { return options_.roi_radius; }
   // The committed shape's unit face normal (model space) of a face from hit().
   [[nodiscard]] Eigen::Vector3d face_normal(int face) const;
-  // Drops a drag in progress (session lost, focus lost): the service shows the committed state again.
+  // Drops a drag in progress (session lost, focus lost): the service shows the committed state again. A trigger
+  // still held afterwards does not start another drag: each hand's trigger must be seen released first.
   std::optional<InteractionEvent> cancel();
   // The committed shape changed (newest snapshot's rest): refits the BVH when its revision is new.
   void sync_committed(const deform::Snapshot& snapshot);
@@ -114,6 +115,7 @@ class ReviewInteraction {
   std::uint64_t bvh_revision_ = 0;
   std::array<xr::PushPullGesture, 2> gestures_;
   std::array<std::optional<deform::TriangleBvh::Hit>, 2> hovers_;
+  std::array<bool, 2> armed_{true, true};  // the trigger may press (false after a cancel until seen released)
   std::array<std::optional<std::pair<Eigen::Vector3d, Eigen::Vector3d>>, 2> rays_;  // last aim rays, stage
   int drag_hand_ = -1;
   std::uint64_t drag_id_ = 0;

@@ -171,7 +171,8 @@ void run_review(const ReviewCommandOptions& o) {
     size_t mirror_frames = 0, mirror_blits = 0;
     auto last_mirror = Clock::now();
     ReviewScene scene(renderer, model, placement, colour, life.scale());
-    EyeTargets eyes(vk.device, xr.eye(0), xr.eye(1));
+    std::optional<EyeTargets> eyes;  // the current session's swapchain images (made again after a lost session)
+    eyes.emplace(vk.device, xr.eye(0), xr.eye(1));
     CommitWatch commits;  // before the service: its worker calls into it until the service is destroyed
     deform::ServiceOptions service_options{commits.callback()};
     service_options.worker_nice = o.solver_nice;  // frames first: the solver takes what the frame loop leaves
@@ -188,7 +189,8 @@ void run_review(const ReviewCommandOptions& o) {
         if (o.on_commit) o.on_commit(c);
       }
     };
-    xr::Input input(xr.instance(), xr.handle(), xr.stage_space());
+    std::optional<xr::Input> input;  // per session, like the eyes
+    input.emplace(xr.instance(), xr.handle(), xr.stage_space());
     FrameStats stats;
     bool sizes_changed = false;
     GrabPlacement grab(placement);
@@ -201,6 +203,8 @@ void run_review(const ReviewCommandOptions& o) {
       recorder.write_interaction(t, e, interaction.handle_radius(), interaction.roi_radius());
     };
 
+    for (;;) {  // sessions: one, and another each time a lost one comes back (--reconnect)
+    bool session_lost = false;
     while (!xr.exit_requested()) {
       try {
         xr.poll_events();
@@ -212,7 +216,7 @@ void run_review(const ReviewCommandOptions& o) {
         const xr::FrameViews frame = xr.begin_frame();
         if (xr.lost()) break;
         const auto start = Clock::now();
-        input.sync(frame.predicted_display_time);
+        input->sync(frame.predicted_display_time);
         // The recording's clock counts frames: frame n at n / rate, exactly as xr/sim's virtual clock at that
         // (whole) rate places it, so a replay gives frame n the input the loop read at its frame n, whatever the
         // headset's timing (jitter, dropped frames) was.
@@ -235,20 +239,20 @@ void run_review(const ReviewCommandOptions& o) {
             head_forward = Eigen::Quaterniond(l.orientation.w, l.orientation.x, l.orientation.y, l.orientation.z) *
                            Eigen::Vector3d(0.0, 0.0, -1.0);
           }
-          recorder.write_frame_input(t, head, {input.hand(xr::Hand::Left), input.hand(xr::Hand::Right)},
-                                     input.current_profile(xr::Hand::Right));
+          recorder.write_frame_input(t, head, {input->hand(xr::Hand::Left), input->hand(xr::Hand::Right)},
+                                     input->current_profile(xr::Hand::Right));
         }
         // Focus lost mid-drag (a system menu, another app): the inputs read as released, which the gesture
         // would take as a release; the drag is cancelled instead, the model stays as before it.
         if (!xr.focused() && interaction.dragging())
           if (const auto e = interaction.cancel()) log_event(*e);
-        std::array<HandSample, 2> hands{hand_sample(input.hand(xr::Hand::Left)),
-                                        hand_sample(input.hand(xr::Hand::Right))};
+        std::array<HandSample, 2> hands{hand_sample(input->hand(xr::Hand::Left)),
+                                        hand_sample(input->hand(xr::Hand::Right))};
         // Grip (between drags): grab and move the model; both grips also scale it.
         if (!interaction.dragging()) {
           std::array<std::optional<GrabHand>, 2> grabbing;
           for (int h = 0; h < 2; ++h)
-            if (input.hand(xr::Hand(h)).grip > 0.5f && hands[size_t(h)].tracked)
+            if (input->hand(xr::Hand(h)).grip > 0.5f && hands[size_t(h)].tracked)
               grabbing[size_t(h)] = GrabHand{hands[size_t(h)].origin_stage, heading(hands[size_t(h)])};
           const bool was_grabbing = grab.grabbing();
           if (grab.update(grabbing)) {
@@ -269,7 +273,7 @@ void run_review(const ReviewCommandOptions& o) {
         // The method and colour-map panel (menu button): opens in front of the reviewer; while open the right
         // stick chooses, the trigger applies, and nothing is pushed or pulled.
         for (int h = 0; h < 2 && !interaction.dragging(); ++h) {
-          if (!input.hand(xr::Hand(h)).menu_pressed) continue;
+          if (!input->hand(xr::Hand(h)).menu_pressed) continue;
           menu.toggle(interaction.method());
           if (menu.is_open()) {  // 0.5 m along the gaze, centred on it, where it was opened (world-locked)
             menu_label.set_text(menu.lines(interaction.method(), scene.colour()), menu.selected_line());
@@ -280,7 +284,7 @@ void run_review(const ReviewCommandOptions& o) {
           break;
         }
         if (menu.is_open()) {
-          const xr::HandInput& right = input.hand(xr::Hand::Right);
+          const xr::HandInput& right = input->hand(xr::Hand::Right);
           const MenuChoice choice = menu.update(right.thumbstick.y, right.trigger);
           if (choice.method && !o.fixed_method) {
             interaction.set_method(*choice.method);
@@ -297,14 +301,15 @@ void run_review(const ReviewCommandOptions& o) {
           commands_pending = false;
           interaction.sync_committed(*service.latest());
         }
-        for (const InteractionEvent& e : interaction.update(hands)) {
+        // Input is ours only while focused (unfocused, every input reads as released): no gestures then.
+        for (const InteractionEvent& e : xr.focused() ? interaction.update(hands) : std::vector<InteractionEvent>{}) {
           if (e.kind == InteractionEvent::Kind::Committed) commands_pending = true;
           log_event(e);
-          if (e.kind != InteractionEvent::Kind::Cancelled) input.haptic_pulse(xr::Hand(e.hand), 0.6f, 0.03);
+          if (e.kind != InteractionEvent::Kind::Cancelled) input->haptic_pulse(xr::Hand(e.hand), 0.6f, 0.03);
         }
         if (interaction.dragging()) recorder.write_drag(t, interaction.current_d());
         for (int h = 0; h < 2 && !interaction.dragging(); ++h) {
-          const xr::HandInput& in = input.hand(xr::Hand(h));
+          const xr::HandInput& in = input->hand(xr::Hand(h));
           if (in.undo_pressed && grab.grabbing()) {  // undo while holding the model: back to life size
             grab.reset();
             interaction.set_placement(grab.placement());
@@ -333,7 +338,7 @@ void run_review(const ReviewCommandOptions& o) {
         // Right thumbstick between drags: up/down grows/shrinks the handle, right/left the region (x2 per
         // second at full deflection; a dead zone keeps a resting thumb from drifting them).
         {
-          const XrVector2f stick = input.hand(xr::Hand::Right).thumbstick;
+          const XrVector2f stick = input->hand(xr::Hand::Right).thumbstick;
           const double dt = double(frame.predicted_display_period) * 1e-9;
           auto factor = [&](float v) { return std::abs(v) < 0.2f ? 1.0 : std::exp2(double(v) * dt); };
           const double before = interaction.handle_radius() + interaction.roi_radius();
@@ -410,7 +415,7 @@ void run_review(const ReviewCommandOptions& o) {
           const uint32_t left = xr.eye(0).acquire();
           const uint32_t right = xr.eye(1).acquire();
           eye_views = {eye_view(frame.eyes[0]), eye_view(frame.eyes[1])};
-          eye_targets = eyes.targets(left, right);
+          eye_targets = eyes->targets(left, right);
           passes.push_back({eye_views, draws, scene.settings(), &eye_targets, {}});
           rendered = true;
         }
@@ -459,17 +464,37 @@ void run_review(const ReviewCommandOptions& o) {
         (solving ? stats.solving_ms : stats.idle_ms).push_back(ms);
       } catch (const xr::XrError& e) {
         if (e.result() != XR_ERROR_SESSION_LOST && e.result() != XR_ERROR_INSTANCE_LOST) throw;
+        session_lost = true;
         break;
       }
       if (xr.lost()) break;
     }
-    lost = xr.lost();
-    if (lost) {
-      std::printf("pushpull review: the OpenXR session was lost\n");
-      if (const auto e = interaction.cancel()) log_event(*e);
-      log.write({{"event", "lost"}});
-      recorder.write_record("lost", t);
-      recorder.write_event_input(t, "loss");  // as xr/sim's script event: a replay loses the session there too
+    lost = session_lost || xr.lost();
+    if (!lost) break;
+    // The session was lost (headset unplugged, runtime restarted): the drag in progress is cancelled (the model
+    // stays as it was before it); the committed work stays, and the review goes on when the headset is back.
+    std::printf("pushpull review: the OpenXR session was lost\n");
+    if (const auto e = interaction.cancel()) log_event(*e);
+    log.write({{"event", "lost"}});
+    recorder.write_record("lost", t);
+    recorder.write_event_input(t, "loss");  // as xr/sim's script event: a replay loses the session there too
+    if (!(o.reconnect_s > 0.0)) break;
+    std::printf("pushpull review: waiting up to %.0f s for the headset to come back\n", o.reconnect_s);
+    std::fflush(stdout);
+    renderer.wait_idle();  // the eye images go with the session
+    eyes.reset();
+    input.reset();
+    if (!xr.recreate_after_loss(o.reconnect_s)) {
+      std::printf("pushpull review: the headset did not come back; ending the review\n");
+      break;
+    }
+    eyes.emplace(vk.device, xr.eye(0), xr.eye(1));
+    input.emplace(xr.instance(), xr.handle(), xr.stage_space());
+    menu = ReviewMenu{};
+    lost = false;
+    log.write({{"event", "session recreated"}});
+    recorder.write_record("resumed", t);
+    std::printf("pushpull review: the headset is back; the review goes on\n");
     }
     renderer.wait_idle();
     service.wait_idle();

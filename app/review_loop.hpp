@@ -34,7 +34,9 @@ struct ReviewCommandOptions {
   bool benchmark = false;
   bool quiet = false;
   bool fixed_method = false;  // the method stays `method` (keys and the menu do not change it; replay --method)
-  int solver_nice = 10;  // deform::ServiceOptions::worker_nice of the review's service  // no status lines on stdout (start, press/commit, wrote); errors and warnings still show
+  int solver_nice = 10;
+  // After a lost session: how long to wait for the headset to come back before ending (s; 0: end at once).
+  double reconnect_s = 30.0;  // deform::ServiceOptions::worker_nice of the review's service  // no status lines on stdout (start, press/commit, wrote); errors and warnings still show
   bool validation = false;  // Vulkan validation layer on the runtime's instance; any message fails the run
   bool mirror = false;   // the supervisor's GLFW window
   bool desktop = false;  // no headset: the window is the workspace (desktop_loop.hpp)

@@ -178,6 +178,44 @@ TEST(ReviewXr, SessionLostMidDragLeavesTheModelAsBeforeTheDrag) {
   EXPECT_EQ((reviewed.V - rest.V).cwiseAbs().maxCoeff(), 0.0);
 }
 
+// The headset comes back after a lost session (the runtime's session is made again on the same instance and
+// Vulkan device): the trigger still held from the cancelled drag does not grab; after letting go, the next
+// push/pull commits; the recording, loss included, replays with the same commit hash. --reconnect 0 ends at the
+// loss instead.
+TEST(ReviewXr, LostSessionComesBackAndTheReviewGoesOnAndReplays) {
+  const fs::path dir = test_dir();
+  const std::string aim_back = R"("pose":{"p":[0.0123,0.5,-0.65],"q":[-0.70710678,0,0,0.70710678]})";
+  const std::string script = script_start() + R"({"t":0.8,"event":"loss"}
+{"t":1.2,"path":"/user/hand/right/input/trigger/value","value":0.0}
+{"t":1.3,"path":"/user/hand/right/input/aim/pose",)" + aim_back + R"(}
+{"t":1.5,"path":"/user/hand/right/input/aim/pose",)" + aim_back + R"(}
+{"t":1.5,"path":"/user/hand/right/input/trigger/value","value":1.0}
+{"t":2.0,"path":"/user/hand/right/input/aim/pose","pose":{"p":[0.0123,0.5,-0.55],"q":[-0.70710678,0,0,0.70710678]}}
+{"t":2.2,"path":"/user/hand/right/input/trigger/value","value":0.0}
+{"t":3.0,"event":"exit"}
+)";
+  const ReviewRun run = run_review(dir, script, "--record " + (dir / "session.jsonl").string());
+  ASSERT_EQ(run.result.status, 0) << run.result.output;
+  EXPECT_NE(run.result.output.find("the headset is back"), std::string::npos) << run.result.output;
+  EXPECT_EQ(run.of("lost").size(), 1u);
+  EXPECT_EQ(run.of("press").size(), 2u) << run.result.output;  // the held trigger did not grab again
+  ASSERT_EQ(run.of("commit").size(), 1u) << run.result.output;
+  const auto d = run.of("commit")[0].at("d");
+  EXPECT_NEAR(double(d[1]), -0.1, 1e-6);
+
+  const auto replay = run_command(pushpull::testing::xr_sim_environment() + " " + PUSHPULL_EXECUTABLE + " replay " +
+                                  (dir / "session.jsonl").string() + " --out " + (dir / "replay").string() +
+                                  " --no-pictures");
+  ASSERT_EQ(replay.status, 0) << replay.output;
+  EXPECT_NE(replay.output.find("1 commit(s) replayed of 1 recorded; all checks passed"), std::string::npos)
+      << replay.output;
+
+  const ReviewRun ended = run_review(dir, script, "--reconnect 0");
+  ASSERT_EQ(ended.result.status, 0) << ended.result.output;
+  EXPECT_EQ(ended.of("commit").size(), 0u) << ended.result.output;
+  EXPECT_EQ(ended.result.output.find("the headset is back"), std::string::npos) << ended.result.output;
+}
+
 // The OpenXR core validation layer (between the app and the runtime) and VK_LAYER_KHRONOS_validation (on the
 // runtime's instance, --validation fails the run on any message) see a whole push/pull without complaint.
 TEST(ReviewXr, ValidationLayersReportNothingForAPushPull) {

@@ -1,10 +1,12 @@
 #include "pushpull/xr/session.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <optional>
+#include <thread>
 
 namespace pushpull::xr {
 namespace {
@@ -43,7 +45,9 @@ struct Session::Impl {
   XrEnvironmentBlendMode blend_mode = XR_ENVIRONMENT_BLEND_MODE_OPAQUE;
   XrSessionState state = XR_SESSION_STATE_UNKNOWN;
   bool running = false, exit = false, lost = false;
+  bool instance_lost = false;  // the instance itself (not only the session): nothing can be recreated
   std::string runtime_name, system_name;
+  SessionOptions options;  // as created (eye size): a recreated session uses them again
 
   ~Impl() {
     eyes.clear();
@@ -250,6 +254,7 @@ struct Session::Impl {
   bool ok_unless_lost(XrResult r, const char* expression, int line) {
     if (r == XR_ERROR_SESSION_LOST || r == XR_ERROR_INSTANCE_LOST) {
       lost = exit = true;
+      instance_lost = instance_lost || r == XR_ERROR_INSTANCE_LOST;
       running = false;
       return false;
     }
@@ -261,6 +266,7 @@ struct Session::Impl {
 #define CHECK_UNLESS_LOST(expression) impl_->ok_unless_lost((expression), #expression, __LINE__)
 
 Session::Session(const SessionOptions& options) : impl_(std::make_unique<Impl>()) {
+  impl_->options = options;
   impl_->create_instance(options);
   impl_->create_vulkan(options);
   impl_->create_session();
@@ -282,7 +288,7 @@ void Session::poll_events() {
     if (!CHECK_UNLESS_LOST(r)) return;
     switch (event.type) {
       case XR_TYPE_EVENT_DATA_INSTANCE_LOSS_PENDING:
-        s.lost = s.exit = true;
+        s.lost = s.exit = s.instance_lost = true;
         break;
       case XR_TYPE_EVENT_DATA_SESSION_STATE_CHANGED: {
         const auto& changed = reinterpret_cast<const XrEventDataSessionStateChanged&>(event);
@@ -382,6 +388,42 @@ void Session::end_frame(const FrameViews& frame, bool rendered) {
     end.layers = layers;
   }
   CHECK_UNLESS_LOST(xrEndFrame(s.session, &end));
+}
+
+bool Session::recreate_after_loss(double timeout_s) {
+  Impl& s = *impl_;
+  if (s.instance_lost) return false;
+  // The lost session's handles go first (the spec: destroy it, then poll xrGetSystem until the headset is back).
+  s.eyes.clear();
+  if (s.stage != XR_NULL_HANDLE) xrDestroySpace(s.stage);
+  if (s.session != XR_NULL_HANDLE) xrDestroySession(s.session);
+  s.stage = XR_NULL_HANDLE;
+  s.session = XR_NULL_HANDLE;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(std::max(timeout_s, 0.0));
+  XrSystemGetInfo system_info{XR_TYPE_SYSTEM_GET_INFO};
+  system_info.formFactor = XR_FORM_FACTOR_HEAD_MOUNTED_DISPLAY;
+  XrSystemId system = XR_NULL_SYSTEM_ID;
+  for (;;) {
+    const XrResult r = xrGetSystem(s.instance, &system_info, &system);
+    if (XR_SUCCEEDED(r)) break;
+    if (r == XR_ERROR_INSTANCE_LOST) {
+      s.instance_lost = true;
+      return false;
+    }
+    if (r != XR_ERROR_FORM_FACTOR_UNAVAILABLE) check_xr(r, s.instance, "xrGetSystem", __FILE__, __LINE__);
+    if (std::chrono::steady_clock::now() >= deadline) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  if (system != s.system)
+    throw XrError("the headset came back as another system (" + std::to_string(system) + ", was " +
+                      std::to_string(s.system) + "): the Vulkan device belongs to the old one; start again",
+                  XR_ERROR_SYSTEM_INVALID);
+  s.create_session();
+  s.create_stage_space();
+  s.create_swapchains(s.options);
+  s.lost = s.exit = s.running = false;
+  s.state = XR_SESSION_STATE_IDLE;
+  return true;
 }
 
 Swapchain& Session::eye(int index) { return impl_->eyes.at(size_t(index)); }

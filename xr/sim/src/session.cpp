@@ -52,6 +52,8 @@ void run_script_events(Session& s, XrTime now) {
 }
 
 void destroy_session(Session* s) {
+  if (s->is_virtual_clock())
+    s->instance->script_resume = Instance::ScriptResume{s->clock_origin, s->frames_waited, s->next_script_event};
   while (!s->spaces.empty()) destroy_space(s->spaces.back());
   while (!s->swapchains.empty()) destroy_swapchain(s->swapchains.back());
   for (ActionSet* set : s->attached) set->attached_to = nullptr;
@@ -92,6 +94,11 @@ XrResult XRAPI_CALL create_session(XrInstance handle, const XrSessionCreateInfo*
   const XrTime now = monotonic_now();
   session->clock_origin = now;
   session->period = static_cast<XrDuration>(1e9 / instance->config.rate_hz);
+  if (instance->script && instance->script_resume) {
+    session->clock_origin = instance->script_resume->clock_origin;
+    session->resume_frames = instance->script_resume->frames_waited;
+    session->next_script_event = instance->script_resume->next_script_event;
+  }
   // LOCAL: where the head starts, turned only about the vertical.
   const XrPosef head = head_pose(*session, now);
   const XrVector3f forward = quat_rotate(head.orientation, {0.f, 0.f, -1.f});
@@ -130,7 +137,8 @@ XrResult XRAPI_CALL begin_session(XrSession handle, const XrSessionBeginInfo* in
   if (s->state != XR_SESSION_STATE_READY) return XR_ERROR_SESSION_NOT_READY;
   s->running = true;
   s->view_configuration = vc;
-  s->frames_waited = 0;
+  s->frames_waited = s->resume_frames;  // 0, or where a lost session of this instance stopped
+  s->resume_frames = 0;
   s->last_display_time = 0;
   s->next_real_vsync = 0;
   s->waited_not_begun = false;

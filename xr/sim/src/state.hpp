@@ -23,6 +23,7 @@
 #include <cstdint>
 #include <deque>
 #include <map>
+#include <optional>
 #include <memory>
 #include <mutex>
 #include <set>
@@ -99,6 +100,15 @@ struct Instance {
   std::unordered_map<std::string, XrPath> path_ids;
   std::vector<Session*> sessions;
   std::vector<ActionSet*> action_sets;
+  // The scripted (virtual) clock goes on across the instance's sessions: a session created after one was
+  // destroyed (a lost session recreated) starts where that one stopped, and the script's events already run
+  // (the loss) do not run again.
+  struct ScriptResume {
+    XrTime clock_origin = 0;
+    int64_t frames_waited = 0;
+    std::size_t next_script_event = 0;
+  };
+  std::optional<ScriptResume> script_resume;
   // Suggested bindings per interaction profile: (action, component path).
   std::map<std::string, std::vector<std::pair<Action*, std::string>>> suggested;
 
@@ -144,6 +154,7 @@ struct Session {
   XrTime clock_origin = 0;
   XrDuration period = 0;
   int64_t frames_waited = 0;
+  int64_t resume_frames = 0;  // frames_waited at xrBeginSession (Instance::script_resume)
   XrTime last_display_time = 0;
   XrTime next_real_vsync = 0;
   bool waited_not_begun = false;

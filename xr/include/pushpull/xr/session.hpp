@@ -90,6 +90,12 @@ class Session {
   [[nodiscard]] bool exit_requested() const;  // leave the frame loop
   [[nodiscard]] bool lost() const;            // the session or the instance was lost
   [[nodiscard]] XrSessionState state() const;
+  // After a lost session (lost(), or a call that failed with XR_ERROR_SESSION_LOST): destroys the lost session, polls xrGetSystem until the
+  // headset is back (XR_ERROR_FORM_FACTOR_UNAVAILABLE meanwhile) or timeout_s passed, then creates the session,
+  // the stage space and the eye swapchains again on the same instance and Vulkan device (eye(i) are new
+  // swapchains; an Input made for the old session must be made again). Returns false when it cannot (instance
+  // lost, timeout); throws XrError when the headset came back as another system.
+  bool recreate_after_loss(double timeout_s);
   // Asks the runtime to end the session (xrRequestExitSession); the loop goes on until exit_requested().
   void request_exit();
 
