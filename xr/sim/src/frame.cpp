@@ -28,6 +28,18 @@ XrResult XRAPI_CALL wait_frame(XrSession handle, const XrFrameWaitInfo* info, Xr
     // Frame n at exactly t0 + n / rate (rounded to the nanosecond), no drift from a rounded period.
     display = s->clock_origin + static_cast<XrTime>(std::llround(static_cast<double>(s->frames_waited) * 1e9 /
                                                                  s->instance->config.rate_hz));
+    if (s->instance->config.pace) {  // the frame's moment on the real clock; late frames do not wait
+      const XrTime now = monotonic_now();
+      if (s->pace_origin == 0) s->pace_origin = now - (display - s->clock_origin);
+      const XrTime due = s->pace_origin + (display - s->clock_origin);
+      if (due > now) {
+        s->waited_not_begun = true;  // hold the slot while sleeping unlocked
+        lock.unlock();
+        std::this_thread::sleep_for(std::chrono::nanoseconds(due - now));
+        lock.lock();
+        if (!handle_is(s, HandleKind::session)) return XR_ERROR_HANDLE_INVALID;
+      }
+    }
   } else {
     const XrTime now = monotonic_now();
     XrTime vsync = s->next_real_vsync == 0 ? now : s->next_real_vsync + s->period;

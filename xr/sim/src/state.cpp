@@ -40,6 +40,7 @@ Config Config::from_env() {
   c.profile = env_string("PUSHPULL_XR_SIM_PROFILE");
   c.vk_device = env_string("PUSHPULL_XR_SIM_VK_DEVICE");
   c.haptics_log = env_string("PUSHPULL_XR_SIM_HAPTICS");
+  c.pace = env_uint("PUSHPULL_XR_SIM_PACE", 0) != 0;
   return c;
 }
 

@@ -43,8 +43,12 @@ constexpr XrSystemId kSystemId = 1;
 //   PUSHPULL_XR_SIM_CAPTURE_EVERY     also capture every N frames (default 0: only at "capture" events)
 //   PUSHPULL_XR_SIM_PROFILE           interaction profile to make current (default: first suggested of
 //                                     khr/simple, oculus/touch, valve/index, htc/vive, microsoft/motion)
+//   PUSHPULL_XR_SIM_PACE              1: with an input script, xrWaitFrame still waits for the frame's moment on
+//                                     the real clock (a headset's pacing: the app idles between frames; for
+//                                     frame-time benchmarks); default 0: returns at once
 //   PUSHPULL_XR_SIM_VK_DEVICE         substring of the Vulkan device name to use (default: a GPU, else
-//   lavapipe) PUSHPULL_XR_SIM_HAPTICS           JSON Lines file each haptic output is appended to
+//                                     lavapipe)
+//   PUSHPULL_XR_SIM_HAPTICS           JSON Lines file each haptic output is appended to
 //                                     ({"t": s, "path": ..., "duration_ns": .., "frequency": .., "amplitude":
 //                                     ..} or {"t": s, "path": ..., "stop": true}; t in script seconds)
 struct Config {
@@ -57,6 +61,7 @@ struct Config {
   std::string profile;
   std::string vk_device;
   std::string haptics_log;
+  bool pace = false;  // scripted: also wait for each frame's moment on the real clock
   float ipd_m = 0.064f;
   static Config from_env();
 };
@@ -157,6 +162,7 @@ struct Session {
   int64_t resume_frames = 0;  // frames_waited at xrBeginSession (Instance::script_resume)
   XrTime last_display_time = 0;
   XrTime next_real_vsync = 0;
+  XrTime pace_origin = 0;  // PUSHPULL_XR_SIM_PACE: the real time of frame 0
   bool waited_not_begun = false;
   bool frame_begun = false;
   int64_t frames_ended = 0;
