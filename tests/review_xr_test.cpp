@@ -50,6 +50,17 @@ std::string script_start() {
 )";
 }
 
+// From t: the right hand aims straight down 5 cm behind the bonnet's front edge, presses, pulls 100 mm towards
+// the reviewer over 0.5 s and releases 0.2 s later.
+std::string push_pull_100mm_at(double t) {
+  auto at = [&](double dt) { return std::to_string(t + dt); };
+  return R"({"t":)" + at(0.0) + R"(,"path":"/user/hand/right/input/aim/pose","pose":{"p":[0.0123,0.5,-0.65],"q":[-0.70710678,0,0,0.70710678]}}
+{"t":)" + at(0.0) + R"(,"path":"/user/hand/right/input/trigger/value","value":1.0}
+{"t":)" + at(0.5) + R"(,"path":"/user/hand/right/input/aim/pose","pose":{"p":[0.0123,0.5,-0.55],"q":[-0.70710678,0,0,0.70710678]}}
+{"t":)" + at(0.7) + R"(,"path":"/user/hand/right/input/trigger/value","value":0.0}
+)";
+}
+
 struct ReviewRun {
   pushpull::testing::CommandResult result;
   std::vector<nlohmann::json> events;
@@ -188,11 +199,7 @@ TEST(ReviewXr, LostSessionComesBackAndTheReviewGoesOnAndReplays) {
   const std::string script = script_start() + R"({"t":0.8,"event":"loss"}
 {"t":1.2,"path":"/user/hand/right/input/trigger/value","value":0.0}
 {"t":1.3,"path":"/user/hand/right/input/aim/pose",)" + aim_back + R"(}
-{"t":1.5,"path":"/user/hand/right/input/aim/pose",)" + aim_back + R"(}
-{"t":1.5,"path":"/user/hand/right/input/trigger/value","value":1.0}
-{"t":2.0,"path":"/user/hand/right/input/aim/pose","pose":{"p":[0.0123,0.5,-0.55],"q":[-0.70710678,0,0,0.70710678]}}
-{"t":2.2,"path":"/user/hand/right/input/trigger/value","value":0.0}
-{"t":3.0,"event":"exit"}
+)" + push_pull_100mm_at(1.5) + R"({"t":3.0,"event":"exit"}
 )";
   const ReviewRun run = run_review(dir, script, "--record " + (dir / "session.jsonl").string());
   ASSERT_EQ(run.result.status, 0) << run.result.output;
@@ -355,11 +362,7 @@ TEST(ReviewXr, MenuPanelChoosesTheMethodOfTheNextPushPullAndReadoutsShow) {
 {"t":1.1,"event":"capture"}
 {"t":1.2,"path":"/user/hand/left/input/menu/click","value":1.0}
 {"t":1.3,"path":"/user/hand/left/input/menu/click","value":0.0}
-{"t":1.5,"path":"/user/hand/right/input/aim/pose",)" + aim + R"(}
-{"t":1.5,"path":"/user/hand/right/input/trigger/value","value":1.0}
-{"t":2.0,"path":"/user/hand/right/input/aim/pose","pose":{"p":[0.0123,0.5,-0.55],"q":[-0.70710678,0,0,0.70710678]}}
-{"t":2.2,"path":"/user/hand/right/input/trigger/value","value":0.0}
-{"t":3.0,"event":"exit"}
+)" + push_pull_100mm_at(1.5) + R"({"t":3.0,"event":"exit"}
 )";
   const ReviewRun run = run_review(dir, script, "--record " + (dir / "session.jsonl").string());
   ASSERT_EQ(run.result.status, 0) << run.result.output;

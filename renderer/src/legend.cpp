@@ -1,5 +1,6 @@
 // Legends rasterised on the CPU (text from stb_easy_font's quads) and drawn by the renderer as a
 // screen-space overlay, so they appear in the XR eyes and the mirror as well as in PNGs.
+#include "easy_font.hpp"
 #include "pushpull/renderer/colormap.hpp"
 #include "pushpull/renderer/geometry.hpp"
 
@@ -7,13 +8,6 @@
 #include <cmath>
 #include <cstdio>
 #include <vector>
-
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wunused-function"
-#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
-#pragma GCC diagnostic ignored "-Wsign-compare"
-#include <stb/stb_easy_font.h>
-#pragma GCC diagnostic pop
 
 namespace pushpull::renderer {
 namespace {

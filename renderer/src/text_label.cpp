@@ -1,13 +1,7 @@
+#include "easy_font.hpp"
 #include "pushpull/renderer/text_label.hpp"
 
 #include <algorithm>
-
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wunused-function"
-#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
-#pragma GCC diagnostic ignored "-Wsign-compare"
-#include <stb/stb_easy_font.h>
-#pragma GCC diagnostic pop
 
 namespace pushpull::renderer {
 namespace {
