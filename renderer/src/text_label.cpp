@@ -1,5 +1,6 @@
-#include "easy_font.hpp"
 #include "pushpull/renderer/text_label.hpp"
+
+#include "easy_font.hpp"
 
 #include <algorithm>
 
