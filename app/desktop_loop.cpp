@@ -6,6 +6,7 @@
 #include "review_interaction.hpp"
 #include "review_scene.hpp"
 #include "session_recorder.hpp"
+#include "world_label.hpp"
 
 #include "pushpull/deform/service.hpp"
 #include "pushpull/renderer/camera.hpp"
@@ -117,6 +118,7 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
 
     // Orbit around the model's box on the stage, from the reviewer's side.
     const renderer::Bounds bounds = stage_bounds(setup.rest->V, setup.placement);
+    WorldLabel cursor_label(renderer, 0.02f, 600);  // line height 0.02, scaled per frame
     renderer::OrbitCamera orbit;
     orbit.azimuth_deg = 30.0f;
     orbit.elevation_deg = 25.0f;
@@ -212,9 +214,30 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
       const std::shared_ptr<const deform::Snapshot> snapshot = service.latest();
       interaction.sync_committed(*snapshot);
       scene.update(snapshot);
+      // The readout by the cursor (where the press is, or where it would grab), the same size on screen at any
+      // camera distance: a line about 3.5% of the view's height.
+      std::vector<renderer::Draw> draws = scene.draws();
+      {
+        const auto& hover = interaction.hovers()[1];
+        const Eigen::Vector3d camera = to_eigen(glm::vec3(glm::inverse(view.view)[3]));
+        std::optional<Eigen::Vector3d> anchor;
+        if (interaction.dragging())
+          anchor = setup.placement.to_stage_point(setup.placement.to_model_point(p0_stage) + interaction.current_d());
+        else if (hover)
+          anchor = setup.placement.to_stage_point(hover->point);
+        if (anchor) {
+          const double distance = (camera - *anchor).norm();
+          // projection[1][1] = -1 / tan(fov_y / 2) (Vulkan's clip y points down).
+          const double tan_half_fov = 1.0 / std::max(1e-6, std::abs(double(view.projection[1][1])));
+          const double line = 0.035 * 2.0 * distance * tan_half_fov;
+          cursor_label.set_text(readout_lines(interaction, *snapshot, life));
+          cursor_label.place(*anchor + Eigen::Vector3d(0.0, 0.5 * line, 0.0), camera, line / 0.02);
+          if (const auto d = cursor_label.draw()) draws.push_back(*d);
+        }
+      }
       if (frame) {
         scene.set_legend_window(extent.width, extent.height);
-        renderer.render(std::span(&view, 1), scene.draws(), scene.settings(/*legend=*/true), frame->targets,
+        renderer.render(std::span(&view, 1), draws, scene.settings(/*legend=*/true), frame->targets,
                         frame->sync);
         window.present(*frame);
         ++frames;

@@ -3,6 +3,7 @@
 #include <glm/vec3.hpp>
 
 #include <algorithm>
+#include <cstdio>
 #include <utility>
 
 namespace pushpull::app {
@@ -18,6 +19,24 @@ glm::dvec3 to_glm(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 Eigen::Vector3d to_eigen(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
 
 }  // namespace
+
+std::vector<std::string> readout_lines(const ReviewInteraction& interaction, const deform::Snapshot& s,
+                                       const LifeSize& life) {
+  char a[96], b[96];
+  const std::string method(deform::method_name(interaction.method()));
+  if (!interaction.dragging()) {
+    std::snprintf(a, sizeof a, "%s", method.c_str());
+    std::snprintf(b, sizeof b, "handle %.0f mm  region %.0f mm", life.to_mm(interaction.handle_radius()),
+                  life.to_mm(interaction.roi_radius()));
+    return {a, b};
+  }
+  std::snprintf(a, sizeof a, "|d| %.1f mm", life.to_mm(interaction.current_d().norm()));
+  if (s.kind == deform::Snapshot::Kind::Error)
+    return {a, method + "  error: " + s.error.substr(0, 40)};
+  std::snprintf(b, sizeof b, "%s  %d it  %s", method.c_str(), s.iteration,
+                s.final ? (s.converged ? "converged" : "not converged") : "solving");
+  return {a, b};
+}
 
 deform::Method next_method(deform::Method method) {
   const auto& all = deform::kAllMethods;

@@ -9,6 +9,7 @@
 // Ownership: borrows the Service (outlives this). Thread-safety: one thread (the frame loop).
 #pragma once
 
+#include "life_size.hpp"
 #include "stage_placement.hpp"
 
 #include "pushpull/deform/service.hpp"
@@ -22,6 +23,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -52,6 +54,14 @@ struct InteractionEvent {
   Eigen::Vector3d d = Eigen::Vector3d::Zero();   // model space (the last one submitted)
   std::uint64_t request = 0;                     // Committed: the committed request (Service::commit)
 };
+
+class ReviewInteraction;
+
+// The readout shown by the hand (headset) or the cursor (desktop): while dragging "|d| 70.7 mm" and the method,
+// iterations and solver state ("asan  10 it  converged", "solving", or the error); while aiming the method and
+// the handle and region sizes. Lengths in life-size mm.
+[[nodiscard]] std::vector<std::string> readout_lines(const ReviewInteraction& interaction, const deform::Snapshot& s,
+                                                     const LifeSize& life);
 
 // The method after `method` in deform::kAllMethods, the first after the last (a key cycles through them).
 [[nodiscard]] deform::Method next_method(deform::Method method);

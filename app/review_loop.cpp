@@ -46,25 +46,6 @@ double heading(const HandSample& s) {
   return std::atan2(-h.x(), -h.z());
 }
 
-// The readout by the hand: while dragging |d| and the solver's state, while aiming the method and sizes.
-std::vector<std::string> readout_lines(const ReviewInteraction& interaction, const deform::Snapshot& s,
-                                       const LifeSize& life) {
-  char a[96], b[96];
-  const std::string method(deform::method_name(interaction.method()));
-  if (!interaction.dragging()) {
-    std::snprintf(a, sizeof a, "%s", method.c_str());
-    std::snprintf(b, sizeof b, "handle %.0f mm  region %.0f mm", life.to_mm(interaction.handle_radius()),
-                  life.to_mm(interaction.roi_radius()));
-    return {a, b};
-  }
-  std::snprintf(a, sizeof a, "|d| %.1f mm", life.to_mm(interaction.current_d().norm()));
-  if (s.kind == deform::Snapshot::Kind::Error)
-    return {a, method + "  error: " + s.error.substr(0, 40)};
-  std::snprintf(b, sizeof b, "%s  %d it  %s", method.c_str(), s.iteration,
-                s.final ? (s.converged ? "converged" : "not converged") : "solving");
-  return {a, b};
-}
-
 // Frame work (from xrWaitFrame's return to xrEndFrame's return), split by whether the solver was busy.
 struct FrameStats {
   std::vector<double> idle_ms, solving_ms;

@@ -32,7 +32,7 @@ void WorldLabel::set_text(const std::vector<std::string>& lines, int highlight_l
   renderer_.update_vertices(mesh_, layout.positions);
 }
 
-void WorldLabel::place(const Eigen::Vector3d& anchor, const Eigen::Vector3d& viewer) {
+void WorldLabel::place(const Eigen::Vector3d& anchor, const Eigen::Vector3d& viewer, double scale) {
   // Facing the viewer, upright as far as that allows (x stays horizontal).
   Eigen::Vector3d z = viewer - anchor;
   if (z.norm() < 1e-6) z = Eigen::Vector3d::UnitZ();
@@ -43,9 +43,9 @@ void WorldLabel::place(const Eigen::Vector3d& anchor, const Eigen::Vector3d& vie
   const Eigen::Vector3d y = z.cross(x);
   glm::mat4 T(1.0f);
   for (int r = 0; r < 3; ++r) {
-    T[0][r] = float(x[r]);
-    T[1][r] = float(y[r]);
-    T[2][r] = float(z[r]);
+    T[0][r] = float(scale * x[r]);
+    T[1][r] = float(scale * y[r]);
+    T[2][r] = float(scale * z[r]);
     T[3][r] = float(anchor[r]);
   }
   T_stage_label_ = T;

@@ -24,8 +24,9 @@ class WorldLabel {
 
   // The text (highlight_line: the line with the accent bar, -1 none). Streams positions only when it changed.
   void set_text(const std::vector<std::string>& lines, int highlight_line = -1);
-  // Places the panel: its bottom centre at `anchor`, facing `viewer`, its text lines horizontal.
-  void place(const Eigen::Vector3d& anchor, const Eigen::Vector3d& viewer);
+  // Places the panel: its bottom centre at `anchor`, facing `viewer`, its text lines horizontal, `scale` times
+  // its line height (a desktop camera far away: larger, to stay readable).
+  void place(const Eigen::Vector3d& anchor, const Eigen::Vector3d& viewer, double scale = 1.0);
   void hide() { visible_ = false; }
   [[nodiscard]] bool visible() const { return visible_; }
   [[nodiscard]] const std::vector<std::string>& lines() const { return lines_; }
