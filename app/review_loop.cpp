@@ -48,9 +48,12 @@ double heading(const HandSample& s) {
 
 // Frame work (from xrWaitFrame's return to xrEndFrame's return), split by whether the solver was busy.
 struct FrameStats {
+  // The first frames build pipelines and upload the model: not what a frame costs.
+  static constexpr size_t kWarmUpFrames = 30;
+  size_t frames = 0;
   std::vector<double> idle_ms, solving_ms;
   size_t region_vertices = 0;  // the largest region solved meanwhile
-  double snapshot_ms = 0.0;    // total time spent turning new snapshots into vertex data (frame thread)
+  double snapshot_ms = 0.0;    // total time spent turning new snapshots into vertex data
   size_t snapshots = 0;
   static double mean(const std::vector<double>& v) {
     return v.empty() ? 0.0 : std::accumulate(v.begin(), v.end(), 0.0) / double(v.size());
@@ -61,13 +64,15 @@ struct FrameStats {
     return v[std::min(v.size() - 1, size_t(q * double(v.size())))];
   }
   void print() const {
-    std::printf("frame time (xrBeginFrame .. xrEndFrame, CPU): idle %.2f ms mean, %.2f ms p95 (%zu frames); "
-                "solver running %.2f ms mean, %.2f ms p95 (%zu frames); ratio %.3f\n",
-                mean(idle_ms), percentile(idle_ms, 0.95), idle_ms.size(), mean(solving_ms),
-                percentile(solving_ms, 0.95), solving_ms.size(),
-                mean(idle_ms) > 0.0 ? mean(solving_ms) / mean(idle_ms) : 0.0);
+    auto ratio = [](double a, double b) { return b > 0.0 ? a / b : 0.0; };
+    std::printf("frame time (xrBeginFrame .. xrEndFrame, CPU; the first %zu frames left out as warm-up): idle %.2f ms "
+                "mean, %.2f median, %.2f p95 (%zu frames); solver running %.2f ms mean, %.2f median, %.2f p95 (%zu "
+                "frames); ratio %.3f of the means, %.3f of the medians\n",
+                kWarmUpFrames, mean(idle_ms), percentile(idle_ms, 0.5), percentile(idle_ms, 0.95), idle_ms.size(),
+                mean(solving_ms), percentile(solving_ms, 0.5), percentile(solving_ms, 0.95), solving_ms.size(),
+                ratio(mean(solving_ms), mean(idle_ms)), ratio(percentile(solving_ms, 0.5), percentile(idle_ms, 0.5)));
     std::printf("largest region solved: %zu vertices; %zu new snapshots drawn, %.2f ms CPU each to turn into "
-                "vertex data on the frame thread (positions, normals, colour-map scalars, overlays)\n",
+                "vertex data (positions, normals, colour-map scalars) on the scene's converter thread\n",
                 region_vertices, snapshots, snapshots ? snapshot_ms / double(snapshots) : 0.0);
   }
 };
@@ -151,7 +156,9 @@ void run_review(const ReviewCommandOptions& o) {
     std::string mirror_title;
     size_t mirror_frames = 0, mirror_blits = 0;
     auto last_mirror = Clock::now();
-    ReviewScene scene(renderer, model, placement, colour, life.scale());
+    // Live: snapshots become vertex data on the scene's own thread (the frame thread only copies them). A replay
+    // converts on this thread, so every drawn frame shows exactly the settled snapshot.
+    ReviewScene scene(renderer, model, placement, colour, life.scale(), /*async=*/!o.settle_drawn_frames);
     std::optional<EyeTargets> eyes;  // the current session's swapchain images (made again after a lost session)
     eyes.emplace(vk.device, xr.eye(0), xr.eye(1));
     CommitWatch commits;  // before the service: its worker calls into it until the service is destroyed
@@ -343,7 +350,7 @@ void run_review(const ReviewCommandOptions& o) {
         interaction.sync_committed(*snapshot);
         {
           const std::uint64_t generation = scene.generation();
-          scene.update(snapshot);
+          scene.update(snapshot, /*wait=*/o.settle_drawn_frames);
           if (scene.generation() != generation) {
             stats.snapshot_ms += scene.last_cpu_ms();
             ++stats.snapshots;
@@ -442,7 +449,7 @@ void run_review(const ReviewCommandOptions& o) {
           if (mirror_title != title) mirror->set_title(mirror_title = title);
         }
         const double ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-        (solving ? stats.solving_ms : stats.idle_ms).push_back(ms);
+        if (++stats.frames > FrameStats::kWarmUpFrames) (solving ? stats.solving_ms : stats.idle_ms).push_back(ms);
       } catch (const xr::XrError& e) {
         if (e.result() != XR_ERROR_SESSION_LOST && e.result() != XR_ERROR_INSTANCE_LOST) throw;
         session_lost = true;

@@ -26,7 +26,7 @@ double round_up_mm(double mm) {
 }  // namespace
 
 ReviewScene::ReviewScene(renderer::Renderer& renderer, const assets::Model& model, const StagePlacement& placement,
-                         ReviewColour colour, double life_size_scale)
+                         ReviewColour colour, double life_size_scale, bool async)
     : renderer_(renderer),
       render_(build_render_model(model)),
       rest_V_(model.deform_mesh.V),
@@ -53,6 +53,11 @@ ReviewScene::ReviewScene(renderer::Renderer& renderer, const assets::Model& mode
   for (auto& sub : mesh.submeshes) sub.material = sub.material >= 0 ? material_ids[size_t(sub.material)] : -1;
   mesh_ = renderer_.add_mesh(mesh, /*streamed=*/true);
   set_placement(placement);
+  if (async)
+    converter_ = std::make_unique<NewestOnlyWorker<ConversionJob, SnapshotVertices>>(
+        [this](const ConversionJob& job) {
+          return convert_snapshot(render_, rest_V_, F_, scale_, job.colour, job.snapshot);
+        });
 }
 
 void ReviewScene::set_placement(const StagePlacement& placement) {
@@ -63,41 +68,67 @@ void ReviewScene::set_placement(const StagePlacement& placement) {
 void ReviewScene::set_colour(ReviewColour colour) {
   if (colour == colour_) return;
   colour_ = colour;
-  if (last_) upload(*last_);
+  if (last_) upload(*last_);  // at once, on this thread (a conversion in flight for the old map is dropped)
   update_legend();
 }
 
-void ReviewScene::update(const std::shared_ptr<const deform::Snapshot>& snapshot) {
-  if (snapshot->generation == generation_) return;
-  generation_ = snapshot->generation;
+void ReviewScene::update(const std::shared_ptr<const deform::Snapshot>& snapshot, bool wait) {
+  const bool is_new = snapshot->generation != latest_generation_;
+  latest_generation_ = snapshot->generation;
   last_ = snapshot;
-  upload(*snapshot);
+  if (!converter_ || wait) {
+    // On this thread: the frame shows exactly this snapshot (replays: the same images on every run).
+    if (generation_ != snapshot->generation) upload(*snapshot);
+    return;
+  }
+  if (is_new) converter_->post({snapshot, colour_});
+  // The newest finished conversion, when it is still of the colour map shown and newer than what is drawn.
+  if (auto v = converter_->take(); v && v->colour == colour_ && v->snapshot->generation > generation_)
+    apply(std::move(*v));
 }
 
-void ReviewScene::upload(const deform::Snapshot& snapshot) {
+SnapshotVertices convert_snapshot(const RenderModel& render, const Eigen::MatrixXd& rest_V, const Eigen::MatrixXi& F,
+                                  double scale, ReviewColour colour,
+                                  const std::shared_ptr<const deform::Snapshot>& snapshot) {
   const auto start = std::chrono::steady_clock::now();
-  const Eigen::MatrixXd& V = *snapshot.positions;
-  const std::vector<float> positions = render_positions(render_, V);
-  const std::vector<float> normals = deformed_normals(render_, positions);
-  std::vector<float> scalars;
-  if (colour_ == ReviewColour::Displacement) {
-    const Eigen::VectorXd magnitude = (V - rest_V_).rowwise().norm();
-    scalars = to_render_vertices(render_, magnitude);
+  SnapshotVertices out;
+  out.snapshot = snapshot;
+  out.colour = colour;
+  const Eigen::MatrixXd& V = *snapshot->positions;
+  out.positions = render_positions(render, V);
+  out.normals = deformed_normals(render, out.positions);
+  if (colour == ReviewColour::Displacement) {
+    const Eigen::VectorXd magnitude = (V - rest_V).rowwise().norm();
+    out.scalars = to_render_vertices(render, magnitude);
     // The colour map's top: the largest displacement, at least 1 mm at life size, rounded up to a round number
     // of mm (1, 2, 2.5 or 5 times a power of ten), so the legend's scale changes only now and then in a drag.
-    const double largest_mm = 1000.0 * scale_ * (magnitude.size() ? magnitude.maxCoeff() : 0.0);
-    scalar_max_ = round_up_mm(std::max(largest_mm, 1.0)) / (1000.0 * scale_);
-  } else if (colour_ == ReviewColour::CurvatureSign) {
-    const deform::GaussianCurvature K = deform::gaussian_curvature(V, F_);
-    const double threshold = deform::flat_curvature_threshold(deform::curvature_reference_length(rest_V_),
+    const double largest_mm = 1000.0 * scale * (magnitude.size() ? magnitude.maxCoeff() : 0.0);
+    out.scalar_max = round_up_mm(std::max(largest_mm, 1.0)) / (1000.0 * scale);
+  } else if (colour == ReviewColour::CurvatureSign) {
+    const deform::GaussianCurvature K = deform::gaussian_curvature(V, F);
+    const double threshold = deform::flat_curvature_threshold(deform::curvature_reference_length(rest_V),
                                                               deform::kDefaultFlatBand);
     std::vector<std::int8_t> signs = deform::curvature_signs(K, threshold);
     for (size_t i = 0; i < signs.size(); ++i)
       if (K.boundary[i]) signs[i] = 0;
-    scalars = curvature_signs_on_render_vertices(render_, V, signs);
+    out.scalars = curvature_signs_on_render_vertices(render, V, signs);
   } else {
-    scalars.assign(positions.size() / 3, 0.0f);
+    out.scalars.assign(out.positions.size() / 3, 0.0f);
   }
+  out.cpu_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+void ReviewScene::upload(const deform::Snapshot& snapshot) {
+  apply(convert_snapshot(render_, rest_V_, F_, scale_, colour_, last_));
+  (void)snapshot;
+}
+
+void ReviewScene::apply(SnapshotVertices v) {
+  const deform::Snapshot& snapshot = *v.snapshot;
+  generation_ = snapshot.generation;
+  if (colour_ == ReviewColour::Displacement) scalar_max_ = v.scalar_max;
+  const std::vector<float>& positions = v.positions;
   // The drag's region while its previews show; nothing once committed, cancelled or undone.
   const bool show = snapshot.kind == deform::Snapshot::Kind::Preview && snapshot.region != nullptr;
   std::vector<renderer::OverlayWeights> overlays;
@@ -119,9 +150,9 @@ void ReviewScene::upload(const deform::Snapshot& snapshot) {
     highlight_shown_ = false;
     highlight_.clear();
   }
-  last_cpu_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  renderer_.update_vertices(mesh_, positions, normals, scalars, overlays);
-  positions_ = positions;
+  last_cpu_ms_ = v.cpu_ms;
+  renderer_.update_vertices(mesh_, v.positions, v.normals, v.scalars, overlays);
+  positions_ = std::move(v.positions);
   update_legend();
 }
 

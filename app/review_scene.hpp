@@ -9,6 +9,7 @@
 // Ownership: borrows the Renderer (outlives this). Thread-safety: the renderer's thread only.
 #pragma once
 
+#include "newest_only_worker.hpp"
 #include "render_model.hpp"
 #include "review_colour.hpp"
 #include "stage_placement.hpp"
@@ -19,6 +20,7 @@
 #include "pushpull/xr/session.hpp"
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <utility>
 #include <vector>
@@ -26,15 +28,32 @@
 namespace pushpull::app {
 
 
+// A snapshot turned into the render mesh's vertex data for one colour map (positions, normals, scalars).
+struct SnapshotVertices {
+  std::shared_ptr<const deform::Snapshot> snapshot;
+  ReviewColour colour = ReviewColour::Displacement;
+  std::vector<float> positions, normals, scalars;
+  double scalar_max = 0.0;  // displacement: the colour map's top (model units)
+  double cpu_ms = 0.0;      // time the conversion took, on whichever thread ran it
+};
+
+// The conversion itself (pure; any thread): positions, normals and the colour map's scalars of the render mesh
+// for `snapshot`; displacement is measured from rest_V (model units), its map's top rounded up to a round mm.
+[[nodiscard]] SnapshotVertices convert_snapshot(const RenderModel& render, const Eigen::MatrixXd& rest_V,
+                                                const Eigen::MatrixXi& F, double scale, ReviewColour colour,
+                                                const std::shared_ptr<const deform::Snapshot>& snapshot);
+
 class ReviewScene {
  public:
-  // life_size_scale: metres per model unit (displacement legend in mm).
+  // life_size_scale: metres per model unit (displacement legend in mm). async: snapshots are turned into vertex
+  // data on a thread of the scene's own (NewestOnlyWorker), so the frame loop only copies them (the headset:
+  // O(#Vr) of CPU per preview off the frame's thread, drawn one or more frames later).
   ReviewScene(renderer::Renderer& renderer, const assets::Model& model, const StagePlacement& placement,
-              ReviewColour colour, double life_size_scale);
+              ReviewColour colour, double life_size_scale, bool async = false);
 
-  // Uploads the snapshot's positions (and colour-map scalars) when its generation is new. Cost O(#Vr) on
-  // the calling thread: render positions, normals, scalars.
-  void update(const std::shared_ptr<const deform::Snapshot>& snapshot);
+  // Shows the snapshot when its generation is new. Synchronous (not async, or wait): converts and uploads on the
+  // calling thread, O(#Vr). Async: posts it to the converter and uploads the newest finished conversion, if any.
+  void update(const std::shared_ptr<const deform::Snapshot>& snapshot, bool wait = false);
   void set_colour(ReviewColour colour);
   // Model (deform) vertices to highlight as the handle a press would grab (aiming, between drags); empty: none.
   // Ignored while a drag's previews show their own overlays. Uploads overlays only when the set changes.
@@ -53,7 +72,8 @@ class ReviewScene {
   void set_legend_window(uint32_t width, uint32_t height);
 
  private:
-  void upload(const deform::Snapshot& snapshot);
+  void upload(const deform::Snapshot& snapshot);  // convert last_ on this thread and apply
+  void apply(SnapshotVertices vertices);          // overlays, upload, legend
   void update_legend();  // the renderer's legend for the colour map and its top (only when they change)
 
   renderer::Renderer& renderer_;
@@ -75,6 +95,14 @@ class ReviewScene {
   uint32_t legend_width_ = 960, legend_height_ = 540;
   std::optional<std::pair<ReviewColour, double>> legend_shown_;  // colour map and top (mm) of the legend
   std::shared_ptr<const deform::Snapshot> last_;
+  std::uint64_t latest_generation_ = 0;  // of the newest snapshot given to update()
+  struct ConversionJob {
+    std::shared_ptr<const deform::Snapshot> snapshot;
+    ReviewColour colour;
+  };
+  // Last: its thread reads render_, rest_V_, F_ and scale_ (never changed after construction) and must stop
+  // before they go.
+  std::unique_ptr<NewestOnlyWorker<ConversionJob, SnapshotVertices>> converter_;
 };
 
 // Image views for the eye swapchains' images and the RenderTargets of one frame.
