@@ -209,10 +209,7 @@ void render_to_png(const RenderInputs& inputs, const RenderCommandOptions& o) {
     settings.lighting = !o.flat;
     const double unit_scale = 1000.0 * inputs.life_size_scale;  // model units -> life-size mm
     const std::string unit = "mm";
-    const float legend_h = 0.32f, legend_w = legend_h * float(height) / float(width) * 0.55f;
-    const glm::vec4 rect{0.015f, 1.0f - legend_h - 0.015f, 0.015f + legend_w, 0.985f};
-    const uint32_t legend_px_h = std::max(110u, uint32_t(float(height) * legend_h));
-    const uint32_t legend_px_w = std::max(60u, uint32_t(float(legend_px_h) * 0.55f));
+    const LegendLayout legend = legend_layout(width, height);
     if (o.color == "displacement") {
       settings.color_mode = ColorMode::displacement;
       double max = o.scalar_max.value_or(inputs.scalar_max);
@@ -220,15 +217,13 @@ void render_to_png(const RenderInputs& inputs, const RenderCommandOptions& o) {
       settings.scalar_max = float(max);
       if (!o.no_legend)
         renderer.set_legend(
-            make_displacement_legend(float(max * unit_scale), "|d| " + unit, legend_px_w, legend_px_h), rect);
+            make_displacement_legend(float(max * unit_scale), "|d| " + unit, legend.width_px, legend.height_px),
+            legend.rect);
     } else if (o.color == "curvature-sign") {
       settings.color_mode = ColorMode::curvature_sign;
       settings.curvature_epsilon = 0.5f;  // scalars are the signs -1 / 0 / +1
-      if (!o.no_legend) {
-        const float h = legend_h * 0.5f;
-        renderer.set_legend(make_curvature_legend(legend_px_w, legend_px_h / 2),
-                            {rect.x, 0.985f - h, rect.z, 0.985f});
-      }
+      if (!o.no_legend)
+        renderer.set_legend(make_curvature_legend(legend.width_px, legend.height_px / 2), legend.curvature_rect);
     }
 
     const float aspect = float(width) / float(height);

@@ -152,9 +152,7 @@ void run_replay(const ReplayOptions& o) {
   review.model = model_path;
   review.method = o.method.empty() ? h.at("method").get<std::string>() : o.method;
   review.fixed_method = !o.method.empty();
-  if (o.method.empty())  // with --method the whole session replays with that one
-    for (const json& r : rec.records)
-      if (r.value("record", "") == "method") review.method_changes.emplace_back(r.value("time", 0.0), r.value("method", ""));
+  if (o.method.empty()) review.method_changes = rec.method_changes;  // with --method: that one throughout
   review.mu = o.mu.value_or(h.at("mu").get<double>());
   review.handle_radius_m = h.at("handle_radius_m");
   review.roi_radius_m = h.at("roi_radius_m");

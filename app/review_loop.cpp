@@ -137,7 +137,6 @@ void run_review(const ReviewCommandOptions& o) {
   }
   if (recorder.recording() && !o.quiet) std::printf("pushpull review: recording the session to %s\n", recorder.path().c_str());
 
-  bool lost = false;
   std::optional<VulkanValidation> validation;
   if (o.validation) validation.emplace(xr.vulkan().instance);
   {
@@ -151,7 +150,7 @@ void run_review(const ReviewCommandOptions& o) {
     std::optional<renderer::MirrorWindow> mirror;
     if (o.mirror) mirror.emplace(context, uint32_t(o.mirror_size[0]), uint32_t(o.mirror_size[1]), "pushpull review");
     MirrorView mirror_view;
-    mirror_view.set_orbit_bounds(stage_bounds(rest->V, placement));
+    if (mirror) mirror_view.set_orbit_bounds(stage_bounds(rest->V, placement));
     std::optional<std::array<xr::EyeView, 2>> last_eyes;
     std::string mirror_title;
     size_t mirror_frames = 0, mirror_blits = 0;
@@ -186,23 +185,61 @@ void run_review(const ReviewCommandOptions& o) {
     WorldLabel hand_label(renderer, 0.02f, 600), menu_label(renderer, 0.03f, 1500);
     Eigen::Vector3d head_position(0.0, 1.6, 0.0), head_forward(0.0, 0.0, -1.0);  // stage; the last seen
 
+    // The model moved on the stage (grip): what aims at it, draws it and frames it follows.
+    auto place_model = [&](const StagePlacement& p) {
+      interaction.set_placement(p);
+      scene.set_placement(p);
+      if (mirror) mirror_view.set_orbit_bounds(stage_bounds(rest->V, p));  // O(#V): only with a mirror
+    };
     auto log_event = [&](const InteractionEvent& e) {
       log.write_interaction(e, life);
       recorder.write_interaction(t, e, interaction.handle_radius(), interaction.roi_radius());
     };
 
-    for (;;) {  // sessions: one, and another each time a lost one comes back (--reconnect)
-    bool session_lost = false;
-    while (!xr.exit_requested()) {
+    // The session was lost (headset unplugged, runtime restarted): the drag in progress is cancelled (the model
+    // stays as it was before it); the committed work stays, and with --reconnect the review goes on when the
+    // headset is back. Returns whether it is back.
+    auto resume_after_loss = [&]() -> bool {
+      std::printf("pushpull review: the OpenXR session was lost\n");
+      if (const auto e = interaction.cancel()) log_event(*e);
+      log.write({{"event", "lost"}});
+      recorder.write_record("lost", t);
+      recorder.write_event_input(t, "loss");  // as xr/sim's script event: a replay loses the session there too
+      if (!(o.reconnect_s > 0.0)) return false;
+      std::printf("pushpull review: waiting up to %.0f s for the headset to come back\n", o.reconnect_s);
+      std::fflush(stdout);
+      renderer.wait_idle();  // the eye images go with the session
+      eyes.reset();
+      input.reset();
+      if (!xr.recreate_after_loss(o.reconnect_s)) {
+        std::printf("pushpull review: the headset did not come back; ending the review\n");
+        return false;
+      }
+      eyes.emplace(vk.device, xr.eye(0), xr.eye(1));
+      input.emplace(xr.instance(), xr.handle(), xr.stage_space());
+      menu = ReviewMenu{};
+      log.write({{"event", "session recreated"}});
+      recorder.write_record("resumed", t);
+      std::printf("pushpull review: the headset is back; the review goes on\n");
+      return true;
+    };
+
+    bool session_lost = false;  // a call failed with XR_ERROR_SESSION_LOST
+    while (!xr.exit_requested() || xr.lost() || session_lost) {
+      if (session_lost || xr.lost()) {
+        if (!resume_after_loss()) break;
+        session_lost = false;
+        continue;
+      }
       try {
         xr.poll_events();
-        if (xr.exit_requested()) break;
+        if (xr.exit_requested()) continue;  // ends the loop, or (lost) handled at its top
         if (!xr.running()) {
           std::this_thread::sleep_for(std::chrono::milliseconds(10));
           continue;
         }
         const xr::FrameViews frame = xr.begin_frame();
-        if (xr.lost()) break;
+        if (xr.lost()) continue;
         const auto start = Clock::now();
         input->sync(frame.predicted_display_time);
         // The recording's clock counts frames: frame n at n / rate, exactly as xr/sim's virtual clock at that
@@ -243,11 +280,7 @@ void run_review(const ReviewCommandOptions& o) {
             if (input->hand(xr::Hand(h)).grip > 0.5f && hands[size_t(h)].tracked)
               grabbing[size_t(h)] = GrabHand{hands[size_t(h)].origin_stage, heading(hands[size_t(h)])};
           const bool was_grabbing = grab.grabbing();
-          if (grab.update(grabbing)) {
-            interaction.set_placement(grab.placement());
-            scene.set_placement(grab.placement());
-            mirror_view.set_orbit_bounds(stage_bounds(rest->V, grab.placement()));
-          }
+          if (grab.update(grabbing)) place_model(grab.placement());
           if (was_grabbing && !grab.grabbing()) {
             std::vector<double> T;
             for (int r = 0; r < 4; ++r)
@@ -300,9 +333,7 @@ void run_review(const ReviewCommandOptions& o) {
           const xr::HandInput& in = input->hand(xr::Hand(h));
           if (in.undo_pressed && grab.grabbing()) {  // undo while holding the model: back to life size
             grab.reset();
-            interaction.set_placement(grab.placement());
-            scene.set_placement(grab.placement());
-            mirror_view.set_orbit_bounds(stage_bounds(rest->V, grab.placement()));
+            place_model(grab.placement());
             log.write({{"event", "placement reset"}});
           } else if (in.undo_pressed) {
             service.undo();
@@ -453,36 +484,7 @@ void run_review(const ReviewCommandOptions& o) {
       } catch (const xr::XrError& e) {
         if (e.result() != XR_ERROR_SESSION_LOST && e.result() != XR_ERROR_INSTANCE_LOST) throw;
         session_lost = true;
-        break;
       }
-      if (xr.lost()) break;
-    }
-    lost = session_lost || xr.lost();
-    if (!lost) break;
-    // The session was lost (headset unplugged, runtime restarted): the drag in progress is cancelled (the model
-    // stays as it was before it); the committed work stays, and the review goes on when the headset is back.
-    std::printf("pushpull review: the OpenXR session was lost\n");
-    if (const auto e = interaction.cancel()) log_event(*e);
-    log.write({{"event", "lost"}});
-    recorder.write_record("lost", t);
-    recorder.write_event_input(t, "loss");  // as xr/sim's script event: a replay loses the session there too
-    if (!(o.reconnect_s > 0.0)) break;
-    std::printf("pushpull review: waiting up to %.0f s for the headset to come back\n", o.reconnect_s);
-    std::fflush(stdout);
-    renderer.wait_idle();  // the eye images go with the session
-    eyes.reset();
-    input.reset();
-    if (!xr.recreate_after_loss(o.reconnect_s)) {
-      std::printf("pushpull review: the headset did not come back; ending the review\n");
-      break;
-    }
-    eyes.emplace(vk.device, xr.eye(0), xr.eye(1));
-    input.emplace(xr.instance(), xr.handle(), xr.stage_space());
-    menu = ReviewMenu{};
-    lost = false;
-    log.write({{"event", "session recreated"}});
-    recorder.write_record("resumed", t);
-    std::printf("pushpull review: the headset is back; the review goes on\n");
     }
     renderer.wait_idle();
     service.wait_idle();

@@ -68,8 +68,10 @@ void ReviewScene::set_placement(const StagePlacement& placement) {
 void ReviewScene::set_colour(ReviewColour colour) {
   if (colour == colour_) return;
   colour_ = colour;
-  if (last_) upload(*last_);  // at once, on this thread (a conversion in flight for the old map is dropped)
-  update_legend();
+  if (last_)
+    upload();  // at once, on this thread (a conversion in flight for the old map is dropped); sets the legend
+  else
+    update_legend();
 }
 
 void ReviewScene::update(const std::shared_ptr<const deform::Snapshot>& snapshot, bool wait) {
@@ -78,7 +80,7 @@ void ReviewScene::update(const std::shared_ptr<const deform::Snapshot>& snapshot
   last_ = snapshot;
   if (!converter_ || wait) {
     // On this thread: the frame shows exactly this snapshot (replays: the same images on every run).
-    if (generation_ != snapshot->generation) upload(*snapshot);
+    if (generation_ != snapshot->generation) upload();
     return;
   }
   if (is_new) converter_->post({snapshot, colour_});
@@ -119,10 +121,7 @@ SnapshotVertices convert_snapshot(const RenderModel& render, const Eigen::Matrix
   return out;
 }
 
-void ReviewScene::upload(const deform::Snapshot& snapshot) {
-  apply(convert_snapshot(render_, rest_V_, F_, scale_, colour_, last_));
-  (void)snapshot;
-}
+void ReviewScene::upload() { apply(convert_snapshot(render_, rest_V_, F_, scale_, colour_, last_)); }
 
 void ReviewScene::apply(SnapshotVertices v) {
   const deform::Snapshot& snapshot = *v.snapshot;
@@ -170,15 +169,13 @@ void ReviewScene::update_legend() {
   if (legend_shown_ == wanted) return;
   legend_shown_ = wanted;
   // Lower-left corner, about a third of the window high (as `pushpull render` places it).
-  const float h = 0.32f, w = h * float(legend_height_) / float(legend_width_) * 0.55f;
-  const uint32_t px_h = std::max(110u, uint32_t(float(legend_height_) * h));
-  const uint32_t px_w = std::max(60u, uint32_t(float(px_h) * 0.55f));
+  const renderer::LegendLayout legend = renderer::legend_layout(legend_width_, legend_height_);
   if (colour_ == ReviewColour::Displacement) {
-    renderer_.set_legend(renderer::make_displacement_legend(float(top_mm), "|d| mm", px_w, px_h),
-                         {0.015f, 1.0f - h - 0.015f, 0.015f + w, 0.985f});
+    renderer_.set_legend(renderer::make_displacement_legend(float(top_mm), "|d| mm", legend.width_px, legend.height_px),
+                         legend.rect);
   } else if (colour_ == ReviewColour::CurvatureSign) {
-    renderer_.set_legend(renderer::make_curvature_legend(px_w, px_h / 2),
-                         {0.015f, 1.0f - 0.5f * h - 0.015f, 0.015f + w, 0.985f});
+    renderer_.set_legend(renderer::make_curvature_legend(legend.width_px, legend.height_px / 2),
+                         legend.curvature_rect);
   } else {
     renderer_.set_legend(std::nullopt);
   }

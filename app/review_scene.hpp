@@ -72,7 +72,7 @@ class ReviewScene {
   void set_legend_window(uint32_t width, uint32_t height);
 
  private:
-  void upload(const deform::Snapshot& snapshot);  // convert last_ on this thread and apply
+  void upload();  // converts last_ on this thread and applies it
   void apply(SnapshotVertices vertices);          // overlays, upload, legend
   void update_legend();  // the renderer's legend for the colour map and its top (only when they change)
 

@@ -15,6 +15,15 @@ namespace {
   throw CommandError(path + ":" + std::to_string(line) + ": corrupted line: " + what);
 }
 
+bool is_method_name(const std::string& name) {
+  try {
+    (void)deform::parse_method(name);
+    return true;
+  } catch (const std::invalid_argument&) {
+    return false;
+  }
+}
+
 // The problem with an input line ("t" lines, read by xr/sim), or "" when it is well formed.
 std::string input_line_problem(const nlohmann::json& j) {
   if (!j["t"].is_number()) return "\"t\" is not a number";
@@ -105,13 +114,10 @@ SessionRecording read_session_recording(const std::string& path) {
           corrupted(path, number, "a commit record needs \"index\" and \"hash\"");
         r.commits.push_back({number, j});
       } else if (kind == "method") {
-        bool known = j.contains("method") && j["method"].is_string() && j.contains("time") && j["time"].is_number();
-        if (known) try {
-            (void)deform::parse_method(j["method"].get<std::string>());
-          } catch (const std::invalid_argument&) {
-            known = false;
-          }
-        if (!known) corrupted(path, number, "a method record needs \"time\" and a known \"method\"");
+        const bool valid = j.contains("method") && j["method"].is_string() && j.contains("time") &&
+                           j["time"].is_number() && is_method_name(j["method"].get<std::string>());
+        if (!valid) corrupted(path, number, "a method record needs \"time\" and a known \"method\"");
+        r.method_changes.emplace_back(j["time"].get<double>(), j["method"].get<std::string>());
       } else if (kind == "clock") {
         r.rate_hz = j.value("rate_hz", 0.0);
       } else if (kind == "profile" && r.profile.empty()) {

@@ -13,6 +13,7 @@
 #include <cstddef>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace pushpull::app {
@@ -27,6 +28,7 @@ struct SessionRecording {
   nlohmann::json header;                     // line 1
   std::vector<nlohmann::json> records;       // every derived record, in order, with "line" added
   std::vector<RecordedCommit> commits;       // the commit records, in commit order
+  std::vector<std::pair<double, std::string>> method_changes;  // "method" records: (time s, method name), in order
   std::string script;                        // the complete lines before any cut, '\n'-terminated (for xr/sim)
   double last_input_time = 0.0;              // largest "t" of an input line (seconds)
   double rate_hz = 0.0;                      // display rate of the recorded session (0: unknown)

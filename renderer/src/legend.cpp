@@ -140,4 +140,15 @@ TextureRGBA8 make_curvature_legend(uint32_t width, uint32_t height) {
   return canvas.image;
 }
 
+LegendLayout legend_layout(uint32_t view_width, uint32_t view_height) {
+  const float width = float(std::max(view_width, 1u)), height = float(std::max(view_height, 1u));
+  const float h = 0.32f, w = h * height / width * 0.55f;
+  LegendLayout layout;
+  layout.rect = {0.015f, 1.0f - h - 0.015f, 0.015f + w, 0.985f};
+  layout.curvature_rect = {0.015f, 0.985f - 0.5f * h, 0.015f + w, 0.985f};
+  layout.height_px = std::max(110u, uint32_t(height * h));
+  layout.width_px = std::max(60u, uint32_t(float(layout.height_px) * 0.55f));
+  return layout;
+}
+
 }  // namespace pushpull::renderer

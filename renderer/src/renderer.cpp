@@ -61,6 +61,25 @@ struct PipelinePair {
   UniquePipeline overlay;
 };
 
+// A pass's uniform data: its views, the studio lighting, the colour-map settings.
+FrameDataGpu frame_data(std::span<const View> views, const FrameSettings& settings) {
+  FrameDataGpu data{};
+  for (size_t i = 0; i < views.size(); ++i) {
+    data.views[i].view_projection = views[i].projection * views[i].view;
+    data.views[i].eye_world = glm::vec4(glm::vec3(glm::inverse(views[i].view)[3]), 1.0f);
+  }
+  const glm::vec3 up = glm::normalize(settings.up);
+  // Key light from above, front-left of the first view.
+  const glm::mat3 R_world_eye = glm::transpose(glm::mat3(views[0].view));
+  const glm::vec3 key = glm::normalize(R_world_eye * glm::vec3(-0.4f, 0.0f, 0.6f) + up * 1.2f);
+  data.up_world = glm::vec4(up, 0.0f);
+  data.key_light_dir = glm::vec4(key, 0.0f);
+  data.colour_params = {settings.scalar_max, settings.curvature_epsilon, settings.exposure,
+                        settings.show_overlays ? 1.0f : 0.0f};
+  data.mode = {static_cast<uint32_t>(settings.color_mode), settings.lighting ? 1u : 0u, 0u, 0u};
+  return data;
+}
+
 }  // namespace
 
 struct Renderer::Impl {
@@ -534,50 +553,30 @@ void Renderer::render_frame(std::span<const RenderPass> passes) {
     const RenderTargets& targets = *pass.targets;
     const FrameSettings& settings = pass.settings;
     PassResources& res = slot.passes[p];
-    if (pass.blit_from != nullptr) {
-      VkCommandBuffer cmd = res.cmd;
-      PP_VK_CHECK(vkResetCommandBuffer(cmd, 0));
-      VkCommandBufferBeginInfo begin{};
-      begin.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
-      begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-      PP_VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
-      if (p == 0)
-        for (GpuMesh& mesh : r.meshes) r.last_upload_bytes += mesh.record_pending_uploads(cmd, slot_id);
-      r.record_blit(cmd, *pass.blit_from, pass.blit_from_extent, targets.views[0], targets.extent);
-      PP_VK_CHECK(vkEndCommandBuffer(cmd));
-    } else {
-      const Attachments& attachments = r.ensure_attachments(targets.extent, targets.format);
-      PipelinePair& pipes = r.pipelines_for(targets.format);
-
-      FrameDataGpu data{};
-      for (size_t i = 0; i < pass.views.size(); ++i) {
-        data.views[i].view_projection = pass.views[i].projection * pass.views[i].view;
-        data.views[i].eye_world = glm::vec4(glm::vec3(glm::inverse(pass.views[i].view)[3]), 1.0f);
-      }
-      const glm::vec3 up = glm::normalize(settings.up);
-      // Key light from above, front-left of the first view.
-      const glm::mat3 R_world_eye = glm::transpose(glm::mat3(pass.views[0].view));
-      const glm::vec3 key = glm::normalize(R_world_eye * glm::vec3(-0.4f, 0.0f, 0.6f) + up * 1.2f);
-      data.up_world = glm::vec4(up, 0.0f);
-      data.key_light_dir = glm::vec4(key, 0.0f);
-      data.colour_params = {settings.scalar_max, settings.curvature_epsilon, settings.exposure,
-                            settings.show_overlays ? 1.0f : 0.0f};
-      data.mode = {static_cast<uint32_t>(settings.color_mode), settings.lighting ? 1u : 0u, 0u, 0u};
+    const Attachments* attachments = nullptr;
+    PipelinePair* pipes = nullptr;
+    if (pass.blit_from == nullptr) {
+      attachments = &r.ensure_attachments(targets.extent, targets.format);
+      pipes = &r.pipelines_for(targets.format);
+      const FrameDataGpu data = frame_data(pass.views, settings);
       std::memcpy(res.frame_data.mapped, &data, sizeof(data));
-
-      VkCommandBuffer cmd = res.cmd;
-      PP_VK_CHECK(vkResetCommandBuffer(cmd, 0));
-      VkCommandBufferBeginInfo begin{};
-      begin.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
-      begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-      PP_VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
-      if (p == 0)  // the frame's vertex uploads, once, before every pass (batches run in submission order)
-        for (GpuMesh& mesh : r.meshes) r.last_upload_bytes += mesh.record_pending_uploads(cmd, slot_id);
-      for (uint32_t v = 0; v < pass.views.size(); ++v)
-        r.record_view(cmd, pipes, targets.views[v], targets.extent, v, pass.draws, settings, res.frame_set,
-                      attachments);
-      PP_VK_CHECK(vkEndCommandBuffer(cmd));
     }
+    VkCommandBuffer cmd = res.cmd;
+    PP_VK_CHECK(vkResetCommandBuffer(cmd, 0));
+    VkCommandBufferBeginInfo begin{};
+    begin.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
+    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    PP_VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
+    if (p == 0)  // the frame's vertex uploads, once, before every pass (batches run in submission order)
+      for (GpuMesh& mesh : r.meshes) r.last_upload_bytes += mesh.record_pending_uploads(cmd, slot_id);
+    if (pass.blit_from != nullptr) {
+      r.record_blit(cmd, *pass.blit_from, pass.blit_from_extent, targets.views[0], targets.extent);
+    } else {
+      for (uint32_t v = 0; v < pass.views.size(); ++v)
+        r.record_view(cmd, *pipes, targets.views[v], targets.extent, v, pass.draws, settings, res.frame_set,
+                      *attachments);
+    }
+    PP_VK_CHECK(vkEndCommandBuffer(cmd));
 
     cmd_infos[p].sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO;
     wait_infos[p].sType = VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO;

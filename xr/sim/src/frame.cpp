@@ -23,6 +23,15 @@ XrResult XRAPI_CALL wait_frame(XrSession handle, const XrFrameWaitInfo* info, Xr
                    [&] { return !handle_is(s, HandleKind::session) || !s->waited_not_begun || !s->running; });
   if (!handle_is(s, HandleKind::session)) return XR_ERROR_HANDLE_INVALID;
   if (!s->running) return XR_ERROR_SESSION_NOT_RUNNING;
+  // Sleeps until `due` on the real clock with the lock released, holding the frame slot; false when the session
+  // was destroyed meanwhile.
+  auto sleep_until = [&](XrTime due, XrTime now) {
+    s->waited_not_begun = true;
+    lock.unlock();
+    std::this_thread::sleep_for(std::chrono::nanoseconds(due - now));
+    lock.lock();
+    return handle_is(s, HandleKind::session);
+  };
   XrTime display = 0;
   if (s->is_virtual_clock()) {
     // Frame n at exactly t0 + n / rate (rounded to the nanosecond), no drift from a rounded period.
@@ -32,13 +41,7 @@ XrResult XRAPI_CALL wait_frame(XrSession handle, const XrFrameWaitInfo* info, Xr
       const XrTime now = monotonic_now();
       if (s->pace_origin == 0) s->pace_origin = now - (display - s->clock_origin);
       const XrTime due = s->pace_origin + (display - s->clock_origin);
-      if (due > now) {
-        s->waited_not_begun = true;  // hold the slot while sleeping unlocked
-        lock.unlock();
-        std::this_thread::sleep_for(std::chrono::nanoseconds(due - now));
-        lock.lock();
-        if (!handle_is(s, HandleKind::session)) return XR_ERROR_HANDLE_INVALID;
-      }
+      if (due > now && !sleep_until(due, now)) return XR_ERROR_HANDLE_INVALID;
     }
   } else {
     const XrTime now = monotonic_now();
@@ -46,11 +49,7 @@ XrResult XRAPI_CALL wait_frame(XrSession handle, const XrFrameWaitInfo* info, Xr
     if (vsync < now)  // the application fell behind: skip to the next vsync instead of catching up
       vsync += (now - vsync + s->period - 1) / s->period * s->period;
     s->next_real_vsync = vsync;
-    s->waited_not_begun = true;  // hold the slot while sleeping unlocked
-    lock.unlock();
-    std::this_thread::sleep_for(std::chrono::nanoseconds(vsync - now));
-    lock.lock();
-    if (!handle_is(s, HandleKind::session)) return XR_ERROR_HANDLE_INVALID;
+    if (!sleep_until(vsync, now)) return XR_ERROR_HANDLE_INVALID;
     display = vsync + s->period;
   }
   s->frames_waited++;

@@ -49,4 +49,15 @@ TextureRGBA8 make_displacement_legend(float max_value, const std::string& title,
 // A legend for the curvature sign: yellow "K > 0", blue "K < 0", grey "K = 0".
 TextureRGBA8 make_curvature_legend(uint32_t width, uint32_t height);
 
+// Where the legends go in a view of view_width x view_height pixels (Renderer::set_legend rectangles, 0..1, y
+// down): the lower-left corner, the displacement legend about a third of the view high (`rect`, a texture of
+// width_px x height_px), the curvature legend half as high (`curvature_rect`, width_px x height_px / 2).
+struct LegendLayout {
+  glm::vec4 rect{0.0f};
+  glm::vec4 curvature_rect{0.0f};
+  uint32_t width_px = 0;
+  uint32_t height_px = 0;
+};
+LegendLayout legend_layout(uint32_t view_width, uint32_t view_height);
+
 }  // namespace pushpull::renderer
