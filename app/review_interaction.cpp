@@ -50,6 +50,7 @@ ReviewInteraction::ReviewInteraction(deform::Service& service, const deform::Mes
       placement_(std::move(placement)),
       options_(std::move(options)),
       committed_(rest),
+      surface_graph_(rest),
       bvh_(rest.V, rest.F),
       gestures_{xr::PushPullGesture(gesture_options(options_.scale)),
                 xr::PushPullGesture(gesture_options(options_.scale))} {}
@@ -180,8 +181,8 @@ const std::vector<int>& ReviewInteraction::hover_handle(int hand) {
       hover_handle_cache_->radius == options_.handle_radius)
     return hover_handle_cache_->vertices;
   hover_handle_cache_ = HoverHandle{hover->face, hover->point, options_.handle_radius,
-                                    deform::surface_handle(committed_, {hover->face, hover->point},
-                                                           options_.handle_radius)};
+                                    surface_graph_.handle(committed_.V, {hover->face, hover->point},
+                                                          options_.handle_radius)};
   return hover_handle_cache_->vertices;
 }
 

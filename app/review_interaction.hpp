@@ -114,6 +114,7 @@ class ReviewInteraction {
   StagePlacement placement_;
   InteractionOptions options_;
   deform::Mesh committed_;  // the committed shape (rest of the newest snapshot)
+  deform::SurfaceGraph surface_graph_;  // its connectivity, for the handle-to-be under the aim (built once)
   struct HoverHandle {
     int face = -1;
     Eigen::Vector3d point;

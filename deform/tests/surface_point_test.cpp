@@ -101,6 +101,25 @@ TEST(SurfacePoint, BadInputIsRefused) {
   EXPECT_THROW((void)closest_surface_point(flat, Eigen::Vector3d::Zero()), std::invalid_argument);
 }
 
+// One graph serves many queries and shapes of the same faces: each answer equals the one-shot functions' on the
+// same positions; positions of another vertex count are refused.
+TEST(SurfacePoint, AGraphBuiltOnceAnswersAsTheOneShotFunctions) {
+  Mesh m = testing::grid(9, 9, 0.0, 1.0, 0.0, 1.0);
+  const SurfaceGraph graph(m);
+  for (const double bend : {0.0, 0.3}) {
+    for (Eigen::Index v = 0; v < m.V.rows(); ++v) m.V(v, 2) = bend * m.V(v, 0) * m.V(v, 0);
+    for (const int face : {0, 17, 60, int(m.F.rows()) - 1}) {
+      const Eigen::Vector3d point =
+          (m.V.row(m.F(face, 0)) + m.V.row(m.F(face, 1)) + 2.0 * m.V.row(m.F(face, 2))).transpose() / 4.0;
+      const SurfacePoint from{face, point};
+      EXPECT_EQ(graph.handle(m.V, from, 0.25), surface_handle(m, from, 0.25));
+      EXPECT_EQ(graph.distances(m.V, from, 0.5), surface_distances(m, from, 0.5));
+    }
+  }
+  EXPECT_THROW((void)graph.handle(m.V.topRows(10), SurfacePoint{0, Eigen::Vector3d::Zero()}, 0.1),
+               std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace pushpull::deform
 

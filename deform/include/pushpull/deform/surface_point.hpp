@@ -12,7 +12,8 @@
 // the true geodesic distance by at most the detour of edge paths (a few percent on fair meshes) and never
 // leaves the component of the hit triangle.
 //
-// Units: model units. Frame: model space. Thread-safety: free functions without state.
+// Units: model units. Frame: model space. Thread-safety: free functions without state; a SurfaceGraph is
+// immutable after construction (const queries from any thread).
 #pragma once
 
 #include <Eigen/Core>
@@ -46,5 +47,25 @@ struct SurfacePoint {
 // triangle's corner nearest to the point (so a small radius still grabs something). Sorted ascending.
 // Throws std::invalid_argument as surface_distances, or when radius is NaN or negative.
 [[nodiscard]] std::vector<int> surface_handle(const Mesh& mesh, const SurfacePoint& from, double radius);
+
+// The same queries for many points on one mesh (a hand aiming at it frame after frame): the mesh's connectivity
+// (vertex neighbours, faces around each vertex) is built once, O(#F log #F); each query then costs its Dijkstra
+// within the radius plus O(#V) to allocate the distances. Positions are given per query (#V by 3, the same
+// vertex count), so one graph serves every shape of a mesh whose faces do not change.
+class SurfaceGraph {
+ public:
+  explicit SurfaceGraph(const Mesh& mesh);
+  // As surface_distances / surface_handle on Mesh{V, the faces given to the constructor}; also throws
+  // std::invalid_argument when V has another vertex count.
+  [[nodiscard]] std::vector<double> distances(const Eigen::MatrixXd& V, const SurfacePoint& from,
+                                              double max_distance = std::numeric_limits<double>::infinity()) const;
+  [[nodiscard]] std::vector<int> handle(const Eigen::MatrixXd& V, const SurfacePoint& from, double radius) const;
+
+ private:
+  Eigen::MatrixXi F_;
+  int vertex_count_ = 0;
+  std::vector<int> neighbour_start_, neighbours_;  // compressed rows: the neighbours of each vertex
+  std::vector<int> face_start_, faces_;            // compressed rows: the faces around each vertex
+};
 
 }  // namespace pushpull::deform
