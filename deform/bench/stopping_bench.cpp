@@ -6,6 +6,9 @@
 // fixed), a 2.5K one pulled sideways, and the hemisphere of ../shared/data (cap pulled up, base fixed).
 // A row fails the check when the true error exceeds twice the estimate ("optimistic > 2x").
 //
+// Warm starts (a drag's next request from the previous result) are checked on the 10K height field and the
+// car's 2 m region, with and without the previous solve's contraction rate as hint.
+//
 // Usage: stopping_bench [--quick] [--method NAME]...   (--quick: the 2.5K height field only; --method: only
 // these methods' rows, repeatable)
 #include <chrono>
@@ -14,6 +17,7 @@
 #include <cstring>
 #include <exception>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -87,6 +91,47 @@ int run(const Problem& p) {
   return failures;
 }
 
+// Warm starts as in a drag (deform::Service): the previous request was fraction * d; the solve of d starts
+// from its result, with and without its contraction rate as ConstraintTargets::rate_hint (the service
+// passes it). Only the rows with the hint count in the honesty check.
+int run_warm(const Problem& p) {
+  int failures = 0;
+  std::printf("\n%s, warm starts from the previous request of a drag\n", p.name.c_str());
+  std::printf("%-9s | %8s %-7s | %6s %9s %9s %6s\n", "method", "previous", "hint", "iters", "estimate",
+              "true", "ratio");
+  for (const pd::Method method : g_methods) {
+    if (method != pd::Method::Asan && method != pd::Method::ArapSR) continue;  // the service's defaults
+    pd::DeformOptions options;
+    options.method = method;
+    pd::DeformOptions tight = options;
+    tight.tolerance = 1e-9;
+    tight.max_iterations = 20000;
+    const pd::DeformResult reference = pd::deform(p.mesh, p.roi, p.d, tight);
+    auto mesh = std::make_shared<const pd::Mesh>(p.mesh);
+    for (const double fraction : {0.9, 0.97, 0.995}) {
+      for (const bool hint : {false, true}) {
+        pd::Deformer deformer(mesh, p.roi, options);
+        const pd::DeformResult previous = deformer.solve(fraction * p.d);
+        pd::ConstraintTargets targets = deformer.push_pull_targets(p.d);
+        targets.initial_guess = previous.V;
+        if (hint) targets.rate_hint = previous.contraction_rate;
+        const pd::DeformResult r = deformer.solve(targets);
+        const double truth = true_error(r.V, reference.V, p.d);
+        const double estimate = r.error_estimate.value_or(NAN);
+        const bool honest = r.converged && truth / estimate <= 2.0;
+        if (hint && !honest) ++failures;
+        std::printf(
+            "%-9s | %6.3f d %-7s | %5d%s %9.1e %9.1e %6.2f%s\n", std::string(pd::method_name(method)).c_str(),
+            fraction, hint ? "rate" : "none", r.iterations, r.converged ? " " : "*", estimate, truth,
+            truth / estimate,
+            honest ? "" : (hint ? "   <-- optimistic > 2x or not converged" : "   (optimistic > 2x)"));
+        std::fflush(stdout);
+      }
+    }
+  }
+  return failures;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -113,7 +158,9 @@ int main(int argc, char** argv) {
       "estimate <= 1e-2)\nratio = true / estimate (<= 2 required); * = not converged\n");
   int failures = run(height_field(50, Eigen::Vector3d(0.05, 0.0, 0.02), "height field 2.5K, sideways pull"));
   if (!quick) {
-    failures += run(height_field(100, Eigen::Vector3d(0.0, 0.0, 0.1), "height field 10K, pull along z"));
+    const Problem ten_k = height_field(100, Eigen::Vector3d(0.0, 0.0, 0.1), "height field 10K, pull along z");
+    failures += run(ten_k);
+    failures += run_warm(ten_k);
     const std::filesystem::path dome =
         std::filesystem::path(PUSHPULL_SHARED_DATA) / "meshes" / "hemisphere.off";
     if (std::filesystem::exists(dome)) {
@@ -144,6 +191,7 @@ int main(int argc, char** argv) {
       p.roi = pd::build_roi(mesh, pd::surface_handle(mesh, hit, 0.05), {}, radius);
       p.d = Eigen::Vector3d(0.1, 0.0, 0.0);
       failures += run(p);
+      if (radius == 2.0) failures += run_warm(p);
     }
   }
 #endif

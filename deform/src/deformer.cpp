@@ -329,6 +329,10 @@ DeformResult Deformer::solve(const ConstraintTargets& targets, const ProgressCal
       (targets.push_direction && !targets.push_direction->allFinite())) {
     throw std::invalid_argument("deformer: a target position or direction is not finite");
   }
+  if (targets.rate_hint && !(*targets.rate_hint >= 0.0 && *targets.rate_hint < 1.0)) {
+    throw std::invalid_argument("deformer: rate_hint must be in [0, 1), got " +
+                                std::to_string(*targets.rate_hint));
+  }
   const int nc = s.n_handle + s.n_fixed + s.n_pinned;
   Eigen::Matrix3Xd X_c = s.P.rightCols(nc);
   X_c.leftCols(s.n_handle) = targets.handle_positions.transpose();
@@ -340,7 +344,8 @@ DeformResult Deformer::solve(const ConstraintTargets& targets, const ProgressCal
   } else {
     push = (X_c.leftCols(s.n_handle) - s.P.middleCols(s.n_free, s.n_handle)).rowwise().mean();
   }
-  DeformResult result = s.run(X_c, push, targets.initial_guess, progress ? progress : s.options.progress);
+  DeformResult result =
+      s.run(X_c, push, targets.initial_guess, targets.rate_hint, progress ? progress : s.options.progress);
   // arap-s is the one method whose energy is not PSD (negative spoke weights): a negative energy proves the
   // negative weights won, and the shape means nothing (Le Vaou et al. 2020, Fig. 3). Say so, not return it.
   if (s.options.method == Method::ArapS && !result.cancelled && !result.energy_trace.empty() &&

@@ -64,9 +64,19 @@ void ContractionEstimate::add(const Eigen::Ref<const Eigen::VectorXd>& x,
 }
 
 std::optional<double> ContractionEstimate::rate() const {
-  if (pairs_ < window_ || expanding_) return std::nullopt;
-  if (policy_ == Policy::Cautious && estimates_ < static_cast<long>(recent_.size())) return std::nullopt;
-  return rate_;
+  if (expanding_) return std::nullopt;
+  const bool own =
+      pairs_ >= window_ && (policy_ != Policy::Cautious || estimates_ >= static_cast<long>(recent_.size()));
+  if (!own) {
+    if (policy_ == Policy::Cautious || !floor_) return std::nullopt;
+    return floor_;
+  }
+  return floor_ ? std::max(rate_, *floor_) : rate_;
+}
+
+void ContractionEstimate::set_floor(double rate) {
+  if (!(rate >= 0.0)) return;  // also NaN
+  floor_ = std::min(rate, policy_ == Policy::Cautious ? kCautiousMaxRate : kMaxRate);
 }
 
 }  // namespace pushpull::deform::detail

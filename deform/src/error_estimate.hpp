@@ -39,6 +39,9 @@ class ContractionEstimate {
   // pairs have been seen (Cautious: 10 estimates); Cautious: empty while a recent Ritz value says the
   // iterates move away (>= 1).
   [[nodiscard]] std::optional<double> rate() const;
+  // A lower bound for the rate from an earlier solve of a nearby problem (a warm start's): rate() is at
+  // least this, and (Recent policy) available from the first iteration on. Clamped to the policy's maximum.
+  void set_floor(double rate);
 
   static constexpr double kMaxRate = 0.9999;
   static constexpr double kCautiousMaxRate = 0.99999;
@@ -56,6 +59,7 @@ class ContractionEstimate {
   bool expanding_ = false;           // a recent |Ritz value| >= 1
   std::array<double, 10> recent_{};  // the last few estimates (unclamped), circular
   long estimates_ = 0;
+  std::optional<double> floor_;
 };
 
 }  // namespace pushpull::deform::detail

@@ -48,7 +48,8 @@ void Deformer::Impl::global_step(const Eigen::Matrix3Xd& B, const Eigen::Matrix3
 }
 
 DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vector3d& push_direction,
-                                 const Eigen::MatrixXd& initial_guess, const ProgressCallback& progress) {
+                                 const Eigen::MatrixXd& initial_guess, std::optional<double> rate_hint,
+                                 const ProgressCallback& progress) {
   DeformResult result;
   result.warnings = setup_warnings;
   result.timing.precompute = precompute_ms;
@@ -96,6 +97,7 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
   detail::ContractionEstimate contraction(kRateWindow, 3 * n_free,
                                           triangle_rotations ? detail::ContractionEstimate::Policy::Cautious
                                                              : detail::ContractionEstimate::Policy::Recent);
+  if (rate_hint && initial_guess.size() != 0) contraction.set_floor(*rate_hint);
 
   Eigen::Matrix3Xd X_next =
       X;  // its constrained columns stay X's; the free ones are rewritten each iteration
@@ -132,8 +134,10 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
     contraction.add(Eigen::Map<const Eigen::VectorXd>(X.data(), 3 * n_free),
                     Eigen::Map<const Eigen::VectorXd>(G.data(), 3 * n_free));
     std::optional<double> error;
-    if (const std::optional<double> rate = contraction.rate()) error = move / (1.0 - *rate);
+    const std::optional<double> rate = contraction.rate();
+    if (rate) error = move / (1.0 - *rate);
     result.error_estimate = error;
+    result.contraction_rate = rate;
     X.swap(X_next);
     result.energy_trace.push_back(next_energy);
     result.iterations = iteration;
@@ -141,8 +145,8 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
     energy = next_energy;
 
     if (progress) {
-      const IterationReport report{iteration, energy, move, error,
-                                   std::make_shared<const Eigen::MatrixXd>(to_full(X))};
+      const IterationReport report{iteration, energy, move,
+                                   error,     rate,   std::make_shared<const Eigen::MatrixXd>(to_full(X))};
       if (!progress(report)) {
         result.cancelled = true;
         result.stop_reason = StopReason::Cancelled;

@@ -109,6 +109,7 @@ struct Service::Impl {
     std::shared_ptr<const RegionOfInterest> region;
     std::optional<AttachedParts> parts;                   // when the request attaches parts
     std::shared_ptr<const Eigen::MatrixXd> last_iterate;  // warm start for the next request of the drag
+    std::optional<double> last_rate;  // the contraction rate known when last_iterate was made (its hint)
 
     // The solver's positions with the attached parts moved along (a new matrix when there are parts).
     std::shared_ptr<const Eigen::MatrixXd> with_parts(std::shared_ptr<const Eigen::MatrixXd> V) const {
@@ -259,7 +260,10 @@ struct Service::Impl {
     Active& a = setup_for(p.request, setup_ms);
     ConstraintTargets targets = a.deformer->push_pull_targets(p.request.d);
     // Warm start from the drag's previous iterate (previews only; commits start cold).
-    if (a.last_iterate) targets.initial_guess = *a.last_iterate;
+    if (a.last_iterate) {
+      targets.initial_guess = *a.last_iterate;
+      targets.rate_hint = a.last_rate;
+    }
     const auto solve_start = Clock::now();
     auto progress = [&](const IterationReport& report) {
       Snapshot s = request_snapshot(Snapshot::Kind::Preview, p, a, report.V);
@@ -269,12 +273,14 @@ struct Service::Impl {
       s.setup_ms = setup_ms;
       s.solve_ms = ms_between(solve_start, Clock::now());
       a.last_iterate = report.V;
+      if (report.contraction_rate) a.last_rate = report.contraction_rate;
       publish(std::move(s));
       return !interrupt.load(std::memory_order_acquire) && !stopping.load(std::memory_order_acquire);
     };
     const DeformResult r = a.deformer->solve(targets, progress);
     a.request = p.request;
     a.last_iterate = std::make_shared<const Eigen::MatrixXd>(r.V);
+    if (r.contraction_rate) a.last_rate = r.contraction_rate;
     Snapshot s = result_snapshot(p, a, r, Snapshot::Kind::Preview);
     s.setup_ms = setup_ms;
     publish(std::move(s));

@@ -107,6 +107,8 @@ struct IterationReport {
   // DeformOptions::tolerance); empty for the first few iterations, until the contraction rate is known, and
   // while the iterates move away from a fixed point (a saddle of a non-convex energy such as arap-h's).
   std::optional<double> error_estimate;
+  // The contraction rate behind error_estimate (see DeformResult::contraction_rate).
+  std::optional<double> contraction_rate;
   // #V by 3 full-mesh positions after this iteration: an immutable copy the receiver may keep (e.g. publish
   // as a preview snapshot to another thread). Never null.
   std::shared_ptr<const Eigen::MatrixXd> V;
@@ -170,6 +172,9 @@ struct DeformResult {
   bool converged = false;  // stop_reason is ErrorTolerance or EnergyTolerance
   // Estimated largest vertex distance to the exact minimiser / reference length, at the last iteration.
   std::optional<double> error_estimate;
+  // The contraction rate of the plain local-global step behind error_estimate (in [0, 1); empty until
+  // known). Pass it as ConstraintTargets::rate_hint when this result warm-starts a nearby solve.
+  std::optional<double> contraction_rate;
   bool cancelled = false;
   StopReason stop_reason = StopReason::MaxIterations;
   std::vector<double> energy_trace;  // energy after every iteration (size == iterations)
@@ -190,6 +195,12 @@ struct ConstraintTargets {
   // mean handle displacement.
   std::optional<Eigen::Vector3d> push_direction;
   Eigen::MatrixXd initial_guess;  // empty = rest positions with constrained vertices at targets; else #V by 3
+  // With a warm start: the contraction rate of the solve the initial guess came from
+  // (DeformResult::contraction_rate). A warm start begins close to the minimiser, so its first iterations
+  // see too little of the slowly contracting modes to estimate the rate, and the estimate of a few
+  // iterations was up to 2.9x optimistic (asan, 10K, a drag's next request 1% longer). The error estimate
+  // uses the larger of this rate and its own, and may use this one before its own is known. In [0, 1).
+  std::optional<double> rate_hint;
 };
 
 class Deformer {
