@@ -103,6 +103,33 @@ TEST(Service, FirstRequestEqualsTheDeformer) {
   EXPECT_EQ(*s->positions, cold_solve(p, r));
 }
 
+// A drag's next request starts from the previous result; the previous solve's contraction rate goes with it
+// (ConstraintTargets::rate_hint), so the converged preview's estimate stays within 2x of its true distance
+// to the minimiser (without the hint: 2.6-2.9x optimistic here).
+TEST(Service, AWarmStartedPreviewKeepsAnHonestEstimate) {
+  const Problem p = make_problem(80);
+  const Eigen::Vector3d d(0.0, 0.0, 0.1);
+  Request tight = make_request(p, d);
+  tight.options.tolerance = 1e-6;  // 1e-6 |d|: far below the errors compared (5e-3 |d|)
+  tight.options.max_iterations = 50000;
+  const Eigen::MatrixXd reference = cold_solve(p, tight);
+  for (const double previous : {0.99, 0.995}) {
+    Service service(p.mesh);
+    service.submit(make_request(p, previous * d));
+    const auto first = service.wait_idle();
+    ASSERT_TRUE(first->converged) << first->error;
+    service.submit(make_request(p, d));
+    const auto s = service.wait_idle();
+    ASSERT_EQ(s->kind, Kind::Preview) << s->error;
+    ASSERT_TRUE(s->converged);
+    ASSERT_TRUE(s->error_estimate.has_value());
+    const double error = (*s->positions - reference).rowwise().norm().maxCoeff() / d.norm();
+    std::printf("previous request %.3f d: %d iterations warm, estimate %.2e, true %.2e\n", previous,
+                s->iteration, *s->error_estimate, error);
+    EXPECT_LE(error, 2.0 * *s->error_estimate) << "previous request " << previous << " d";
+  }
+}
+
 TEST(Service, SurfaceHandleGrowsFromTheHitPoint) {
   const Problem p = make_problem(20);
   Service service(p.mesh);
