@@ -191,6 +191,11 @@ void run_review(const ReviewCommandOptions& o) {
       scene.set_placement(p);
       if (mirror) mirror_view.set_orbit_bounds(stage_bounds(rest->V, p));  // O(#V): only with a mirror
     };
+    // A method change (headset panel, mirror key, or a replayed one) is a "method" record at this frame.
+    auto change_method = [&](deform::Method method) {
+      interaction.set_method(method);
+      recorder.write_method(t, interaction.method());
+    };
     auto log_event = [&](const InteractionEvent& e) {
       log.write_interaction(e, life);
       recorder.write_interaction(t, e, interaction.handle_radius(), interaction.roi_radius());
@@ -307,10 +312,7 @@ void run_review(const ReviewCommandOptions& o) {
         if (menu.is_open()) {
           const xr::HandInput& right = input->hand(xr::Hand::Right);
           const MenuChoice choice = menu.update(right.thumbstick.y, right.trigger);
-          if (choice.method && !o.fixed_method) {
-            interaction.set_method(*choice.method);
-            recorder.write_method(t, interaction.method());
-          }
+          if (choice.method && !o.fixed_method) change_method(*choice.method);
           if (choice.colour) scene.set_colour(*choice.colour);
           for (auto& hand : hands) hand.trigger = 0.0f;
         }
@@ -351,8 +353,7 @@ void run_review(const ReviewCommandOptions& o) {
         // Replay: the method changes the recording made with a key, at the frames it made them.
         while (next_method_change < o.method_changes.size() &&
                o.method_changes[next_method_change].first <= t + 0.25 / double(recording_rate_hz)) {
-          interaction.set_method(deform::parse_method(o.method_changes[next_method_change++].second));
-          recorder.write_method(t, interaction.method());
+          change_method(deform::parse_method(o.method_changes[next_method_change++].second));
         }
         // Right thumbstick between drags: up/down grows/shrinks the handle, right/left the region (x2 per
         // second at full deflection; a dead zone keeps a resting thumb from drifting them).
@@ -415,10 +416,8 @@ void run_review(const ReviewCommandOptions& o) {
           for (int key : mirror->take_key_presses()) {
             if (key == 'C') scene.set_colour(next_colour(scene.colour()));
             if (key == 'V') mirror_view.set_mode(next_mirror_mode(mirror_view.mode()));
-            if (key == 'M' && !interaction.dragging() && !o.fixed_method) {
-              interaction.set_method(next_method(interaction.method()));
-              recorder.write_method(t, interaction.method());
-            }
+            if (key == 'M' && !interaction.dragging() && !o.fixed_method)
+              change_method(next_method(interaction.method()));
             if (key == 256 /* GLFW_KEY_ESCAPE */) xr.request_exit();
           }
           if (mirror->should_close()) xr.request_exit();
