@@ -8,8 +8,8 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include <algorithm>
-#include <cmath>
 #include <chrono>
+#include <cmath>
 #include <stdexcept>
 
 namespace pushpull::app {
@@ -25,8 +25,9 @@ double round_up_mm(double mm) {
 
 }  // namespace
 
-ReviewScene::ReviewScene(renderer::Renderer& renderer, const assets::Model& model, const StagePlacement& placement,
-                         ReviewColour colour, double life_size_scale, bool async)
+ReviewScene::ReviewScene(renderer::Renderer& renderer, const assets::Model& model,
+                         const StagePlacement& placement, ReviewColour colour, double life_size_scale,
+                         bool async)
     : renderer_(renderer),
       render_(build_render_model(model)),
       rest_V_(model.deform_mesh.V),
@@ -54,8 +55,8 @@ ReviewScene::ReviewScene(renderer::Renderer& renderer, const assets::Model& mode
   mesh_ = renderer_.add_mesh(mesh, /*streamed=*/true);
   set_placement(placement);
   if (async)
-    converter_ = std::make_unique<NewestOnlyWorker<ConversionJob, SnapshotVertices>>(
-        [this](const ConversionJob& job) {
+    converter_ =
+        std::make_unique<NewestOnlyWorker<ConversionJob, SnapshotVertices>>([this](const ConversionJob& job) {
           return convert_snapshot(render_, rest_V_, F_, scale_, job.colour, job.snapshot);
         });
 }
@@ -89,8 +90,8 @@ void ReviewScene::update(const std::shared_ptr<const deform::Snapshot>& snapshot
     apply(std::move(*v));
 }
 
-SnapshotVertices convert_snapshot(const RenderModel& render, const Eigen::MatrixXd& rest_V, const Eigen::MatrixXi& F,
-                                  double scale, ReviewColour colour,
+SnapshotVertices convert_snapshot(const RenderModel& render, const Eigen::MatrixXd& rest_V,
+                                  const Eigen::MatrixXi& F, double scale, ReviewColour colour,
                                   const std::shared_ptr<const deform::Snapshot>& snapshot) {
   const auto start = std::chrono::steady_clock::now();
   SnapshotVertices out;
@@ -102,8 +103,9 @@ SnapshotVertices convert_snapshot(const RenderModel& render, const Eigen::Matrix
   if (colour == ReviewColour::Displacement) {
     const Eigen::VectorXd magnitude = (V - rest_V).rowwise().norm();
     out.scalars = to_render_vertices(render, magnitude);
-    // The colour map's top: the largest displacement, at least 1 mm at life size, rounded up to a round number
-    // of mm (1, 2, 2.5 or 5 times a power of ten), so the legend's scale changes only now and then in a drag.
+    // The colour map's top: the largest displacement, at least 1 mm at life size, rounded up to a round
+    // number of mm (1, 2, 2.5 or 5 times a power of ten), so the legend's scale changes only now and then in
+    // a drag.
     const double largest_mm = 1000.0 * scale * (magnitude.size() ? magnitude.maxCoeff() : 0.0);
     out.scalar_max = round_up_mm(std::max(largest_mm, 1.0)) / (1000.0 * scale);
   } else if (colour == ReviewColour::CurvatureSign) {
@@ -121,7 +123,9 @@ SnapshotVertices convert_snapshot(const RenderModel& render, const Eigen::Matrix
   return out;
 }
 
-void ReviewScene::upload() { apply(convert_snapshot(render_, rest_V_, F_, scale_, colour_, last_)); }
+void ReviewScene::upload() {
+  apply(convert_snapshot(render_, rest_V_, F_, scale_, colour_, last_));
+}
 
 void ReviewScene::apply(SnapshotVertices v) {
   const deform::Snapshot& snapshot = *v.snapshot;
@@ -156,7 +160,14 @@ void ReviewScene::apply(SnapshotVertices v) {
 }
 
 void ReviewScene::set_legend_window(uint32_t width, uint32_t height) {
-  if (width == legend_width_ && height == legend_height_) return;
+  if (!legend_wanted_) {  // the first window that shows the legend: make it now
+    legend_wanted_ = true;
+    legend_shown_.reset();
+  }
+  if (width == legend_width_ && height == legend_height_) {
+    update_legend();
+    return;
+  }
   legend_width_ = std::max(width, 1u);
   legend_height_ = std::max(height, 1u);
   legend_shown_.reset();
@@ -164,6 +175,7 @@ void ReviewScene::set_legend_window(uint32_t width, uint32_t height) {
 }
 
 void ReviewScene::update_legend() {
+  if (!legend_wanted_) return;  // the headset's eyes go without: no texture to make or upload
   const double top_mm = 1000.0 * scale_ * std::max(scalar_max_, 1e-3 / scale_);
   const std::pair<ReviewColour, double> wanted{colour_, colour_ == ReviewColour::Displacement ? top_mm : 0.0};
   if (legend_shown_ == wanted) return;
@@ -171,8 +183,9 @@ void ReviewScene::update_legend() {
   // Lower-left corner, about a third of the window high (as `pushpull render` places it).
   const renderer::LegendLayout legend = renderer::legend_layout(legend_width_, legend_height_);
   if (colour_ == ReviewColour::Displacement) {
-    renderer_.set_legend(renderer::make_displacement_legend(float(top_mm), "|d| mm", legend.width_px, legend.height_px),
-                         legend.rect);
+    renderer_.set_legend(
+        renderer::make_displacement_legend(float(top_mm), "|d| mm", legend.width_px, legend.height_px),
+        legend.rect);
   } else if (colour_ == ReviewColour::CurvatureSign) {
     renderer_.set_legend(renderer::make_curvature_legend(legend.width_px, legend.height_px / 2),
                          legend.curvature_rect);
@@ -198,7 +211,9 @@ void ReviewScene::set_highlight(const std::vector<int>& vertices) {
   highlight_shown_ = !vertices.empty();
 }
 
-std::vector<renderer::Draw> ReviewScene::draws() const { return {renderer::Draw{mesh_, T_stage_model_}}; }
+std::vector<renderer::Draw> ReviewScene::draws() const {
+  return {renderer::Draw{mesh_, T_stage_model_}};
+}
 
 renderer::FrameSettings ReviewScene::settings(bool legend) const {
   renderer::FrameSettings s;
@@ -223,7 +238,8 @@ renderer::FrameSettings ReviewScene::settings(bool legend) const {
 EyeTargets::EyeTargets(VkDevice device, xr::Swapchain& left, xr::Swapchain& right)
     : device_(device), swapchains_{&left, &right} {
   if (left.width() != right.width() || left.height() != right.height() || left.format() != right.format())
-    throw std::runtime_error("the eye swapchains differ in size or format; the renderer draws both eyes at one size");
+    throw std::runtime_error(
+        "the eye swapchains differ in size or format; the renderer draws both eyes at one size");
   for (size_t e = 0; e < 2; ++e)
     for (VkImage image : swapchains_[e]->images()) {
       VkImageViewCreateInfo info{};
@@ -252,7 +268,7 @@ renderer::RenderTargets EyeTargets::targets(uint32_t left_index, uint32_t right_
     renderer::ColorTarget c;
     c.image = swapchains_[e]->images().at(index[e]);
     c.view = views_[e].at(index[e]);
-    c.initial_layout = VK_IMAGE_LAYOUT_UNDEFINED;  // cleared anyway
+    c.initial_layout = VK_IMAGE_LAYOUT_UNDEFINED;               // cleared anyway
     c.final_layout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;  // what XR_KHR_vulkan_enable2 expects back
     t.views.push_back(c);
   }

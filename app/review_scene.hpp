@@ -27,7 +27,6 @@
 
 namespace pushpull::app {
 
-
 // A snapshot turned into the render mesh's vertex data for one colour map (positions, normals, scalars).
 struct SnapshotVertices {
   std::shared_ptr<const deform::Snapshot> snapshot;
@@ -37,26 +36,29 @@ struct SnapshotVertices {
   double cpu_ms = 0.0;      // time the conversion took, on whichever thread ran it
 };
 
-// The conversion itself (pure; any thread): positions, normals and the colour map's scalars of the render mesh
-// for `snapshot`; displacement is measured from rest_V (model units), its map's top rounded up to a round mm.
+// The conversion itself (pure; any thread): positions, normals and the colour map's scalars of the render
+// mesh for `snapshot`; displacement is measured from rest_V (model units), its map's top rounded up to a
+// round mm.
 [[nodiscard]] SnapshotVertices convert_snapshot(const RenderModel& render, const Eigen::MatrixXd& rest_V,
                                                 const Eigen::MatrixXi& F, double scale, ReviewColour colour,
                                                 const std::shared_ptr<const deform::Snapshot>& snapshot);
 
 class ReviewScene {
  public:
-  // life_size_scale: metres per model unit (displacement legend in mm). async: snapshots are turned into vertex
-  // data on a thread of the scene's own (NewestOnlyWorker), so the frame loop only copies them (the headset:
-  // O(#Vr) of CPU per preview off the frame's thread, drawn one or more frames later).
+  // life_size_scale: metres per model unit (displacement legend in mm). async: snapshots are turned into
+  // vertex data on a thread of the scene's own (NewestOnlyWorker), so the frame loop only copies them (the
+  // headset: O(#Vr) of CPU per preview off the frame's thread, drawn one or more frames later).
   ReviewScene(renderer::Renderer& renderer, const assets::Model& model, const StagePlacement& placement,
               ReviewColour colour, double life_size_scale, bool async = false);
 
-  // Shows the snapshot when its generation is new. Synchronous (not async, or wait): converts and uploads on the
-  // calling thread, O(#Vr). Async: posts it to the converter and uploads the newest finished conversion, if any.
+  // Shows the snapshot when its generation is new. Synchronous (not async, or wait): converts and uploads on
+  // the calling thread, O(#Vr). Async: posts it to the converter and uploads the newest finished conversion,
+  // if any.
   void update(const std::shared_ptr<const deform::Snapshot>& snapshot, bool wait = false);
   void set_colour(ReviewColour colour);
-  // Model (deform) vertices to highlight as the handle a press would grab (aiming, between drags); empty: none.
-  // Ignored while a drag's previews show their own overlays. Uploads overlays only when the set changes.
+  // Model (deform) vertices to highlight as the handle a press would grab (aiming, between drags); empty:
+  // none. Ignored while a drag's previews show their own overlays. Uploads overlays only when the set
+  // changes.
   void set_highlight(const std::vector<int>& vertices);
   void set_placement(const StagePlacement& placement);
   [[nodiscard]] ReviewColour colour() const { return colour_; }
@@ -68,12 +70,13 @@ class ReviewScene {
   [[nodiscard]] std::vector<renderer::Draw> draws() const;
   // legend: draw the colour map's legend (windows); the headset's eyes go without.
   [[nodiscard]] renderer::FrameSettings settings(bool legend = false) const;
-  // The window the legend is drawn in (pixels): sizes the legend's texture and rectangle.
+  // The window the legend is drawn in (pixels): sizes the legend's texture and rectangle. The legend is made
+  // only once a window has asked for it (a headset without a mirror window never draws one).
   void set_legend_window(uint32_t width, uint32_t height);
 
  private:
-  void upload();  // converts last_ on this thread and applies it
-  void apply(SnapshotVertices vertices);          // overlays, upload, legend
+  void upload();                          // converts last_ on this thread and applies it
+  void apply(SnapshotVertices vertices);  // overlays, upload, legend
   void update_legend();  // the renderer's legend for the colour map and its top (only when they change)
 
   renderer::Renderer& renderer_;
@@ -93,6 +96,7 @@ class ReviewScene {
   std::vector<float> positions_;  // the render positions last uploaded
   double last_cpu_ms_ = 0.0;
   uint32_t legend_width_ = 960, legend_height_ = 540;
+  bool legend_wanted_ = false;  // a window has asked for the legend (set_legend_window)
   std::optional<std::pair<ReviewColour, double>> legend_shown_;  // colour map and top (mm) of the legend
   std::shared_ptr<const deform::Snapshot> last_;
   std::uint64_t latest_generation_ = 0;  // of the newest snapshot given to update()

@@ -107,6 +107,16 @@ struct Renderer::Impl {
   std::optional<Image> legend;
   VkDescriptorSet legend_set = VK_NULL_HANDLE;
   glm::vec4 legend_rect{0.0f};
+  std::optional<Buffer> legend_staging;  // a new legend's pixels: the next frame records their upload
+  // Resources replaced while frames in flight may still read them (a legend changes during a drag: no
+  // vkDeviceWaitIdle): freed once every frame submitted before `frame` has finished.
+  struct Retired {
+    uint64_t frame = 0;  // frame_index when retired: frames < frame may use it
+    std::optional<Image> image;
+    std::optional<Buffer> buffer;
+    VkDescriptorSet set = VK_NULL_HANDLE;
+  };
+  std::vector<Retired> retired;
   uint64_t last_upload_bytes = 0;
 
   explicit Impl(const Context& c, const RendererOptions& o) : context(c), options(o) {}
@@ -133,6 +143,17 @@ struct Renderer::Impl {
   void wait_slot(uint32_t slot) {
     VkFence fence = slots[slot].fence.get();
     PP_VK_CHECK(vkWaitForFences(context.device(), 1, &fence, VK_TRUE, UINT64_MAX));
+  }
+
+  // Frees retired resources whose users (frames < their `frame`) have all finished: every frame before
+  // `frames_finished` has been waited for.
+  void release_retired(uint64_t frames_finished) {
+    std::erase_if(retired, [&](Retired& x) {
+      if (x.frame > frames_finished) return false;
+      if (x.set != VK_NULL_HANDLE)
+        PP_VK_CHECK(vkFreeDescriptorSets(context.device(), descriptor_pool.get(), 1, &x.set));
+      return true;
+    });
   }
 
   PipelinePair& pipelines_for(VkFormat format) {
@@ -347,14 +368,22 @@ void Renderer::update_vertices(MeshId mesh, std::span<const float> positions, st
 void Renderer::set_legend(std::optional<TextureRGBA8> legend, glm::vec4 rect) {
   Impl& r = *impl_;
   r.assert_owner();
-  PP_VK_CHECK(vkDeviceWaitIdle(r.context.device()));
-  if (r.legend_set != VK_NULL_HANDLE) {
-    PP_VK_CHECK(vkFreeDescriptorSets(r.context.device(), r.descriptor_pool.get(), 1, &r.legend_set));
-    r.legend_set = VK_NULL_HANDLE;
+  // Frames in flight may still sample the old legend: it is retired, not destroyed (no GPU wait). Many
+  // changes between two frames (nothing drawn meanwhile) would pile up descriptor sets: then the queue is
+  // drained.
+  if (r.retired.size() >= 8) {
+    PP_VK_CHECK(vkQueueWaitIdle(r.context.queue()));
+    r.release_retired(r.frame_index);
   }
+  if (r.legend || r.legend_set != VK_NULL_HANDLE)
+    r.retired.push_back({r.frame_index, std::move(r.legend), std::move(r.legend_staging), r.legend_set});
   r.legend.reset();
+  r.legend_staging.reset();
+  r.legend_set = VK_NULL_HANDLE;
   if (!legend) return;
-  r.legend = upload_texture(r.context, *legend);
+  StagedTexture staged = stage_texture(r.context, *legend);
+  r.legend = std::move(staged.image);
+  r.legend_staging = std::move(staged.staging);
   r.legend_rect = rect;
   r.legend_set = r.allocate_set(r.layouts.overlay.get());
   VkDescriptorImageInfo image{r.clamp_sampler.get(), r.legend->view.get(),
@@ -543,6 +572,8 @@ void Renderer::render_frame(std::span<const RenderPass> passes) {
   const uint32_t slot_id = r.slot_index();
   FrameSlot& slot = r.slots[slot_id];
   r.wait_slot(slot_id);
+  // Every frame up to this slot's previous one has been waited for (each frame waits for its slot).
+  if (r.frame_index >= r.slots.size()) r.release_retired(r.frame_index - r.slots.size() + 1);
 
   std::array<VkCommandBufferSubmitInfo, kMaxPasses> cmd_infos{};
   std::array<VkSemaphoreSubmitInfo, kMaxPasses> wait_infos{}, signal_infos{};
@@ -567,8 +598,14 @@ void Renderer::render_frame(std::span<const RenderPass> passes) {
     begin.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
     begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     PP_VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
-    if (p == 0)  // the frame's vertex uploads, once, before every pass (batches run in submission order)
+    if (p == 0) {  // the frame's uploads, once, before every pass (batches run in submission order)
       for (GpuMesh& mesh : r.meshes) r.last_upload_bytes += mesh.record_pending_uploads(cmd, slot_id);
+      if (r.legend && r.legend_staging) {  // a new legend: its staging is freed once this frame has finished
+        record_texture_upload(cmd, *r.legend, *r.legend_staging);
+        r.retired.push_back({r.frame_index + 1, std::nullopt, std::move(r.legend_staging), VK_NULL_HANDLE});
+        r.legend_staging.reset();
+      }
+    }
     if (pass.blit_from != nullptr) {
       r.record_blit(cmd, *pass.blit_from, pass.blit_from_extent, targets.views[0], targets.extent);
     } else {

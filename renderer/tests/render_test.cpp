@@ -330,7 +330,8 @@ TEST(Renderer, StreamedOverlaysMatchAStaticUploadOfTheSameOverlays) {
     const TextureRGBA8 unmarked = target.read_back();
     renderer.update_vertices(streamed, plain.positions, {}, {}, marked.overlays);
     renderer.render(std::span(&view, 1), std::span(&before, 1), settings, target.targets());
-    EXPECT_EQ(renderer.last_upload_bytes(), 6u * marked.vertex_count() * sizeof(float));  // positions + overlays
+    EXPECT_EQ(renderer.last_upload_bytes(),
+              6u * marked.vertex_count() * sizeof(float));  // positions + overlays
     const TextureRGBA8 streamed_image = target.read_back();
     const Draw draw{reference, glm::mat4(1.0f)};
     renderer.render(std::span(&view, 1), std::span(&draw, 1), settings, target.targets());
@@ -354,6 +355,35 @@ TEST(Renderer, LegendIsDrawnInTheCorner) {
     renderer.render(std::span(&view, 1), std::span(&draw, 1), settings, target.targets());
     const TextureRGBA8 image = target.read_back();
     testing::expect_matches_reference(image, "legend", 8, 64);
+  }
+  EXPECT_EQ(context.validation_message_count(), 0u);
+}
+
+// A legend changes during a drag (its top follows |d|): the old one is retired, not waited for, while frames
+// are in flight; many changes between two frames drain the queue. The last legend set is the one drawn, and
+// the validation layer sees no image or descriptor set freed while in use.
+TEST(Renderer, ALegendChangedWhileFramesAreInFlightShowsTheNewOne) {
+  Context context = make_context();
+  {
+    Renderer renderer(context);
+    const MeshId mesh = renderer.add_mesh(make_sheet(8));
+    OffscreenTarget target(context, kSize, kSize);
+    const View view = testing::sheet_camera();
+    const Draw draw{mesh, glm::mat4(1.0f)};
+    FrameSettings settings;
+    settings.color_mode = ColorMode::displacement;
+    const glm::vec4 rect{0.02f, 0.5f, 0.3f, 0.98f};
+    for (int k = 0; k < 12; ++k) {  // no read-back between frames: they stay in flight
+      renderer.set_legend(make_displacement_legend(k % 2 ? 50.0f : 10.0f, "|d| mm", 160, 320), rect);
+      renderer.render(std::span(&view, 1), std::span(&draw, 1), settings, target.targets());
+    }
+    for (int k = 0; k < 10; ++k)  // no frame between: more retired than the renderer keeps
+      renderer.set_legend(make_displacement_legend(float(k + 1), "|d| mm", 160, 320), rect);
+    renderer.set_legend(std::nullopt);
+    renderer.render(std::span(&view, 1), std::span(&draw, 1), settings, target.targets());
+    renderer.set_legend(make_displacement_legend(25.0f, "|d| mm", 160, 320), rect);
+    renderer.render(std::span(&view, 1), std::span(&draw, 1), settings, target.targets());
+    testing::expect_matches_reference(target.read_back(), "legend", 8, 64);
   }
   EXPECT_EQ(context.validation_message_count(), 0u);
 }
