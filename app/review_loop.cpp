@@ -8,9 +8,9 @@
 #include "orbit_control.hpp"
 #include "review_interaction.hpp"
 #include "review_menu.hpp"
+#include "review_scene.hpp"
 #include "review_setup.hpp"
 #include "session_recorder.hpp"
-#include "review_scene.hpp"
 #include "stage_placement.hpp"
 #include "vulkan_validation.hpp"
 #include "world_label.hpp"
@@ -28,8 +28,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdlib>
 #include <cstdio>
+#include <cstdlib>
+#include <ctime>
 #include <numeric>
 #include <thread>
 
@@ -38,12 +39,20 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// The controller's heading about stage +Y: where its ray points, or, when it points nearly straight up or down,
-// where its top (+Y) faces (the ray's heading is noise there).
+// The controller's heading about stage +Y: where its ray points, or, when it points nearly straight up or
+// down, where its top (+Y) faces (the ray's heading is noise there).
 double heading(const HandSample& s) {
   const Eigen::Vector3d& f = s.direction_stage;
-  const Eigen::Vector3d h = std::hypot(f.x(), f.z()) > 0.3 ? f : (f.y() < 0.0 ? s.up_stage : Eigen::Vector3d(-s.up_stage));
+  const Eigen::Vector3d h =
+      std::hypot(f.x(), f.z()) > 0.3 ? f : (f.y() < 0.0 ? s.up_stage : Eigen::Vector3d(-s.up_stage));
   return std::atan2(-h.x(), -h.z());
+}
+
+// CPU time of the calling thread (ms): work done, without time spent preempted, blocked or sleeping.
+double thread_cpu_ms() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return 1e3 * double(ts.tv_sec) + 1e-6 * double(ts.tv_nsec);
 }
 
 // Frame work (from xrWaitFrame's return to xrEndFrame's return), split by whether the solver was busy.
@@ -52,8 +61,9 @@ struct FrameStats {
   static constexpr size_t kWarmUpFrames = 30;
   size_t frames = 0;
   std::vector<double> idle_ms, solving_ms;
-  size_t region_vertices = 0;  // the largest region solved meanwhile
-  double snapshot_ms = 0.0;    // total time spent turning new snapshots into vertex data
+  std::vector<double> idle_cpu_ms, solving_cpu_ms;  // the frame thread's own CPU time over the same span
+  size_t region_vertices = 0;                       // the largest region solved meanwhile
+  double snapshot_ms = 0.0;                         // total time spent turning new snapshots into vertex data
   size_t snapshots = 0;
   static double mean(const std::vector<double>& v) {
     return v.empty() ? 0.0 : std::accumulate(v.begin(), v.end(), 0.0) / double(v.size());
@@ -65,15 +75,24 @@ struct FrameStats {
   }
   void print() const {
     auto ratio = [](double a, double b) { return b > 0.0 ? a / b : 0.0; };
-    std::printf("frame time (xrBeginFrame .. xrEndFrame, CPU; the first %zu frames left out as warm-up): idle %.2f ms "
-                "mean, %.2f median, %.2f p95 (%zu frames); solver running %.2f ms mean, %.2f median, %.2f p95 (%zu "
-                "frames); ratio %.3f of the means, %.3f of the medians\n",
-                kWarmUpFrames, mean(idle_ms), percentile(idle_ms, 0.5), percentile(idle_ms, 0.95), idle_ms.size(),
-                mean(solving_ms), percentile(solving_ms, 0.5), percentile(solving_ms, 0.95), solving_ms.size(),
-                ratio(mean(solving_ms), mean(idle_ms)), ratio(percentile(solving_ms, 0.5), percentile(idle_ms, 0.5)));
-    std::printf("largest region solved: %zu vertices; %zu new snapshots drawn, %.2f ms CPU each to turn into "
-                "vertex data (positions, normals, colour-map scalars) on the scene's converter thread\n",
-                region_vertices, snapshots, snapshots ? snapshot_ms / double(snapshots) : 0.0);
+    std::printf(
+        "frame time (xrBeginFrame .. xrEndFrame, CPU; the first %zu frames left out as warm-up): idle %.2f "
+        "ms "
+        "mean, %.2f median, %.2f p95 (%zu frames); solver running %.2f ms mean, %.2f median, %.2f p95 (%zu "
+        "frames); ratio %.3f of the means, %.3f of the medians\n",
+        kWarmUpFrames, mean(idle_ms), percentile(idle_ms, 0.5), percentile(idle_ms, 0.95), idle_ms.size(),
+        mean(solving_ms), percentile(solving_ms, 0.5), percentile(solving_ms, 0.95), solving_ms.size(),
+        ratio(mean(solving_ms), mean(idle_ms)), ratio(percentile(solving_ms, 0.5), percentile(idle_ms, 0.5)));
+    std::printf(
+        "frame thread CPU time (the same span, without time spent preempted or waiting): idle %.2f ms "
+        "median, %.2f p95; solver running %.2f ms median, %.2f p95; ratio %.3f of the medians\n",
+        percentile(idle_cpu_ms, 0.5), percentile(idle_cpu_ms, 0.95), percentile(solving_cpu_ms, 0.5),
+        percentile(solving_cpu_ms, 0.95),
+        ratio(percentile(solving_cpu_ms, 0.5), percentile(idle_cpu_ms, 0.5)));
+    std::printf(
+        "largest region solved: %zu vertices; %zu new snapshots drawn, %.2f ms CPU each to turn into "
+        "vertex data (positions, normals, colour-map scalars) on the scene's converter thread\n",
+        region_vertices, snapshots, snapshots ? snapshot_ms / double(snapshots) : 0.0);
   }
 };
 
@@ -114,15 +133,16 @@ void run_review(const ReviewCommandOptions& o) {
     session.emplace(session_options);
   } catch (const xr::RuntimeUnavailable& e) {
     // No runtime or headset: one line saying so, then the desktop window where there is a display.
-    if (std::getenv("DISPLAY") == nullptr && std::getenv("WAYLAND_DISPLAY") == nullptr) throw CommandError(e.what());
+    if (std::getenv("DISPLAY") == nullptr && std::getenv("WAYLAND_DISPLAY") == nullptr)
+      throw CommandError(e.what());
     std::fprintf(stderr, "pushpull review: %s; opening the desktop window instead\n", e.what());
     return run_desktop(o, setup);
   }
   xr::Session& xr = *session;
   if (!o.quiet)
-    std::printf("pushpull review: %s on %s (OpenXR runtime \"%s\"), %ux%u per eye, %s space\n", o.model.c_str(),
-              xr.system_name().c_str(), xr.runtime_name().c_str(), xr.eye(0).width(), xr.eye(0).height(),
-              xr.stage_is_local() ? "LOCAL (no STAGE)" : "STAGE");
+    std::printf("pushpull review: %s on %s (OpenXR runtime \"%s\"), %ux%u per eye, %s space\n",
+                o.model.c_str(), xr.system_name().c_str(), xr.runtime_name().c_str(), xr.eye(0).width(),
+                xr.eye(0).height(), xr.stage_is_local() ? "LOCAL (no STAGE)" : "STAGE");
 
   EventLog log(o.events, !o.quiet);
   log.write_start(o, setup, xr.runtime_name());
@@ -135,7 +155,8 @@ void run_review(const ReviewCommandOptions& o) {
     context.eye_height = int(xr.eye(0).height());
     recorder.write_header(o, setup, context);
   }
-  if (recorder.recording() && !o.quiet) std::printf("pushpull review: recording the session to %s\n", recorder.path().c_str());
+  if (recorder.recording() && !o.quiet)
+    std::printf("pushpull review: recording the session to %s\n", recorder.path().c_str());
 
   std::optional<VulkanValidation> validation;
   if (o.validation) validation.emplace(xr.vulkan().instance);
@@ -148,17 +169,19 @@ void run_review(const ReviewCommandOptions& o) {
     renderer_options.frames_in_flight = 2;  // loop frames: the eyes and the mirror are one render_frame()
     renderer::Renderer renderer(context, renderer_options);
     std::optional<renderer::MirrorWindow> mirror;
-    if (o.mirror) mirror.emplace(context, uint32_t(o.mirror_size[0]), uint32_t(o.mirror_size[1]), "pushpull review");
+    if (o.mirror)
+      mirror.emplace(context, uint32_t(o.mirror_size[0]), uint32_t(o.mirror_size[1]), "pushpull review");
     MirrorView mirror_view;
     if (mirror) mirror_view.set_orbit_bounds(stage_bounds(rest->V, placement));
     std::optional<std::array<xr::EyeView, 2>> last_eyes;
     std::string mirror_title;
     size_t mirror_frames = 0, mirror_blits = 0;
     auto last_mirror = Clock::now();
-    // Live: snapshots become vertex data on the scene's own thread (the frame thread only copies them). A replay
-    // converts on this thread, so every drawn frame shows exactly the settled snapshot.
+    // Live: snapshots become vertex data on the scene's own thread (the frame thread only copies them). A
+    // replay converts on this thread, so every drawn frame shows exactly the settled snapshot.
     ReviewScene scene(renderer, model, placement, colour, life.scale(), /*async=*/!o.settle_drawn_frames);
-    std::optional<EyeTargets> eyes;  // the current session's swapchain images (made again after a lost session)
+    std::optional<EyeTargets>
+        eyes;  // the current session's swapchain images (made again after a lost session)
     eyes.emplace(vk.device, xr.eye(0), xr.eye(1));
     CommitWatch commits;  // before the service: its worker calls into it until the service is destroyed
     deform::ServiceOptions service_options{commits.callback()};
@@ -166,9 +189,9 @@ void run_review(const ReviewCommandOptions& o) {
     deform::Service service(rest, std::move(service_options));
     ReviewInteraction interaction(service, *rest, placement, interaction_options);
     std::size_t next_method_change = 0;  // into o.method_changes
-    bool commands_pending = false;  // a commit, undo or redo was issued and the service may still run it
-    long recording_rate_hz = 0;       // the headset's display rate, whole Hz (0 before the first frame)
-    std::int64_t recording_frames = 0;  // frames the loop has read input for
+    bool commands_pending = false;       // a commit, undo or redo was issued and the service may still run it
+    long recording_rate_hz = 0;          // the headset's display rate, whole Hz (0 before the first frame)
+    std::int64_t recording_frames = 0;   // frames the loop has read input for
     double t = 0.0;  // the recording's time of this frame (seconds; the simulated runtime's script clock)
     auto take_commits = [&] {
       for (const CommitRecord& c : commits.take()) {
@@ -201,15 +224,16 @@ void run_review(const ReviewCommandOptions& o) {
       recorder.write_interaction(t, e, interaction.handle_radius(), interaction.roi_radius());
     };
 
-    // The session was lost (headset unplugged, runtime restarted): the drag in progress is cancelled (the model
-    // stays as it was before it); the committed work stays, and with --reconnect the review goes on when the
-    // headset is back. Returns whether it is back.
+    // The session was lost (headset unplugged, runtime restarted): the drag in progress is cancelled (the
+    // model stays as it was before it); the committed work stays, and with --reconnect the review goes on
+    // when the headset is back. Returns whether it is back.
     auto resume_after_loss = [&]() -> bool {
       std::printf("pushpull review: the OpenXR session was lost\n");
       if (const auto e = interaction.cancel()) log_event(*e);
       log.write({{"event", "lost"}});
       recorder.write_record("lost", t);
-      recorder.write_event_input(t, "loss");  // as xr/sim's script event: a replay loses the session there too
+      recorder.write_event_input(t,
+                                 "loss");  // as xr/sim's script event: a replay loses the session there too
       if (!(o.reconnect_s > 0.0)) return false;
       std::printf("pushpull review: waiting up to %.0f s for the headset to come back\n", o.reconnect_s);
       std::fflush(stdout);
@@ -246,13 +270,14 @@ void run_review(const ReviewCommandOptions& o) {
         const xr::FrameViews frame = xr.begin_frame();
         if (xr.lost()) continue;
         const auto start = Clock::now();
+        const double start_cpu_ms = thread_cpu_ms();
         input->sync(frame.predicted_display_time);
         // The recording's clock counts frames: frame n at n / rate, exactly as xr/sim's virtual clock at that
-        // (whole) rate places it, so a replay gives frame n the input the loop read at its frame n, whatever the
-        // headset's timing (jitter, dropped frames) was.
+        // (whole) rate places it, so a replay gives frame n the input the loop read at its frame n, whatever
+        // the headset's timing (jitter, dropped frames) was.
         if (recording_rate_hz == 0) {
-          recording_rate_hz =
-              std::max(1L, std::lround(1e9 / double(std::max<XrDuration>(1, frame.predicted_display_period))));
+          recording_rate_hz = std::max(
+              1L, std::lround(1e9 / double(std::max<XrDuration>(1, frame.predicted_display_period))));
           recorder.write_record("clock", 0.0, {{"rate_hz", recording_rate_hz}});
         }
         t = double(std::llround(double(recording_frames++) * 1e9 / double(recording_rate_hz))) * 1e-9;
@@ -266,8 +291,9 @@ void run_review(const ReviewCommandOptions& o) {
                            {(l.position.x + r.position.x) * 0.5f, (l.position.y + r.position.y) * 0.5f,
                             (l.position.z + r.position.z) * 0.5f}};
             head_position = Eigen::Vector3d(head->position.x, head->position.y, head->position.z);
-            head_forward = Eigen::Quaterniond(l.orientation.w, l.orientation.x, l.orientation.y, l.orientation.z) *
-                           Eigen::Vector3d(0.0, 0.0, -1.0);
+            head_forward =
+                Eigen::Quaterniond(l.orientation.w, l.orientation.x, l.orientation.y, l.orientation.z) *
+                Eigen::Vector3d(0.0, 0.0, -1.0);
           }
           recorder.write_frame_input(t, head, {input->hand(xr::Hand::Left), input->hand(xr::Hand::Right)},
                                      input->current_profile(xr::Hand::Right));
@@ -290,8 +316,10 @@ void run_review(const ReviewCommandOptions& o) {
             std::vector<double> T;
             for (int r = 0; r < 4; ++r)
               for (int c = 0; c < 4; ++c) T.push_back(grab.placement().T_stage_model(r, c));
-            log.write({{"event", "placement"}, {"T_stage_model", T}, {"relative_scale", grab.relative_scale()}});
-            std::printf("pushpull review: model moved (%.0f%% of life size)\n", 100.0 * grab.relative_scale());
+            log.write(
+                {{"event", "placement"}, {"T_stage_model", T}, {"relative_scale", grab.relative_scale()}});
+            std::printf("pushpull review: model moved (%.0f%% of life size)\n",
+                        100.0 * grab.relative_scale());
           }
           if (grab.grabbing())
             for (auto& hand : hands) hand.trigger = 0.0f;  // no push/pull while holding the model
@@ -319,13 +347,15 @@ void run_review(const ReviewCommandOptions& o) {
         // A press while a commit, undo or redo is still being solved would hit the surface the reviewer no
         // longer sees and depend on the solver's timing: it waits for them (a stall only then), so the same
         // input gives the same commits and a replay reproduces them.
-        if (commands_pending && !interaction.dragging() && (hands[0].trigger > 0.0f || hands[1].trigger > 0.0f)) {
+        if (commands_pending && !interaction.dragging() &&
+            (hands[0].trigger > 0.0f || hands[1].trigger > 0.0f)) {
           service.wait_idle();
           commands_pending = false;
           interaction.sync_committed(*service.latest());
         }
         // Input is ours only while focused (unfocused, every input reads as released): no gestures then.
-        for (const InteractionEvent& e : xr.focused() ? interaction.update(hands) : std::vector<InteractionEvent>{}) {
+        for (const InteractionEvent& e :
+             xr.focused() ? interaction.update(hands) : std::vector<InteractionEvent>{}) {
           if (e.kind == InteractionEvent::Kind::Committed) commands_pending = true;
           log_event(e);
           if (e.kind != InteractionEvent::Kind::Cancelled) input->haptic_pulse(xr::Hand(e.hand), 0.6f, 0.03);
@@ -374,11 +404,13 @@ void run_review(const ReviewCommandOptions& o) {
           }
         }
         // Replay: a frame that is kept shows the solver's settled state, not whichever preview timing left.
-        if (o.settle_drawn_frames && frame.should_render && o.draw_frame && o.draw_frame(t)) service.wait_idle();
+        if (o.settle_drawn_frames && frame.should_render && o.draw_frame && o.draw_frame(t))
+          service.wait_idle();
         take_commits();
         const std::shared_ptr<const deform::Snapshot> snapshot = service.latest();
         const bool solving = interaction.dragging() || !snapshot->final;
-        if (snapshot->region) stats.region_vertices = std::max(stats.region_vertices, snapshot->region->size());
+        if (snapshot->region)
+          stats.region_vertices = std::max(stats.region_vertices, snapshot->region->size());
         interaction.sync_committed(*snapshot);
         {
           const std::uint64_t generation = scene.generation();
@@ -423,8 +455,8 @@ void run_review(const ReviewCommandOptions& o) {
           if (mirror->should_close()) xr.request_exit();
           mirror_view.pointer(mirror->pointer());
         }
-        // One loop frame, one submission: the eyes (when the runtime wants them and the frame is drawn) and the
-        // mirror window share one frame in flight and one upload of the newest snapshot.
+        // One loop frame, one submission: the eyes (when the runtime wants them and the frame is drawn) and
+        // the mirror window share one frame in flight and one upload of the newest snapshot.
         std::vector<renderer::RenderPass> passes;
         std::array<renderer::View, 2> eye_views;
         renderer::RenderTargets eye_targets;
@@ -449,7 +481,8 @@ void run_review(const ReviewCommandOptions& o) {
             mirror_camera = mirror_view.update(*last_eyes, dt, float(e.width) / float(e.height));
             // Headset-eye mode shows the left eye as drawn (a copy, no second drawing); the other modes draw
             // their own view, with the colour-map legend.
-            const bool blit = rendered && mirror_view.mode() == MirrorMode::HeadsetEye && mirror->accepts_blit() &&
+            const bool blit = rendered && mirror_view.mode() == MirrorMode::HeadsetEye &&
+                              mirror->accepts_blit() &&
                               renderer.can_blit(eye_targets.format, mirror_target->targets.format);
             renderer::RenderPass pass{std::span(&mirror_camera, 1), draws, scene.settings(/*legend=*/true),
                                       &mirror_target->targets, mirror_target->sync};
@@ -479,7 +512,10 @@ void run_review(const ReviewCommandOptions& o) {
           if (mirror_title != title) mirror->set_title(mirror_title = title);
         }
         const double ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-        if (++stats.frames > FrameStats::kWarmUpFrames) (solving ? stats.solving_ms : stats.idle_ms).push_back(ms);
+        if (++stats.frames > FrameStats::kWarmUpFrames) {
+          (solving ? stats.solving_ms : stats.idle_ms).push_back(ms);
+          (solving ? stats.solving_cpu_ms : stats.idle_cpu_ms).push_back(thread_cpu_ms() - start_cpu_ms);
+        }
       } catch (const xr::XrError& e) {
         if (e.result() != XR_ERROR_SESSION_LOST && e.result() != XR_ERROR_INSTANCE_LOST) throw;
         session_lost = true;
@@ -500,7 +536,7 @@ void run_review(const ReviewCommandOptions& o) {
       write_review_model(o.out, model, current.state->V);
       if (!o.quiet)
         std::printf("pushpull review: wrote %s (%zu committed push/pull(s))\n", o.out.c_str(),
-                  service.history_position());
+                    service.history_position());
     }
     if (validation && validation->message_count() > 0)
       throw CommandError("Vulkan validation reported " + std::to_string(validation->message_count()) +
