@@ -12,63 +12,88 @@ void add_review_command(CLI::App& root) {
   auto o = std::make_shared<ReviewCommandOptions>();
   CLI::App* cmd = root.add_subcommand(
       "review",
-      "Review a model in an OpenXR headset at life size: aim at the surface, hold the trigger, drag, release.\n"
+      "Review a model in an OpenXR headset at life size: aim at the surface, hold the trigger, drag, "
+      "release.\n"
       "The model stands on the stage floor in front of you; the deformation runs off the frame loop.\n"
-      "Controls: trigger = push/pull; undo = X/A (touch), A (index), left menu (simple, vive, motion); redo =\n"
-      "Y/B (touch), B (index), right menu (simple, vive, motion); menu / thumbstick click = next colour map;\n"
-      "grip = grab and move the model (both grips: scale; undo while gripping: back to the start placement);\n"
+      "Controls: trigger = push/pull; undo = X/A (touch), A (index), left menu (simple, vive, motion); redo "
+      "=\n"
+      "Y/B (touch), B (index), right menu (simple, vive, motion); menu / thumbstick click = next colour "
+      "map;\n"
+      "grip = grab and move the model (both grips: scale; undo while gripping: back to the start "
+      "placement);\n"
       "right thumbstick between drags: handle radius (up/down) and region (left/right).\n"
-      "Without a headset: XR_RUNTIME_JSON=build/xr/sim/pushpull_xr_sim.json runs it on the simulated runtime.");
+      "Without a headset: XR_RUNTIME_JSON=build/xr/sim/pushpull_xr_sim.json runs it on the simulated "
+      "runtime.");
   cmd->add_option("model", o->model, "Model file: .gltf .glb .drc .off .obj .ply")->required();
   cmd->add_option("--method", o->method,
                   "Deformation method (asan, arap-s, arap-sr, arap-m, arap-n, sr-arap, arap-h, arap-sr-h)")
       ->capture_default_str();
   cmd->add_option("--mu", o->mu, "ASAN stiffness ratio")->capture_default_str();
-  cmd->add_option("--handle-radius", o->handle_radius_m,
-                  "Handle: the surface within this distance of the hit point, along the surface (metres at life size)")
+  cmd->add_option(
+         "--handle-radius", o->handle_radius_m,
+         "Handle: the surface within this distance of the hit point, along the surface (metres at life size)")
       ->capture_default_str();
   cmd->add_option("--roi-radius", o->roi_radius_m,
                   "Region grown this far from the handle along the surface (metres at life size)")
       ->capture_default_str();
   cmd->add_option("--up", o->up, "The model's up axis X Y Z (default 0 1 0, glTF)")->expected(3);
-  cmd->add_option("--front", o->front, "The model's front axis X Y Z, turned towards you (default 0 0 1, glTF)")
+  cmd->add_option("--front", o->front,
+                  "The model's front axis X Y Z, turned towards you (default 0 0 1, glTF)")
       ->expected(3);
   cmd->add_option("--distance", o->distance_m, "Gap between you and the model's nearest point (metres)")
       ->capture_default_str();
   cmd->add_option("--eye-size", o->eye_size, "Per-eye image size W H (default: the runtime's recommendation)")
       ->expected(2)
       ->check(CLI::Range(16, 16384));
-  cmd->add_option("--samples", o->samples, "MSAA samples")->check(CLI::IsMember({1, 2, 4, 8}))->capture_default_str();
+  cmd->add_option("--samples", o->samples, "MSAA samples")
+      ->check(CLI::IsMember({1, 2, 4, 8}))
+      ->capture_default_str();
   cmd->add_option("--color", o->colour, "Colour map at start (the menu button switches)")
       ->check(CLI::IsMember({"material", "displacement", "curvature-sign"}))
       ->capture_default_str();
   cmd->add_option("--out", o->out, "Write the committed model on exit (.glb, .off, .obj, .ply)");
-  cmd->add_option("--events", o->events,
-                  "Write the session's events (press, commit, cancel, undo, redo, lost) as JSON Lines, with p0 and "
-                  "d in model units");
-  cmd->add_option("--record", o->record,
-                  "Record the session (header, input by OpenXR path, press/drag/release/commit with result hashes) "
-                  "as JSON Lines for `pushpull replay` (default: out/recordings/review-<UTC time>.jsonl)");
-  cmd->add_flag("--mirror", o->mirror,
-                "Open the supervisor's mirror window (keys: V view headset eye / smoothed first person, C colour "
-                "map, M method of the next drag, Esc end the session; the title shows method, |d|, iterations)");
-  cmd->add_option("--mirror-size", o->mirror_size, "Mirror (or desktop) window size W H")->expected(2)->check(CLI::Range(16, 16384));
-  cmd->add_flag("--validation", o->validation,
-                "Enable VK_LAYER_KHRONOS_validation on the runtime's Vulkan instance; fail on any message (the "
-                "OpenXR core validation layer: XR_ENABLE_API_LAYERS=XR_APILAYER_LUNARG_core_validation)");
-  cmd->add_flag("--desktop", o->desktop,
-                "No headset: the window is the workspace (also when no OpenXR runtime or headset is found). Right "
-                "drag turns, scroll zooms, left drag on the surface pushes/pulls (Shift: along the normal); U undo, R "
-                "redo, C colour map, M method, Esc quit");
+  cmd->add_option(
+      "--events", o->events,
+      "Write the session's events (press, commit, cancel, undo, redo, lost) as JSON Lines, with p0 and "
+      "d in model units");
+  cmd->add_option(
+      "--record", o->record,
+      "Record the session (header, input by OpenXR path, press/drag/release/commit with result hashes) "
+      "as JSON Lines for `pushpull replay` (default: out/recordings/review-<UTC time>.jsonl)");
+  cmd->add_flag(
+      "--mirror", o->mirror,
+      "Open the supervisor's mirror window (keys: V view headset eye / smoothed first person, C colour "
+      "map, M method of the next drag, Esc end the session; the title shows method, |d|, iterations)");
+  cmd->add_option("--mirror-size", o->mirror_size, "Mirror (or desktop) window size W H")
+      ->expected(2)
+      ->check(CLI::Range(16, 16384));
+  cmd->add_flag(
+      "--validation", o->validation,
+      "Enable VK_LAYER_KHRONOS_validation on the runtime's Vulkan instance; fail on any message (the "
+      "OpenXR core validation layer: XR_ENABLE_API_LAYERS=XR_APILAYER_LUNARG_core_validation)");
+  cmd->add_flag(
+      "--desktop", o->desktop,
+      "No headset: the window is the workspace (also when no OpenXR runtime or headset is found). Right "
+      "drag turns, scroll zooms, left drag on the surface pushes/pulls (Shift: along the normal); U undo, R "
+      "redo, C colour map, M method, Esc quit");
   cmd->add_option("--frames", o->frames, "Desktop mode: stop after N frames (0: when the window closes)");
   cmd->add_flag("--benchmark", o->benchmark, "Print the frame time, idle versus with the solver running");
-  cmd->add_option("--reconnect", o->reconnect_s,
-                  "After the OpenXR session is lost, wait this many seconds for the headset to come back and go on "
-                  "(0: end the review)")
+  cmd->add_option(
+         "--reconnect", o->reconnect_s,
+         "After the OpenXR session is lost, wait this many seconds for the headset to come back and go on "
+         "(0: end the review)")
       ->check(CLI::Range(0.0, 86400.0));
-  cmd->add_option("--solver-nice", o->solver_nice,
-                  "Scheduling niceness of the solver's thread, 0 (as the frame loop) to 19 (only what frames leave)")
-      ->check(CLI::Range(0, 19));
+  cmd->add_option_function<std::string>(
+         "--solver-priority",
+         [o](const std::string& value) {
+           o->solver_idle = value == "idle";
+           if (!o->solver_idle) o->solver_nice = std::stoi(value);
+         },
+         "The solver thread's share of the cores: idle (default: only time the frames leave, a waking frame "
+         "takes "
+         "the core at once) or a niceness 0 (as the frame loop) to 19")
+      ->check(CLI::IsMember({"idle"}) | CLI::Range(0, 19))
+      ->default_str("idle");
   add_life_size_options(*cmd, o->life_size);
   cmd->callback([o] { run_review(*o); });
 }

@@ -186,6 +186,7 @@ void run_review(const ReviewCommandOptions& o) {
     CommitWatch commits;  // before the service: its worker calls into it until the service is destroyed
     deform::ServiceOptions service_options{commits.callback()};
     service_options.worker_nice = o.solver_nice;  // frames first: the solver takes what the frame loop leaves
+    service_options.worker_idle = o.solver_idle;
     deform::Service service(rest, std::move(service_options));
     ReviewInteraction interaction(service, *rest, placement, interaction_options);
     std::size_t next_method_change = 0;  // into o.method_changes

@@ -1,8 +1,8 @@
 // `pushpull review`: the headset loop. Opens an OpenXR session (xr::Session), hands its Vulkan device to the
-// renderer (Context::wrap), places the model on the stage (T_stage_model), and runs frames: input -> push/pull
-// interaction -> deform::Service (never waited on) -> the newest snapshot drawn into both eyes -> xrEndFrame.
-// On exit it waits for the service to finish and writes the committed model (--out) and the event log.
-// Thread-safety: run_review runs on the calling thread; the service has its own worker.
+// renderer (Context::wrap), places the model on the stage (T_stage_model), and runs frames: input ->
+// push/pull interaction -> deform::Service (never waited on) -> the newest snapshot drawn into both eyes ->
+// xrEndFrame. On exit it waits for the service to finish and writes the committed model (--out) and the event
+// log. Thread-safety: run_review runs on the calling thread; the service has its own worker.
 #pragma once
 
 #include "commit_watch.hpp"
@@ -32,15 +32,20 @@ struct ReviewCommandOptions {
   std::string out;
   std::string events;
   bool benchmark = false;
-  bool quiet = false;
-  bool fixed_method = false;  // the method stays `method` (keys and the menu do not change it; replay --method)
+  bool quiet =
+      false;  // no status lines on stdout (start, press/commit, wrote); errors and warnings still show
+  bool fixed_method =
+      false;  // the method stays `method` (keys and the menu do not change it; replay --method)
+  // The review's solver thread: the idle scheduling class (deform::ServiceOptions::worker_idle), else this
+  // niceness (worker_nice, 0-19). --solver-priority: "idle" or the niceness.
+  bool solver_idle = true;
   int solver_nice = 10;
   // After a lost session: how long to wait for the headset to come back before ending (s; 0: end at once).
-  double reconnect_s = 30.0;  // deform::ServiceOptions::worker_nice of the review's service  // no status lines on stdout (start, press/commit, wrote); errors and warnings still show
+  double reconnect_s = 30.0;
   bool validation = false;  // Vulkan validation layer on the runtime's instance; any message fails the run
-  bool mirror = false;   // the supervisor's GLFW window
-  bool desktop = false;  // no headset: the window is the workspace (desktop_loop.hpp)
-  int frames = 0;        // desktop mode: stop after this many frames (0: when the window closes)
+  bool mirror = false;      // the supervisor's GLFW window
+  bool desktop = false;     // no headset: the window is the workspace (desktop_loop.hpp)
+  int frames = 0;           // desktop mode: stop after this many frames (0: when the window closes)
   std::vector<int> mirror_size{960, 540};
   LifeSizeOptions life_size;
   // The session recording (session_recorder.hpp); empty: default_recording_path().
@@ -51,12 +56,12 @@ struct ReviewCommandOptions {
   // Headset loop: called once per frame with the recording's time of the frame (s), after its input was read
   // (`pushpull replay`'s progress bar).
   std::function<void(double t)> on_frame;
-  // Headset loop (replay): method changes made with a key during the recorded session, (recording time s, method
-  // name) in time order; each applies after the gesture of the frame at that time, as the key did.
+  // Headset loop (replay): method changes made with a key during the recorded session, (recording time s,
+  // method name) in time order; each applies after the gesture of the frame at that time, as the key did.
   std::vector<std::pair<double, std::string>> method_changes;
-  // Headset loop: whether to draw the eyes of the frame at recording time t (s); empty: every frame. Frames not
-  // drawn end without layers. `pushpull replay` draws only the frames the simulated runtime captures: the loop
-  // computes the same either way, and a software rasterizer spends its time on the frames that are kept.
+  // Headset loop: whether to draw the eyes of the frame at recording time t (s); empty: every frame. Frames
+  // not drawn end without layers. `pushpull replay` draws only the frames the simulated runtime captures: the
+  // loop computes the same either way, and a software rasterizer spends its time on the frames that are kept.
   std::function<bool(double t)> draw_frame;
   // With draw_frame: a drawn frame first waits for the deformation service to finish (replay: captured eyes
   // show the settled result, the same on every run). Commits do not depend on it.

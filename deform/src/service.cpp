@@ -3,6 +3,7 @@
 #include "pushpull/deform/service.hpp"
 
 #ifdef __linux__
+#include <sched.h>
 #include <sys/resource.h>
 #include <unistd.h>
 #endif
@@ -25,12 +26,18 @@
 namespace pushpull::deform {
 namespace {
 
-// setpriority on the calling thread (Linux threads have their own niceness).
-void lower_thread_priority(int nice) {
+// setpriority on the calling thread (Linux threads have their own niceness), or the idle scheduling class.
+// Threads the worker starts later (the solver's helper) inherit both.
+void lower_thread_priority(int nice, bool idle) {
 #ifdef __linux__
   if (nice > 0) (void)::setpriority(PRIO_PROCESS, static_cast<id_t>(::gettid()), std::min(nice, 19));
+  if (idle) {
+    sched_param none{};
+    (void)::sched_setscheduler(0, SCHED_IDLE, &none);
+  }
 #else
   (void)nice;
+  (void)idle;
 #endif
 }
 
@@ -421,10 +428,11 @@ Service::Service(std::shared_ptr<const Mesh> initial, ServiceOptions options)
   state.entry.hash = position_hash(state.entry.state->V);
   impl_->states.push_back(std::move(state));
   impl_->publish(impl_->state_snapshot(Snapshot::Kind::Rest, 0, Clock::now()));
-  impl_->worker = std::thread([impl = impl_.get(), nice = impl_->options.worker_nice] {
-    lower_thread_priority(nice);
-    impl->loop();
-  });
+  impl_->worker =
+      std::thread([impl = impl_.get(), nice = impl_->options.worker_nice, idle = impl_->options.worker_idle] {
+        lower_thread_priority(nice, idle);
+        impl->loop();
+      });
 }
 
 Service::~Service() {

@@ -1,6 +1,11 @@
 // deform::Service: snapshots, supersession, commit/undo/redo, errors, cancellation, shutdown. Also built
 // and run under ThreadSanitizer (scripts/build tsan).
 #include <gtest/gtest.h>
+#ifdef __linux__
+#include <sched.h>
+#include <sys/resource.h>
+#include <unistd.h>
+#endif
 
 #include <atomic>
 #include <chrono>
@@ -102,6 +107,31 @@ TEST(Service, FirstRequestEqualsTheDeformer) {
   // No warm start for the first request of a drag: the very same computation as a Deformer of its own.
   EXPECT_EQ(*s->positions, cold_solve(p, r));
 }
+
+#ifdef __linux__
+// The worker's scheduling: the idle class when asked (a frame loop's thread takes the core at once), else the
+// normal class with the niceness asked for; the solve is the same either way.
+TEST(Service, TheWorkerRunsInTheSchedulingClassAsked) {
+  const Problem p = make_problem(12);
+  for (const bool idle : {true, false}) {
+    std::atomic<int> policy{-1}, niceness{-100};
+    ServiceOptions options;
+    options.worker_nice = 7;
+    options.worker_idle = idle;
+    options.on_publish = [&](const std::shared_ptr<const Snapshot>&) {
+      policy = ::sched_getscheduler(0);
+      niceness = ::getpriority(PRIO_PROCESS, static_cast<id_t>(::gettid()));
+    };
+    Service service(p.mesh, std::move(options));
+    const Request r = make_request(p, {0.0, 0.0, 0.05});
+    (void)service.submit(r);
+    const auto s = service.wait_idle();
+    EXPECT_EQ(policy.load(), idle ? SCHED_IDLE : SCHED_OTHER) << (idle ? "idle" : "nice");
+    EXPECT_EQ(niceness.load(), 7);
+    EXPECT_EQ(*s->positions, cold_solve(p, r));
+  }
+}
+#endif
 
 // A drag's next request starts from the previous result; the previous solve's contraction rate goes with it
 // (ConstraintTargets::rate_hint), so the converged preview's estimate stays within 2x of its true distance

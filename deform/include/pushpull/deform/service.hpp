@@ -137,9 +137,15 @@ struct ServiceOptions {
   // it may call submit(), commit(), undo(), redo() and cancel() (they never wait), nothing that blocks.
   std::function<void(const std::shared_ptr<const Snapshot>&)> on_publish;
   // Scheduling niceness of the worker thread, 0 (as the caller) to 19 (runs only when nothing else wants the
-  // core). A frame loop sharing the machine's cores with the solver gives it > 0 so frames come first; results
-  // do not depend on it, only how soon they arrive. Linux (setpriority on the thread); ignored elsewhere.
+  // core). A frame loop sharing the machine's cores with the solver gives it > 0 so frames come first;
+  // results do not depend on it, only how soon they arrive. Linux (setpriority on the thread); ignored
+  // elsewhere.
   int worker_nice = 0;
+  // The idle scheduling class (Linux SCHED_IDLE) for the worker and its helper thread: they run only on CPU
+  // time no normal thread wants, and a frame loop's thread that wakes takes the core at once (with a niceness
+  // it waits for the solver's time slice: the frame-time spikes of scripts/bench-review). Under a machine
+  // loaded by other work, previews then arrive late. Ignored elsewhere.
+  bool worker_idle = false;
 };
 
 class Service {
