@@ -89,11 +89,13 @@ void add_review_command(CLI::App& root) {
            o->solver_idle = value == "idle";
            if (!o->solver_idle) o->solver_nice = std::stoi(value);
          },
-         "The solver thread's share of the cores: idle (default: only time the frames leave, a waking frame "
-         "takes "
-         "the core at once) or a niceness 0 (as the frame loop) to 19")
+         "Headset: the solver threads' share of the cores, a niceness 0 (as the frame loop) to 19, or idle "
+         "(only "
+         "time no other thread wants: a waking frame takes the core at once, but a machine busy with other "
+         "work "
+         "starves previews and commits)")
       ->check(CLI::IsMember({"idle"}) | CLI::Range(0, 19))
-      ->default_str("idle");
+      ->default_str("10");
   add_life_size_options(*cmd, o->life_size);
   cmd->callback([o] { run_review(*o); });
 }

@@ -25,17 +25,14 @@
 namespace pushpull::app {
 namespace {
 
-Eigen::Vector3d to_eigen(const glm::vec3& v) {
-  return {v.x, v.y, v.z};
-}
+Eigen::Vector3d to_eigen(const glm::vec3& v) { return {v.x, v.y, v.z}; }
 
 // The ray through a window pixel: origin at the camera, direction into the scene (stage space).
 std::pair<Eigen::Vector3d, Eigen::Vector3d> cursor_ray(const renderer::View& view,
-                                                       const renderer::MirrorWindow::Pointer& p) {
+                                                        const renderer::MirrorWindow::Pointer& p) {
   const glm::mat4 inverse = glm::inverse(view.projection * view.view);
   const float x = float(2.0 * p.x / std::max(1, p.window_width) - 1.0);
-  const float y =
-      float(2.0 * p.y / std::max(1, p.window_height) - 1.0);  // Vulkan clip: y down like the window
+  const float y = float(2.0 * p.y / std::max(1, p.window_height) - 1.0);  // Vulkan clip: y down like the window
   glm::vec4 near = inverse * glm::vec4(x, y, 0.0f, 1.0f), far = inverse * glm::vec4(x, y, 1.0f, 1.0f);
   near /= near.w;
   far /= far.w;
@@ -88,8 +85,7 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
     recording.eye_height = o.mirror_size[1];
     recorder.write_header(o, setup, recording);
   }
-  if (recorder.recording())
-    std::printf("pushpull review: recording the session to %s\n", recorder.path().c_str());
+  if (recorder.recording()) std::printf("pushpull review: recording the session to %s\n", recorder.path().c_str());
   const LifeSize& life = setup.life;
   {
     renderer::RendererOptions renderer_options;
@@ -99,13 +95,10 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
                                   "pushpull review (desktop)");
     ReviewScene scene(renderer, setup.model, setup.placement, setup.colour, life.scale());
     CommitWatch commits;  // before the service: its worker calls into it until the service is destroyed
-    deform::ServiceOptions service_options{commits.callback()};
-    service_options.worker_nice = o.solver_nice;  // the window's frames first, as in the headset
-    service_options.worker_idle = o.solver_idle;
-    deform::Service service(setup.rest, std::move(service_options));
+    deform::Service service(setup.rest, deform::ServiceOptions{commits.callback()});
     ReviewInteraction interaction(service, *setup.rest, setup.placement, setup.interaction);
-    // The recording's clock: frame n at n / 90 s (xr/sim's virtual clock at 90 Hz), so a replay on the
-    // simulated runtime sees each recorded frame at its own frame.
+    // The recording's clock: frame n at n / 90 s (xr/sim's virtual clock at 90 Hz), so a replay on the simulated
+    // runtime sees each recorded frame at its own frame.
     constexpr double kRecordingRate = 90.0;
     std::int64_t loop_frames = 0;
     double t = 0.0;
@@ -137,8 +130,7 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
     int frames = 0;
     while (!window.should_close() && (o.frames <= 0 || frames < o.frames)) {
       window.poll_events();
-      t = double(std::llround(double(loop_frames++) * 1e9 / kRecordingRate)) *
-          1e-9;  // as xr/sim's script_time
+      t = double(std::llround(double(loop_frames++) * 1e9 / kRecordingRate)) * 1e-9;  // as xr/sim's script_time
       bool quit = false, undo = false, redo = false, colour = false, method = false;
       for (int key : window.take_key_presses()) {
         quit = quit || key == 256 /* GLFW_KEY_ESCAPE */;
@@ -156,9 +148,9 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
       const renderer::View view = renderer::frame_bounds(bounds, orbit, aspect);
       const auto [origin, direction] = cursor_ray(view, p);
       // The mouse as a controller: outside a drag the cursor ray; during a drag the ray of the press moved by
-      // p1 - p0 (the headset gesture's d is the hand's travel). It goes through the float aim pose the
-      // recording keeps, and through the same gesture as a headset hand, so a replay of the recording on the
-      // simulated runtime reproduces p0, d and every commit bit for bit.
+      // p1 - p0 (the headset gesture's d is the hand's travel). It goes through the float aim pose the recording
+      // keeps, and through the same gesture as a headset hand, so a replay of the recording on the simulated
+      // runtime reproduces p0, d and every commit bit for bit.
       if (p.left && !last.left && !interaction.dragging()) {
         // As in the headset loop: a press hits the committed surface, never one a pending commit replaces.
         service.wait_idle();
@@ -185,8 +177,8 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
         hand_origin = origin, hand_direction = direction;
       }
       // Released this frame: the hand stays where the drag left it (the gesture's release reads d there).
-      // Recorded as a headset frame would be: the camera as the head, the pointer as the right controller
-      // (its trigger the left button, its A and B buttons undo and redo), C as the left menu button.
+      // Recorded as a headset frame would be: the camera as the head, the pointer as the right controller (its
+      // trigger the left button, its A and B buttons undo and redo), C as the left menu button.
       std::array<xr::HandInput, 2> hands_in;
       hands_in[1].T_stage_aim = pointer_pose(hand_origin, hand_direction);
       hands_in[1].trigger = p.left ? 1.0f : 0.0f;
@@ -194,8 +186,7 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
       hands_in[1].redo_pressed = redo && !interaction.dragging();
       hands_in[0].menu_pressed = colour;
       recorder.write_frame_input(t, camera_pose(view), hands_in, kDesktopProfile);
-      for (const InteractionEvent& e :
-           interaction.update({hand_sample(hands_in[0]), hand_sample(hands_in[1])}))
+      for (const InteractionEvent& e : interaction.update({hand_sample(hands_in[0]), hand_sample(hands_in[1])}))
         record_interaction(e);
       if (interaction.dragging()) recorder.write_drag(t, interaction.current_d());
       dragging = interaction.dragging();
@@ -223,16 +214,15 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
       const std::shared_ptr<const deform::Snapshot> snapshot = service.latest();
       interaction.sync_committed(*snapshot);
       scene.update(snapshot);
-      // The readout by the cursor (where the press is, or where it would grab), the same size on screen at
-      // any camera distance: a line about 3.5% of the view's height.
+      // The readout by the cursor (where the press is, or where it would grab), the same size on screen at any
+      // camera distance: a line about 3.5% of the view's height.
       std::vector<renderer::Draw> draws = scene.draws();
       {
         const auto& hover = interaction.hovers()[1];
         const Eigen::Vector3d camera = to_eigen(glm::vec3(glm::inverse(view.view)[3]));
         std::optional<Eigen::Vector3d> anchor;
         if (interaction.dragging())
-          anchor = setup.placement.to_stage_point(setup.placement.to_model_point(p0_stage) +
-                                                  interaction.current_d());
+          anchor = setup.placement.to_stage_point(setup.placement.to_model_point(p0_stage) + interaction.current_d());
         else if (hover)
           anchor = setup.placement.to_stage_point(hover->point);
         if (anchor) {
@@ -254,8 +244,8 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
       }
       char text[256];
       std::snprintf(text, sizeof text, "pushpull review (desktop) | %s%s | |d| %.1f mm | %d it %s | %s",
-                    std::string(deform::method_name(interaction.method())).c_str(),
-                    dragging ? " (dragging)" : "", life.to_mm(snapshot->d.norm()), snapshot->iteration,
+                    std::string(deform::method_name(interaction.method())).c_str(), dragging ? " (dragging)" : "",
+                    life.to_mm(snapshot->d.norm()), snapshot->iteration,
                     snapshot->converged ? "converged" : "not converged", colour_name(scene.colour()));
       if (title != text) window.set_title(title = text);
     }
@@ -267,9 +257,7 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
     const deform::HistoryEntry& current = history.at(service.history_position());
     recorder.write_record("end", t,
                           {{"commits", service.history_position()}, {"hash", hash_text(current.hash)}});
-    log.write({{"event", "end"},
-               {"revision", service.revision()},
-               {"hash", current.hash},
+    log.write({{"event", "end"}, {"revision", service.revision()}, {"hash", current.hash},
                {"commits", service.history_position()}});
     if (!o.out.empty()) {
       write_review_model(o.out, setup.model, current.state->V);

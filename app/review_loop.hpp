@@ -36,9 +36,9 @@ struct ReviewCommandOptions {
       false;  // no status lines on stdout (start, press/commit, wrote); errors and warnings still show
   bool fixed_method =
       false;  // the method stays `method` (keys and the menu do not change it; replay --method)
-  // The review's solver thread: the idle scheduling class (deform::ServiceOptions::worker_idle), else this
-  // niceness (worker_nice, 0-19). --solver-priority: "idle" or the niceness.
-  bool solver_idle = true;
+  // The headset review's solver thread: this niceness (deform::ServiceOptions::worker_nice, 0-19), or the
+  // idle scheduling class (worker_idle). --solver-priority: the niceness or "idle".
+  bool solver_idle = false;
   int solver_nice = 10;
   // After a lost session: how long to wait for the headset to come back before ending (s; 0: end at once).
   double reconnect_s = 30.0;

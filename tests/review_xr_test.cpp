@@ -83,9 +83,9 @@ ReviewRun run_review(const fs::path& dir, const std::string& script, const std::
          " PUSHPULL_XR_SIM_PROFILE=/interaction_profiles/oculus/touch_controller " +
          extra_env;
   ReviewRun run;
-  // --solver-nice 0: the loop runs flat out on the virtual clock here (no display to wait for), so a niced solver
+  // --solver-priority 0: the loop runs flat out on the virtual clock here (no display to wait for), so a niced solver
   // would fall behind the frames; these tests look at results a fixed time after a release.
-  run.result = run_command(env + " " + PUSHPULL_EXECUTABLE + " review " + kHood + kPlacement + " --solver-nice 0 --events " +
+  run.result = run_command(env + " " + PUSHPULL_EXECUTABLE + " review " + kHood + kPlacement + " --solver-priority 0 --events " +
                            (dir / "events.jsonl").string() + " " + arguments);
   std::ifstream log(dir / "events.jsonl");
   for (std::string line; std::getline(log, line);)
@@ -484,7 +484,7 @@ TEST(ReviewXrWindow, MirrorWindowOnScreenShowsTheEyesScene) {
                           " PUSHPULL_XR_SIM_PROFILE=/interaction_profiles/oculus/touch_controller";
   std::ofstream(dir / "drive.sh") << "set -e\n"
       << env << " " << PUSHPULL_EXECUTABLE << " review " << kHood << kPlacement
-      << " --solver-nice 0 --mirror --mirror-size 320 240 --events " << (dir / "events.jsonl").string() << " > "
+      << " --solver-priority 0 --mirror --mirror-size 320 240 --events " << (dir / "events.jsonl").string() << " > "
       << (dir / "review.log").string() << " 2>&1 &\n"
       << "pid=$!\nfor i in $(seq 600); do grep -q '\"commit\"' " << (dir / "events.jsonl").string()
       << " 2>/dev/null && break; sleep 0.1; done\nsleep 1\nxwd -root -silent > " << (dir / "screen.xwd").string()
