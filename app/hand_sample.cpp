@@ -19,8 +19,25 @@ HandSample hand_sample(const xr::HandInput& in) {
   return s;
 }
 
+HandSample hold_untracked(const xr::HandInput& in, std::optional<HandSample>& last_tracked) {
+  HandSample s = hand_sample(in);
+  if (!s.tracked) return s;
+  if (in.aim_position_tracked) {
+    last_tracked = s;
+    return s;
+  }
+  if (!last_tracked) {
+    s.tracked = false;
+    return s;
+  }
+  HandSample held = *last_tracked;
+  held.trigger = s.trigger;
+  return held;
+}
+
 XrPosef pointer_pose(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction) {
-  const Eigen::Quaterniond q = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d(0, 0, -1), direction.normalized());
+  const Eigen::Quaterniond q =
+      Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d(0, 0, -1), direction.normalized());
   XrPosef pose;
   pose.position = {float(origin.x()), float(origin.y()), float(origin.z())};
   pose.orientation = {float(q.x()), float(q.y()), float(q.z()), float(q.w())};

@@ -254,7 +254,8 @@ void run_review(const ReviewCommandOptions& o) {
       return true;
     };
 
-    bool session_lost = false;  // a call failed with XR_ERROR_SESSION_LOST
+    bool session_lost = false;                                   // a call failed with XR_ERROR_SESSION_LOST
+    std::array<std::optional<HandSample>, 2> last_tracked_hand;  // hold_untracked's, per hand
     while (!xr.exit_requested() || xr.lost() || session_lost) {
       if (session_lost || xr.lost()) {
         if (!resume_after_loss()) break;
@@ -303,8 +304,8 @@ void run_review(const ReviewCommandOptions& o) {
         // would take as a release; the drag is cancelled instead, the model stays as before it.
         if (!xr.focused() && interaction.dragging())
           if (const auto e = interaction.cancel()) log_event(*e);
-        std::array<HandSample, 2> hands{hand_sample(input->hand(xr::Hand::Left)),
-                                        hand_sample(input->hand(xr::Hand::Right))};
+        std::array<HandSample, 2> hands{hold_untracked(input->hand(xr::Hand::Left), last_tracked_hand[0]),
+                                        hold_untracked(input->hand(xr::Hand::Right), last_tracked_hand[1])};
         // Grip (between drags): grab and move the model; both grips also scale it.
         if (!interaction.dragging()) {
           std::array<std::optional<GrabHand>, 2> grabbing;

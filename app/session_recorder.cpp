@@ -18,12 +18,16 @@ namespace {
 namespace fs = std::filesystem;
 using json = nlohmann::json;
 
-json vec3(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+json vec3(const Eigen::Vector3d& v) {
+  return {v.x(), v.y(), v.z()};
+}
 
 // Floats as the loop read them: a float widened to double prints with enough digits to come back exactly.
 json pose_json(const XrPosef& p) {
-  return {{"p", {double(p.position.x), double(p.position.y), double(p.position.z)}},
-          {"q", {double(p.orientation.x), double(p.orientation.y), double(p.orientation.z), double(p.orientation.w)}}};
+  return {
+      {"p", {double(p.position.x), double(p.position.y), double(p.position.z)}},
+      {"q",
+       {double(p.orientation.x), double(p.orientation.y), double(p.orientation.z), double(p.orientation.w)}}};
 }
 
 struct ButtonPaths {
@@ -96,8 +100,11 @@ SessionRecorder::SessionRecorder(const std::string& path, bool required) : path_
   file_.open(path, std::ios::out | std::ios::trunc);
   if (file_) return;
   if (required) throw CommandError(path + ": cannot write the session recording");
-  std::fprintf(stderr, "pushpull review: warning: %s: cannot write the session recording; not recording (--record FILE "
-               "names another place)\n", path.c_str());
+  std::fprintf(
+      stderr,
+      "pushpull review: warning: %s: cannot write the session recording; not recording (--record FILE "
+      "names another place)\n",
+      path.c_str());
   path_.clear();
 }
 
@@ -107,54 +114,57 @@ void SessionRecorder::write_line(const json& line) {
   if (!file_) throw CommandError(path_ + ": write failed (disk full?) while recording the session");
 }
 
-void SessionRecorder::write_header(const ReviewCommandOptions& o, const ReviewSetup& s, const RecordingContext& c) {
+void SessionRecorder::write_header(const ReviewCommandOptions& o, const ReviewSetup& s,
+                                   const RecordingContext& c) {
   if (!file_.is_open()) return;
   std::vector<double> T;
   for (int r = 0; r < 4; ++r)
     for (int col = 0; col < 4; ++col) T.push_back(s.placement.T_stage_model(r, col));
   const deform::DeformOptions& solver = s.interaction.solver;
-  json header{
-      {"record", "header"},
-      {"format", "pushpull-session-1"},
-      {"pushpull_version", PUSHPULL_VERSION},
-      {"model", fs::absolute(o.model).lexically_normal().string()},
-      // Also relative to the recording's folder: a recording kept beside its model (examples/) replays elsewhere.
-      {"model_relative",
-       fs::absolute(o.model).lexically_normal().lexically_relative(fs::absolute(path_).parent_path()).string()},
-      {"model_sha256", sha256_file_hex(o.model)},
-      {"life_size_scale", s.life.scale()},
-      {"T_stage_model", T},  // row-major 4x4, model (file units) -> stage (metres)
-      {"method", std::string(deform::method_name(solver.method))},
-      {"mu", solver.mu},
-      {"solver",
-       {{"asan_base", std::string(deform::method_name(solver.asan_base))},
-        {"max_iterations", solver.max_iterations},
-        {"tolerance", solver.tolerance},
-        {"energy_tolerance", solver.energy_tolerance},
-        {"anderson", solver.anderson_window},
-        {"sr_arap_alpha", solver.sr_arap_alpha},
-        {"arap_h_lambda", solver.arap_h_lambda},
-        {"arap_n_rings", solver.arap_n_rings}}},
-      {"handle_radius", s.interaction.handle_radius},  // model units
-      {"roi_radius", s.interaction.roi_radius},        // model units
-      // The command's options, enough to set the same session up again (pushpull replay reads these).
-      {"options",
-       {{"method", o.method},
-        {"mu", o.mu},
-        {"handle_radius_m", o.handle_radius_m},
-        {"roi_radius_m", o.roi_radius_m},
-        {"up", o.up},
-        {"front", o.front},
-        {"distance_m", o.distance_m},
-        {"samples", o.samples},
-        {"colour", o.colour},
-        {"scale", o.life_size.scale},
-        {"length_m", o.life_size.length_m ? json(*o.life_size.length_m) : json(nullptr)},
-        {"desktop", o.desktop}}},
-      {"runtime", c.runtime},
-      {"view_configuration", c.view_configuration},
-      {"eye_size", {c.eye_width, c.eye_height}},
-      {"rate_hz", c.rate_hz}};
+  json header{{"record", "header"},
+              {"format", "pushpull-session-1"},
+              {"pushpull_version", PUSHPULL_VERSION},
+              {"model", fs::absolute(o.model).lexically_normal().string()},
+              // Also relative to the recording's folder: a recording kept beside its model (examples/)
+              // replays elsewhere.
+              {"model_relative", fs::absolute(o.model)
+                                     .lexically_normal()
+                                     .lexically_relative(fs::absolute(path_).parent_path())
+                                     .string()},
+              {"model_sha256", sha256_file_hex(o.model)},
+              {"life_size_scale", s.life.scale()},
+              {"T_stage_model", T},  // row-major 4x4, model (file units) -> stage (metres)
+              {"method", std::string(deform::method_name(solver.method))},
+              {"mu", solver.mu},
+              {"solver",
+               {{"asan_base", std::string(deform::method_name(solver.asan_base))},
+                {"max_iterations", solver.max_iterations},
+                {"tolerance", solver.tolerance},
+                {"energy_tolerance", solver.energy_tolerance},
+                {"anderson", solver.anderson_window},
+                {"sr_arap_alpha", solver.sr_arap_alpha},
+                {"arap_h_lambda", solver.arap_h_lambda},
+                {"arap_n_rings", solver.arap_n_rings}}},
+              {"handle_radius", s.interaction.handle_radius},  // model units
+              {"roi_radius", s.interaction.roi_radius},        // model units
+              // The command's options, enough to set the same session up again (pushpull replay reads these).
+              {"options",
+               {{"method", o.method},
+                {"mu", o.mu},
+                {"handle_radius_m", o.handle_radius_m},
+                {"roi_radius_m", o.roi_radius_m},
+                {"up", o.up},
+                {"front", o.front},
+                {"distance_m", o.distance_m},
+                {"samples", o.samples},
+                {"colour", o.colour},
+                {"scale", o.life_size.scale},
+                {"length_m", o.life_size.length_m ? json(*o.life_size.length_m) : json(nullptr)},
+                {"desktop", o.desktop}}},
+              {"runtime", c.runtime},
+              {"view_configuration", c.view_configuration},
+              {"eye_size", {c.eye_width, c.eye_height}},
+              {"rate_hz", c.rate_hz}};
   write_line(header);
 }
 
@@ -166,7 +176,8 @@ void SessionRecorder::write_value(double t, const std::string& path, const json&
 }
 
 void SessionRecorder::write_frame_input(double t, const std::optional<XrPosef>& head,
-                                        const std::array<xr::HandInput, 2>& hands, const std::string& profile) {
+                                        const std::array<xr::HandInput, 2>& hands,
+                                        const std::string& profile) {
   if (!file_.is_open()) return;
   if (profile != profile_ && !profile.empty()) {
     profile_ = profile;
@@ -177,8 +188,11 @@ void SessionRecorder::write_frame_input(double t, const std::optional<XrPosef>& 
   for (size_t h = 0; h < 2; ++h) {
     const xr::HandInput& in = hands[h];
     const std::string hand = kHands[h];
-    if (in.T_stage_aim)
-      write_line({{"t", t}, {"path", hand + "/input/aim/pose"}, {"pose", pose_json(*in.T_stage_aim)}});
+    if (in.T_stage_aim) {
+      json line{{"t", t}, {"path", hand + "/input/aim/pose"}, {"pose", pose_json(*in.T_stage_aim)}};
+      if (!in.aim_position_tracked) line["tracked"] = false;  // a guess: the replay's runtime reports it so
+      write_line(line);
+    }
     write_value(t, hand + b.trigger, double(in.trigger));
     if (b.grip) write_value(t, hand + b.grip, double(in.grip));
     if (b.stick) write_value(t, hand + b.stick, json{double(in.thumbstick.x), double(in.thumbstick.y)});
@@ -212,14 +226,22 @@ void SessionRecorder::write_interaction(double t, const InteractionEvent& e, dou
   const char* hand = e.hand == 0 ? "left" : "right";
   if (e.kind == InteractionEvent::Kind::Pressed) {
     write_record("press", t,
-                 {{"hand", hand}, {"face", e.face}, {"p0", vec3(e.p0)},
-                  {"handle", {{"face", e.face}, {"radius", handle_radius}}}, {"roi_radius", roi_radius}});
+                 {{"hand", hand},
+                  {"face", e.face},
+                  {"p0", vec3(e.p0)},
+                  {"handle", {{"face", e.face}, {"radius", handle_radius}}},
+                  {"roi_radius", roi_radius}});
     last_drag_d_.setConstant(std::numeric_limits<double>::quiet_NaN());
     return;
   }
   write_record("release", t,
-               {{"hand", hand}, {"face", e.face}, {"p0", vec3(e.p0)}, {"p1", vec3(e.p0 + e.d)}, {"d", vec3(e.d)},
-                {"committed", e.kind == InteractionEvent::Kind::Committed}, {"request", e.request}});
+               {{"hand", hand},
+                {"face", e.face},
+                {"p0", vec3(e.p0)},
+                {"p1", vec3(e.p0 + e.d)},
+                {"d", vec3(e.d)},
+                {"committed", e.kind == InteractionEvent::Kind::Committed},
+                {"request", e.request}});
 }
 
 void SessionRecorder::write_drag(double t, const Eigen::Vector3d& d) {
@@ -240,8 +262,8 @@ void SessionRecorder::write_commit(double t, const CommitRecord& c) {
                 {"converged", s.converged},
                 {"error_estimate", s.error_estimate ? json(*s.error_estimate) : json(nullptr)},
                 {"max_displacement", s.max_displacement},
-                // The handle and region the worker grew from p0 (vertex counts; the vertices are in the replay's
-                // metrics).
+                // The handle and region the worker grew from p0 (vertex counts; the vertices are in the
+                // replay's metrics).
                 {"handle_vertices", s.region ? s.region->handle.size() : 0},
                 {"region_vertices", s.region ? s.region->size() : 0}});
 }

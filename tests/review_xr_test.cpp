@@ -14,10 +14,10 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <iterator>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -50,14 +50,18 @@ std::string script_start() {
 )";
 }
 
-// From t: the right hand aims straight down 5 cm behind the bonnet's front edge, presses, pulls 100 mm towards
-// the reviewer over 0.5 s and releases 0.2 s later.
+// From t: the right hand aims straight down 5 cm behind the bonnet's front edge, presses, pulls 100 mm
+// towards the reviewer over 0.5 s and releases 0.2 s later.
 std::string push_pull_100mm_at(double t) {
   auto at = [&](double dt) { return std::to_string(t + dt); };
-  return R"({"t":)" + at(0.0) + R"(,"path":"/user/hand/right/input/aim/pose","pose":{"p":[0.0123,0.5,-0.65],"q":[-0.70710678,0,0,0.70710678]}}
-{"t":)" + at(0.0) + R"(,"path":"/user/hand/right/input/trigger/value","value":1.0}
-{"t":)" + at(0.5) + R"(,"path":"/user/hand/right/input/aim/pose","pose":{"p":[0.0123,0.5,-0.55],"q":[-0.70710678,0,0,0.70710678]}}
-{"t":)" + at(0.7) + R"(,"path":"/user/hand/right/input/trigger/value","value":0.0}
+  return R"({"t":)" + at(0.0) +
+         R"(,"path":"/user/hand/right/input/aim/pose","pose":{"p":[0.0123,0.5,-0.65],"q":[-0.70710678,0,0,0.70710678]}}
+{"t":)" + at(0.0) +
+         R"(,"path":"/user/hand/right/input/trigger/value","value":1.0}
+{"t":)" + at(0.5) +
+         R"(,"path":"/user/hand/right/input/aim/pose","pose":{"p":[0.0123,0.5,-0.55],"q":[-0.70710678,0,0,0.70710678]}}
+{"t":)" + at(0.7) +
+         R"(,"path":"/user/hand/right/input/trigger/value","value":0.0}
 )";
 }
 
@@ -77,16 +81,17 @@ ReviewRun run_review(const fs::path& dir, const std::string& script, const std::
                      const std::string& extra_env = "") {
   std::ofstream(dir / "input.jsonl") << script;
   std::string env = pushpull::testing::xr_sim_environment();
-  env += " PUSHPULL_XR_SIM_INPUT=" + (dir / "input.jsonl").string() + " PUSHPULL_XR_SIM_CAPTURE=" +
-         (dir / "capture").string() +
+  env += " PUSHPULL_XR_SIM_INPUT=" + (dir / "input.jsonl").string() +
+         " PUSHPULL_XR_SIM_CAPTURE=" + (dir / "capture").string() +
          " PUSHPULL_XR_SIM_WIDTH=256 PUSHPULL_XR_SIM_HEIGHT=256 PUSHPULL_XR_SIM_RATE=30"
          " PUSHPULL_XR_SIM_PROFILE=/interaction_profiles/oculus/touch_controller " +
          extra_env;
   ReviewRun run;
-  // --solver-priority 0: the loop runs flat out on the virtual clock here (no display to wait for), so a niced solver
-  // would fall behind the frames; these tests look at results a fixed time after a release.
-  run.result = run_command(env + " " + PUSHPULL_EXECUTABLE + " review " + kHood + kPlacement + " --solver-priority 0 --events " +
-                           (dir / "events.jsonl").string() + " " + arguments);
+  // --solver-priority 0: the loop runs flat out on the virtual clock here (no display to wait for), so a
+  // niced solver would fall behind the frames; these tests look at results a fixed time after a release.
+  run.result =
+      run_command(env + " " + PUSHPULL_EXECUTABLE + " review " + kHood + kPlacement +
+                  " --solver-priority 0 --events " + (dir / "events.jsonl").string() + " " + arguments);
   std::ifstream log(dir / "events.jsonl");
   for (std::string line; std::getline(log, line);)
     if (!line.empty()) run.events.push_back(nlohmann::json::parse(line));
@@ -137,8 +142,9 @@ TEST(ReviewXr, DragCommitsWhatDeformComputesForTheSameP0AndD) {
   const std::string deform_out = (dir / "deform.off").string();
   const auto deform = pushpull::testing::run_pushpull(
       "deform " + kHood + " --handle-at " + number(p0[0]) + " " + number(p0[1]) + " " + number(p0[2]) +
-      " --handle-radius 0.25 --roi-radius 0.9 --method asan --displacement " + number(d[0]) + " " + number(d[1]) +
-      " " + number(d[2]) + " --out " + deform_out + " --metrics " + (dir / "deform.json").string());
+      " --handle-radius 0.25 --roi-radius 0.9 --method asan --displacement " + number(d[0]) + " " +
+      number(d[1]) + " " + number(d[2]) + " --out " + deform_out + " --metrics " +
+      (dir / "deform.json").string());
   ASSERT_EQ(deform.status, 0) << deform.output;
 
   const auto rest = pushpull::deform::read_mesh(kHood);
@@ -191,15 +197,17 @@ TEST(ReviewXr, SessionLostMidDragLeavesTheModelAsBeforeTheDrag) {
 
 // The headset comes back after a lost session (the runtime's session is made again on the same instance and
 // Vulkan device): the trigger still held from the cancelled drag does not grab; after letting go, the next
-// push/pull commits; the recording, loss included, replays with the same commit hash. --reconnect 0 ends at the
-// loss instead.
+// push/pull commits; the recording, loss included, replays with the same commit hash. --reconnect 0 ends at
+// the loss instead.
 TEST(ReviewXr, LostSessionComesBackAndTheReviewGoesOnAndReplays) {
   const fs::path dir = test_dir();
   const std::string aim_back = R"("pose":{"p":[0.0123,0.5,-0.65],"q":[-0.70710678,0,0,0.70710678]})";
   const std::string script = script_start() + R"({"t":0.8,"event":"loss"}
 {"t":1.2,"path":"/user/hand/right/input/trigger/value","value":0.0}
-{"t":1.3,"path":"/user/hand/right/input/aim/pose",)" + aim_back + R"(}
-)" + push_pull_100mm_at(1.5) + R"({"t":3.0,"event":"exit"}
+{"t":1.3,"path":"/user/hand/right/input/aim/pose",)" +
+                             aim_back + R"(}
+)" + push_pull_100mm_at(1.5) +
+                             R"({"t":3.0,"event":"exit"}
 )";
   const ReviewRun run = run_review(dir, script, "--record " + (dir / "session.jsonl").string());
   ASSERT_EQ(run.result.status, 0) << run.result.output;
@@ -210,9 +218,9 @@ TEST(ReviewXr, LostSessionComesBackAndTheReviewGoesOnAndReplays) {
   const auto d = run.of("commit")[0].at("d");
   EXPECT_NEAR(double(d[1]), -0.1, 1e-6);
 
-  const auto replay = run_command(pushpull::testing::xr_sim_environment() + " " + PUSHPULL_EXECUTABLE + " replay " +
-                                  (dir / "session.jsonl").string() + " --out " + (dir / "replay").string() +
-                                  " --no-pictures");
+  const auto replay = run_command(pushpull::testing::xr_sim_environment() + " " + PUSHPULL_EXECUTABLE +
+                                  " replay " + (dir / "session.jsonl").string() + " --out " +
+                                  (dir / "replay").string() + " --no-pictures");
   ASSERT_EQ(replay.status, 0) << replay.output;
   EXPECT_NE(replay.output.find("1 commit(s) replayed of 1 recorded; all checks passed"), std::string::npos)
       << replay.output;
@@ -221,6 +229,44 @@ TEST(ReviewXr, LostSessionComesBackAndTheReviewGoesOnAndReplays) {
   ASSERT_EQ(ended.result.status, 0) << ended.result.output;
   EXPECT_EQ(ended.of("commit").size(), 0u) << ended.result.output;
   EXPECT_EQ(ended.result.output.find("the headset is back"), std::string::npos) << ended.result.output;
+}
+
+// A controller that leaves its tracking cameras' view mid-drag is still located by the runtime, with a
+// drifting guess (position valid, not tracked): the drag holds where the hand was last tracked (50 mm), the
+// 200 mm of drift after it are not pushed into the model, and the recording's replay (which carries the flag)
+// commits the same.
+TEST(ReviewXr, AControllerOutOfTrackingHoldsTheDragWhereItWasLastSeen) {
+  const fs::path dir = test_dir();
+  const std::string q = R"("q":[-0.70710678,0,0,0.70710678])";
+  const std::string script =
+      R"({"t":0.0,"path":"/user/head","pose":{"p":[0,1.0,0],"q":[-0.32557,0,0,0.94552]}}
+{"t":0.0,"path":"/user/hand/right/input/aim/pose","pose":{"p":[0.0123,0.5,-0.65],)" +
+      q + R"(}}
+{"t":0.0,"path":"/user/hand/right/input/trigger/value","value":0.0}
+{"t":0.5,"path":"/user/hand/right/input/aim/pose","pose":{"p":[0.0123,0.5,-0.65],)" +
+      q + R"(}}
+{"t":0.5,"path":"/user/hand/right/input/trigger/value","value":1.0}
+{"t":0.75,"path":"/user/hand/right/input/aim/pose","pose":{"p":[0.0123,0.5,-0.60],)" +
+      q + R"(}}
+{"t":0.8,"path":"/user/hand/right/input/aim/pose","pose":{"p":[0.0123,0.5,-0.60],)" +
+      q + R"(},"tracked":false}
+{"t":1.2,"path":"/user/hand/right/input/aim/pose","pose":{"p":[0.0123,0.5,-0.40],)" +
+      q + R"(},"tracked":false}
+{"t":1.3,"path":"/user/hand/right/input/trigger/value","value":0.0}
+{"t":2.0,"event":"exit"}
+)";
+  const ReviewRun run = run_review(dir, script, "--record " + (dir / "session.jsonl").string());
+  ASSERT_EQ(run.result.status, 0) << run.result.output;
+  ASSERT_EQ(run.of("commit").size(), 1u) << run.result.output;
+  const auto d = run.of("commit")[0].at("d");
+  EXPECT_NEAR(double(d[1]), -0.05, 1e-6) << run.result.output;  // 50 mm, not 250
+
+  const auto replay = run_command(pushpull::testing::xr_sim_environment() + " " + PUSHPULL_EXECUTABLE +
+                                  " replay " + (dir / "session.jsonl").string() + " --out " +
+                                  (dir / "replay").string() + " --no-pictures");
+  ASSERT_EQ(replay.status, 0) << replay.output;
+  EXPECT_NE(replay.output.find("1 commit(s) replayed of 1 recorded; all checks passed"), std::string::npos)
+      << replay.output;
 }
 
 // The OpenXR core validation layer (between the app and the runtime) and VK_LAYER_KHRONOS_validation (on the
@@ -236,7 +282,8 @@ TEST(ReviewXr, ValidationLayersReportNothingForAPushPull) {
                                    "--validation", "XR_ENABLE_API_LAYERS=XR_APILAYER_LUNARG_core_validation");
   ASSERT_EQ(run.result.status, 0) << run.result.output;
   EXPECT_EQ(run.of("commit").size(), 1u) << run.result.output;
-  EXPECT_NE(run.result.output.find("Core Validation"), std::string::npos) << "the core validation layer did not load";
+  EXPECT_NE(run.result.output.find("Core Validation"), std::string::npos)
+      << "the core validation layer did not load";
   std::istringstream lines(run.result.output);
   for (std::string line; std::getline(lines, line);)
     for (const char* bad : {"VUID", "Error", "ERROR", "Warning", "WARNING", "vulkan validation"})
@@ -249,7 +296,8 @@ TEST(ReviewXr, UndoRestoresTheModelAndRedoReappliesIt) {
 {"t":1.5,"path":"/user/hand/right/input/trigger/value","value":0.0}
 )";
   // X (left) = undo at 2.0 s; Y (left) = redo at 2.5 s; undo again at 3.0 s: the model ends as loaded.
-  const ReviewRun run = run_review(dir, script_start() + release + R"({"t":2.0,"path":"/user/hand/left/input/x/click","value":true}
+  const ReviewRun run = run_review(
+      dir, script_start() + release + R"({"t":2.0,"path":"/user/hand/left/input/x/click","value":true}
 {"t":2.1,"path":"/user/hand/left/input/x/click","value":false}
 {"t":2.5,"path":"/user/hand/left/input/y/click","value":true}
 {"t":2.6,"path":"/user/hand/left/input/y/click","value":false}
@@ -257,7 +305,7 @@ TEST(ReviewXr, UndoRestoresTheModelAndRedoReappliesIt) {
 {"t":3.1,"path":"/user/hand/left/input/x/click","value":false}
 {"t":3.5,"event":"exit"}
 )",
-                                   "--out " + (dir / "review.off").string());
+      "--out " + (dir / "review.off").string());
   ASSERT_EQ(run.result.status, 0) << run.result.output;
   EXPECT_EQ(run.of("commit").size(), 1u) << run.result.output;
   EXPECT_EQ(run.of("undo").size(), 2u) << run.result.output;
@@ -275,18 +323,20 @@ TEST(ReviewXr, GripMovesTheModelAndLaterPushPullsFollowIt) {
   const std::string aim = "/user/hand/right/input/aim/pose", trigger = "/user/hand/right/input/trigger/value",
                     grip = "/user/hand/right/input/squeeze/value";
   auto pose = [&](double t, double z) {
-    return R"({"t":)" + number(t) + R"(,"path":")" + aim + R"(","pose":{"p":[0.0123,0.5,)" + number(z) + "]," +
-           down + "}}\n";
+    return R"({"t":)" + number(t) + R"(,"path":")" + aim + R"(","pose":{"p":[0.0123,0.5,)" + number(z) +
+           "]," + down + "}}\n";
   };
   auto value = [&](double t, const std::string& path, double v) {
     return R"({"t":)" + number(t) + R"(,"path":")" + path + R"(","value":)" + number(v) + "}\n";
   };
-  const std::string script = R"({"t":0.0,"path":"/user/head","pose":{"p":[0,1.0,0.5],"q":[-0.32557,0,0,0.94552]}}
-)" + pose(0.0, -0.65) + value(0.0, trigger, 0.0) + value(0.0, grip, 0.0) + value(0.3, grip, 1.0) +
-                             pose(0.3, -0.65) + pose(0.8, -0.15) + value(0.9, grip, 1.0) + value(1.0, grip, 0.0) +
-                             value(1.4, trigger, 0.0) + value(1.5, trigger, 1.0) + pose(1.5, -0.15) +
-                             pose(2.0, -0.05) + value(2.4, trigger, 1.0) + value(2.5, trigger, 0.0) +
-                             R"({"t":3.0,"event":"exit"}
+  const std::string script =
+      R"({"t":0.0,"path":"/user/head","pose":{"p":[0,1.0,0.5],"q":[-0.32557,0,0,0.94552]}}
+)" + pose(0.0, -0.65) +
+      value(0.0, trigger, 0.0) + value(0.0, grip, 0.0) + value(0.3, grip, 1.0) + pose(0.3, -0.65) +
+      pose(0.8, -0.15) + value(0.9, grip, 1.0) + value(1.0, grip, 0.0) + value(1.4, trigger, 0.0) +
+      value(1.5, trigger, 1.0) + pose(1.5, -0.15) + pose(2.0, -0.05) + value(2.4, trigger, 1.0) +
+      value(2.5, trigger, 0.0) +
+      R"({"t":3.0,"event":"exit"}
 )";
   const ReviewRun run = run_review(dir, script, "");
   ASSERT_EQ(run.result.status, 0) << run.result.output;
@@ -305,7 +355,8 @@ TEST(ReviewXr, GripMovesTheModelAndLaterPushPullsFollowIt) {
 // Both grips scale the model with the distance between the hands (0.4 m -> 0.8 m: twice life size).
 TEST(ReviewXr, TwoGripsScaleTheModel) {
   const fs::path dir = test_dir();
-  const std::string script = R"({"t":0.0,"path":"/user/hand/left/input/aim/pose","pose":{"p":[-0.2,1.0,-0.4],"q":[0,0,0,1]}}
+  const std::string script =
+      R"({"t":0.0,"path":"/user/hand/left/input/aim/pose","pose":{"p":[-0.2,1.0,-0.4],"q":[0,0,0,1]}}
 {"t":0.0,"path":"/user/hand/right/input/aim/pose","pose":{"p":[0.2,1.0,-0.4],"q":[0,0,0,1]}}
 {"t":0.0,"path":"/user/hand/left/input/squeeze/value","value":0.0}
 {"t":0.0,"path":"/user/hand/right/input/squeeze/value","value":0.0}
@@ -329,13 +380,14 @@ TEST(ReviewXr, TwoGripsScaleTheModel) {
 TEST(ReviewXr, ThumbstickBetweenDragsScalesHandleAndRegion) {
   const fs::path dir = test_dir();
   // Full up for 1 s (handle x2), then full left for 1 s (region / 2), then centred.
-  const ReviewRun run = run_review(dir, R"({"t":0.0,"path":"/user/hand/right/input/thumbstick","value":[0.0,0.0]}
+  const ReviewRun run =
+      run_review(dir, R"({"t":0.0,"path":"/user/hand/right/input/thumbstick","value":[0.0,0.0]}
 {"t":0.5,"path":"/user/hand/right/input/thumbstick","value":[0.0,1.0]}
 {"t":1.5,"path":"/user/hand/right/input/thumbstick","value":[-1.0,0.0]}
 {"t":2.5,"path":"/user/hand/right/input/thumbstick","value":[0.0,0.0]}
 {"t":3.0,"event":"exit"}
 )",
-                                   "");
+                 "");
   ASSERT_EQ(run.result.status, 0) << run.result.output;
   const auto sizes = run.of("sizes");
   ASSERT_EQ(sizes.size(), 1u) << run.result.output;
@@ -349,8 +401,10 @@ TEST(ReviewXr, ThumbstickBetweenDragsScalesHandleAndRegion) {
 TEST(ReviewXr, MenuPanelChoosesTheMethodOfTheNextPushPullAndReadoutsShow) {
   const fs::path dir = test_dir();
   const std::string aim = R"("pose":{"p":[0.0123,0.5,-0.65],"q":[-0.70710678,0,0,0.70710678]})";
-  const std::string script = R"({"t":0.0,"path":"/user/head","pose":{"p":[0,1.0,0],"q":[-0.32557,0,0,0.94552]}}
-{"t":0.0,"path":"/user/hand/right/input/aim/pose",)" + aim + R"(}
+  const std::string script =
+      R"({"t":0.0,"path":"/user/head","pose":{"p":[0,1.0,0],"q":[-0.32557,0,0,0.94552]}}
+{"t":0.0,"path":"/user/hand/right/input/aim/pose",)" +
+      aim + R"(}
 {"t":0.0,"path":"/user/hand/right/input/trigger/value","value":0.0}
 {"t":0.3,"event":"capture"}
 {"t":0.5,"path":"/user/hand/left/input/menu/click","value":1.0}
@@ -362,7 +416,8 @@ TEST(ReviewXr, MenuPanelChoosesTheMethodOfTheNextPushPullAndReadoutsShow) {
 {"t":1.1,"event":"capture"}
 {"t":1.2,"path":"/user/hand/left/input/menu/click","value":1.0}
 {"t":1.3,"path":"/user/hand/left/input/menu/click","value":0.0}
-)" + push_pull_100mm_at(1.5) + R"({"t":3.0,"event":"exit"}
+)" + push_pull_100mm_at(1.5) +
+      R"({"t":3.0,"event":"exit"}
 )";
   const ReviewRun run = run_review(dir, script, "--record " + (dir / "session.jsonl").string());
   ASSERT_EQ(run.result.status, 0) << run.result.output;
@@ -406,16 +461,16 @@ TEST(ReviewXr, MenuPanelChoosesTheMethodOfTheNextPushPullAndReadoutsShow) {
 TEST(ReviewXrWindow, MirrorWindowPresentsFramesAndLeavesTheCommitUnchanged) {
   if (std::getenv("DISPLAY") == nullptr) GTEST_SKIP() << "no DISPLAY (ctest runs this under xvfb-run)";
   const fs::path dir = test_dir();
-  const std::string script = script_start() + R"({"t":1.4,"path":"/user/hand/right/input/trigger/value","value":1.0}
+  const std::string script =
+      script_start() + R"({"t":1.4,"path":"/user/hand/right/input/trigger/value","value":1.0}
 {"t":1.5,"path":"/user/hand/right/input/trigger/value","value":0.0}
 {"t":2.5,"event":"exit"}
 )";
   const ReviewRun plain = run_review(dir, script, "--out " + (dir / "plain.off").string());
   ASSERT_EQ(plain.result.status, 0) << plain.result.output;
-  const ReviewRun mirrored =
-      run_review(dir, script,
-                 "--mirror --mirror-size 320 240 --validation --out " + (dir / "mirrored.off").string(),
-                 "XR_ENABLE_API_LAYERS=XR_APILAYER_LUNARG_core_validation");  // eyes + mirror in one submission
+  const ReviewRun mirrored = run_review(
+      dir, script, "--mirror --mirror-size 320 240 --validation --out " + (dir / "mirrored.off").string(),
+      "XR_ENABLE_API_LAYERS=XR_APILAYER_LUNARG_core_validation");  // eyes + mirror in one submission
   ASSERT_EQ(mirrored.result.status, 0) << mirrored.result.output;
   const auto at = mirrored.result.output.find("mirror window presented ");
   ASSERT_NE(at, std::string::npos) << mirrored.result.output;
@@ -443,7 +498,8 @@ ScreenShot read_xwd(const fs::path& path) {
   };
   ScreenShot shot;
   const uint32_t header = u32(0), format = u32(8), width = u32(16), height = u32(20), byte_order = u32(28);
-  const uint32_t bits = u32(44), line = u32(48), red = u32(56), green = u32(60), blue = u32(64), colours = u32(76);
+  const uint32_t bits = u32(44), line = u32(48), red = u32(56), green = u32(60), blue = u32(64),
+                 colours = u32(76);
   if (format != 2 || (bits != 32 && bits != 24)) return shot;  // only ZPixmap true colour
   auto channel = [](uint32_t pixel, uint32_t mask) {
     int shift = 0;
@@ -466,29 +522,34 @@ ScreenShot read_xwd(const fs::path& path) {
   return shot;
 }
 
-// The mirror window as the X server shows it (a dump of the virtual screen after the commit) shows the scene the
-// eyes see: the bonnet in the displacement colours, in about the same proportions of red (moved) and blue.
+// The mirror window as the X server shows it (a dump of the virtual screen after the commit) shows the scene
+// the eyes see: the bonnet in the displacement colours, in about the same proportions of red (moved) and
+// blue.
 TEST(ReviewXrWindow, MirrorWindowOnScreenShowsTheEyesScene) {
   if (std::getenv("DISPLAY") == nullptr) GTEST_SKIP() << "no DISPLAY (ctest runs this under xvfb-run)";
   ASSERT_EQ(run_command("command -v xwd").status, 0) << "xwd is missing (scripts/setup installs x11-apps)";
   const fs::path dir = test_dir();
-  const std::string script = script_start() + R"({"t":1.4,"path":"/user/hand/right/input/trigger/value","value":1.0}
+  const std::string script =
+      script_start() + R"({"t":1.4,"path":"/user/hand/right/input/trigger/value","value":1.0}
 {"t":1.5,"path":"/user/hand/right/input/trigger/value","value":0.0}
 {"t":2.0,"event":"capture"}
 {"t":30.0,"event":"exit"}
 )";
   std::ofstream(dir / "input.jsonl") << script;
-  const std::string env = pushpull::testing::xr_sim_environment() + " PUSHPULL_XR_SIM_INPUT=" +
-                          (dir / "input.jsonl").string() + " PUSHPULL_XR_SIM_CAPTURE=" + (dir / "capture").string() +
+  const std::string env = pushpull::testing::xr_sim_environment() +
+                          " PUSHPULL_XR_SIM_INPUT=" + (dir / "input.jsonl").string() +
+                          " PUSHPULL_XR_SIM_CAPTURE=" + (dir / "capture").string() +
                           " PUSHPULL_XR_SIM_WIDTH=256 PUSHPULL_XR_SIM_HEIGHT=256 PUSHPULL_XR_SIM_RATE=30"
                           " PUSHPULL_XR_SIM_PROFILE=/interaction_profiles/oculus/touch_controller";
   std::ofstream(dir / "drive.sh") << "set -e\n"
-      << env << " " << PUSHPULL_EXECUTABLE << " review " << kHood << kPlacement
-      << " --solver-priority 0 --mirror --mirror-size 320 240 --events " << (dir / "events.jsonl").string() << " > "
-      << (dir / "review.log").string() << " 2>&1 &\n"
-      << "pid=$!\nfor i in $(seq 600); do grep -q '\"commit\"' " << (dir / "events.jsonl").string()
-      << " 2>/dev/null && break; sleep 0.1; done\nsleep 1\nxwd -root -silent > " << (dir / "screen.xwd").string()
-      << "\nwait $pid\n";
+                                  << env << " " << PUSHPULL_EXECUTABLE << " review " << kHood << kPlacement
+                                  << " --solver-priority 0 --mirror --mirror-size 320 240 --events "
+                                  << (dir / "events.jsonl").string() << " > " << (dir / "review.log").string()
+                                  << " 2>&1 &\n"
+                                  << "pid=$!\nfor i in $(seq 600); do grep -q '\"commit\"' "
+                                  << (dir / "events.jsonl").string()
+                                  << " 2>/dev/null && break; sleep 0.1; done\nsleep 1\nxwd -root -silent > "
+                                  << (dir / "screen.xwd").string() << "\nwait $pid\n";
   const auto driven = run_command("timeout 300 bash " + (dir / "drive.sh").string());
   ASSERT_EQ(driven.status, 0) << driven.output;
   const ScreenShot screen = read_xwd(dir / "screen.xwd");
@@ -518,11 +579,12 @@ TEST(ReviewXrWindow, MirrorWindowOnScreenShowsTheEyesScene) {
 TEST(ReviewXrWindow, WithoutARuntimeItSaysSoAndOpensTheDesktopWindow) {
   if (std::getenv("DISPLAY") == nullptr) GTEST_SKIP() << "no DISPLAY (ctest runs this under xvfb-run)";
   const fs::path dir = test_dir();
-  const auto result = run_command("env XR_RUNTIME_JSON=/nonexistent/runtime.json " + std::string(PUSHPULL_EXECUTABLE) +
-                                  " review " + kHood + kPlacement + " --frames 10 --mirror-size 160 120 --out " +
-                                  (dir / "desktop.off").string());
+  const auto result = run_command(
+      "env XR_RUNTIME_JSON=/nonexistent/runtime.json " + std::string(PUSHPULL_EXECUTABLE) + " review " +
+      kHood + kPlacement + " --frames 10 --mirror-size 160 120 --out " + (dir / "desktop.off").string());
   ASSERT_EQ(result.status, 0) << result.output;
-  EXPECT_NE(result.output.find("XR_RUNTIME_JSON=/nonexistent/runtime.json"), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("XR_RUNTIME_JSON=/nonexistent/runtime.json"), std::string::npos)
+      << result.output;
   EXPECT_NE(result.output.find("opening the desktop window instead"), std::string::npos) << result.output;
   EXPECT_NE(result.output.find("desktop window presented 10 frames"), std::string::npos) << result.output;
   const auto rest = pushpull::deform::read_mesh(kHood);
@@ -540,10 +602,11 @@ TEST(ReviewXrWindow, DesktopMouseGesturesCommitAndTheirRecordingReplaysBitIdenti
   const fs::path recording = dir / "desktop.jsonl", out = dir / "desktop.off";
   // Press at a window point, drag by (dx, dy) pixels in 8 steps, release; a key is one press.
   std::ofstream(dir / "drive.sh") << "set -e\n"
-      << PUSHPULL_EXECUTABLE << " review " << kHood << kPlacement
-      << " --desktop --mirror-size 400 300 --record " << recording.string() << " --out " << out.string()
-      << " > " << (dir / "review.log").string() << " 2>&1 &\n"
-      << R"SH(pid=$!
+                                  << PUSHPULL_EXECUTABLE << " review " << kHood << kPlacement
+                                  << " --desktop --mirror-size 400 300 --record " << recording.string()
+                                  << " --out " << out.string() << " > " << (dir / "review.log").string()
+                                  << " 2>&1 &\n"
+                                  << R"SH(pid=$!
 wid=$(timeout 60 xdotool search --sync --onlyvisible --name "pushpull review \(desktop\)" | head -1)
 sleep 1
 drag() { xdotool mousemove --window $wid $1 $2; sleep 0.3; xdotool mousedown 1
@@ -571,7 +634,8 @@ wait $pid
     }
   }
   auto count = [&](const std::string& kind) {
-    return std::count_if(records.begin(), records.end(), [&](const auto& r) { return r.at("record") == kind; });
+    return std::count_if(records.begin(), records.end(),
+                         [&](const auto& r) { return r.at("record") == kind; });
   };
   ASSERT_EQ(count("commit"), 2) << log;
   EXPECT_EQ(count("undo"), 2);
@@ -581,8 +645,8 @@ wait $pid
                                         [](const auto& r) { return r.at("record") == "method"; });
   EXPECT_EQ(last_method->at("method"), "arap-sr");
 
-  const auto replay = run_command(std::string(PUSHPULL_EXECUTABLE) + " replay " + recording.string() + " --out " +
-                                  (dir / "replay").string() + " --no-pictures");
+  const auto replay = run_command(std::string(PUSHPULL_EXECUTABLE) + " replay " + recording.string() +
+                                  " --out " + (dir / "replay").string() + " --no-pictures");
   ASSERT_EQ(replay.status, 0) << replay.output;
   EXPECT_NE(replay.output.find("2 commit(s) replayed of 2 recorded; all checks passed"), std::string::npos)
       << replay.output;
@@ -595,8 +659,9 @@ wait $pid
 
 TEST(ReviewXr, WithoutARuntimeSaysWhichOneItLookedForAndHowToPointAtOne) {
   // No display either: the command ends with the message instead of opening the desktop window.
-  const auto result = run_command("env -u DISPLAY -u WAYLAND_DISPLAY XR_RUNTIME_JSON=/nonexistent/runtime.json " +
-                                  std::string(PUSHPULL_EXECUTABLE) + " review " + kHood);
+  const auto result =
+      run_command("env -u DISPLAY -u WAYLAND_DISPLAY XR_RUNTIME_JSON=/nonexistent/runtime.json " +
+                  std::string(PUSHPULL_EXECUTABLE) + " review " + kHood);
   EXPECT_NE(result.status, 0);
   EXPECT_NE(result.output.find("pushpull: error: no usable OpenXR runtime: looked for the runtime in "
                                "XR_RUNTIME_JSON=/nonexistent/runtime.json"),

@@ -162,7 +162,8 @@ Input::Input(XrInstance instance, XrSession session, XrSpace stage_space) : impl
     info.countSuggestedBindings = uint32_t(suggested.size());
     info.suggestedBindings = suggested.data();
     if (const XrResult r = xrSuggestInteractionProfileBindings(instance, &info); XR_FAILED(r))
-      std::fprintf(stderr, "pushpull: warning: the OpenXR runtime refused the bindings for %s (%s); skipped\n",
+      std::fprintf(stderr,
+                   "pushpull: warning: the OpenXR runtime refused the bindings for %s (%s); skipped\n",
                    profile.path, result_name(instance, r).c_str());
   }
   for (int h = 0; h < 2; ++h) {
@@ -204,12 +205,18 @@ void Input::sync(XrTime time) {
     }
     XrSpaceLocation location{XR_TYPE_SPACE_LOCATION};
     PUSHPULL_XR_CHECK(s.instance, xrLocateSpace(s.aim_spaces[h], s.stage, time, &location));
-    const XrSpaceLocationFlags valid = XR_SPACE_LOCATION_ORIENTATION_VALID_BIT | XR_SPACE_LOCATION_POSITION_VALID_BIT;
-    if ((location.locationFlags & valid) == valid) in.T_stage_aim = location.pose;
+    const XrSpaceLocationFlags valid =
+        XR_SPACE_LOCATION_ORIENTATION_VALID_BIT | XR_SPACE_LOCATION_POSITION_VALID_BIT;
+    if ((location.locationFlags & valid) == valid) {
+      in.T_stage_aim = location.pose;
+      in.aim_position_tracked = (location.locationFlags & XR_SPACE_LOCATION_POSITION_TRACKED_BIT) != 0;
+    }
   }
 }
 
-const HandInput& Input::hand(Hand hand) const { return impl_->state[int(hand)]; }
+const HandInput& Input::hand(Hand hand) const {
+  return impl_->state[int(hand)];
+}
 
 void Input::haptic_pulse(Hand hand, float amplitude, double duration_s) {
   Impl& s = *impl_;
@@ -220,8 +227,9 @@ void Input::haptic_pulse(Hand hand, float amplitude, double duration_s) {
   vibration.amplitude = amplitude;
   vibration.duration = XrDuration(duration_s * 1e9);
   vibration.frequency = XR_FREQUENCY_UNSPECIFIED;
-  PUSHPULL_XR_CHECK(s.instance, xrApplyHapticFeedback(s.session, &info,
-                                                      reinterpret_cast<const XrHapticBaseHeader*>(&vibration)));
+  PUSHPULL_XR_CHECK(
+      s.instance,
+      xrApplyHapticFeedback(s.session, &info, reinterpret_cast<const XrHapticBaseHeader*>(&vibration)));
 }
 
 std::string Input::current_profile(Hand hand) const {

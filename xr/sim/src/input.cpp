@@ -80,4 +80,22 @@ std::optional<XrPosef> space_in_stage(const Session& s, const Space& space, XrTi
   return std::nullopt;
 }
 
+bool space_position_tracked(const Session& s, const Space& space, XrTime time) {
+  if (!space.is_action_space || space.action == nullptr || !s.instance->script) return true;
+  const double t = s.script_time(time);
+  for (const std::string& bound : space.action->bound) {
+    const std::string user = top_level_path(bound);
+    if (space.subaction != XR_NULL_PATH) {
+      const std::string* sub = s.instance->path_string(space.subaction);
+      if (sub == nullptr || user != *sub) continue;
+    }
+    if (const auto tracked = s.instance->script->tracked_at(bound, t)) return *tracked;
+    const bool aim = bound.size() > 9 && bound.compare(bound.size() - 9, 9, "/aim/pose") == 0;
+    if (const auto tracked =
+            s.instance->script->tracked_at(user + (aim ? "/input/grip/pose" : "/input/aim/pose"), t))
+      return *tracked;
+  }
+  return true;
+}
+
 }  // namespace pushpull::xrsim

@@ -22,5 +22,8 @@ InputValue input_value(const Session& session, const std::string& component, XrT
 
 // T_stage_space at `time`; nullopt when the space cannot be located (inactive action space).
 std::optional<XrPosef> space_in_stage(const Session& session, const Space& space, XrTime time);
+// Whether space_in_stage's position is tracked (false: a guess, as a runtime reports a controller out of its
+// cameras' view); reference spaces are.
+bool space_position_tracked(const Session& session, const Space& space, XrTime time);
 
 }  // namespace pushpull::xrsim

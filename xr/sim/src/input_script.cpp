@@ -81,7 +81,12 @@ InputScript InputScript::parse(std::istream& in, const std::string& source) {
       const std::string path = j["path"].get<std::string>();
       if (path.empty() || path[0] != '/') fail(source, line, "\"path\" must be an OpenXR path");
       if (j.contains("pose")) {
-        script.poses_[path].push_back({t, parse_pose(j["pose"], source, line)});
+        bool tracked = true;
+        if (j.contains("tracked")) {
+          if (!j["tracked"].is_boolean()) fail(source, line, "\"tracked\" must be true or false");
+          tracked = j["tracked"].get<bool>();
+        }
+        script.poses_[path].push_back({t, parse_pose(j["pose"], source, line), tracked});
       } else if (j.contains("value")) {
         const InputValue v = parse_value(j["value"], source, line);
         script.values_[path].push_back({t, v});
@@ -120,6 +125,15 @@ std::optional<XrPosef> InputScript::pose_at(const std::string& path, double t) c
   const auto prev = next - 1;
   const double span = next->t - prev->t;
   return pose_lerp(prev->pose, next->pose, span > 0 ? (t - prev->t) / span : 1.0);
+}
+
+std::optional<bool> InputScript::tracked_at(const std::string& path, double t) const {
+  const auto it = poses_.find(path);
+  if (it == poses_.end() || it->second.empty()) return std::nullopt;
+  const auto& s = it->second;
+  const auto next = std::upper_bound(s.begin(), s.end(), t + kTimeTolerance,
+                                     [](double v, const PoseSample& p) { return v < p.t; });
+  return next == s.begin() ? s.front().tracked : (next - 1)->tracked;
 }
 
 std::optional<InputValue> InputScript::value_at(const std::string& path, double t) const {

@@ -48,6 +48,10 @@ class InputScript {
 
   // The pose of `path` at time t (seconds), interpolated; nullopt when the script never sets it.
   std::optional<XrPosef> pose_at(const std::string& path, double t) const;
+  // Whether the pose of `path` at t is tracked: the "tracked" flag of the latest sample at or before t (a
+  // line's "tracked": false = the runtime's guess of a device out of its cameras' view: located, not
+  // tracked); nullopt when the script never sets the pose.
+  std::optional<bool> tracked_at(const std::string& path, double t) const;
   // The latest value of `path` set at or before t; nullopt when none was set yet.
   std::optional<InputValue> value_at(const std::string& path, double t) const;
   // Events sorted by time.
@@ -58,6 +62,7 @@ class InputScript {
   struct PoseSample {
     double t;
     XrPosef pose;
+    bool tracked = true;
   };
   struct ValueSample {
     double t;

@@ -146,6 +146,8 @@ XrResult XRAPI_CALL locate_space(XrSpace space_handle, XrSpace base_handle, XrTi
     return XR_SUCCESS;
   }
   location->locationFlags = kAllValid;
+  if (!space_position_tracked(s, *space, time) || !space_position_tracked(s, *base, time))
+    location->locationFlags &= ~XrSpaceLocationFlags(XR_SPACE_LOCATION_POSITION_TRACKED_BIT);
   location->pose = *pose;
   if (velocity != nullptr) {
     // Central differences over +-5 ms of the (deterministic) pose function.

@@ -28,7 +28,10 @@ struct HandInput {
   float trigger = 0.0f;  // 0..1
   float grip = 0.0f;     // 0..1
   XrVector2f thumbstick{0.0f, 0.0f};
-  std::optional<XrPosef> T_stage_aim;  // none when not tracked
+  std::optional<XrPosef> T_stage_aim;  // none when not located
+  // The aim's position is tracked, not the runtime's guess (a controller out of its tracking cameras' view is
+  // still located, with XR_SPACE_LOCATION_POSITION_TRACKED_BIT clear). Meaningful with T_stage_aim.
+  bool aim_position_tracked = true;
   bool undo_pressed = false;  // went down since the last sync
   bool redo_pressed = false;
   bool menu_pressed = false;
