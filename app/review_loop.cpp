@@ -300,6 +300,13 @@ void run_review(const ReviewCommandOptions& o) {
           recorder.write_frame_input(t, head, {input->hand(xr::Hand::Left), input->hand(xr::Hand::Right)},
                                      input->current_profile(xr::Hand::Right));
         }
+        // The stage space moves (the reviewer recentred the view): hand positions jump, and a drag spanning
+        // the jump would push it into the model; it is cancelled, the model stays as before it.
+        if (xr.take_space_change()) {
+          recorder.write_runtime_event(t, "recenter");
+          if (interaction.dragging())
+            if (const auto e = interaction.cancel()) log_event(*e);
+        }
         // Focus lost mid-drag (a system menu, another app): the inputs read as released, which the gesture
         // would take as a release; the drag is cancelled instead, the model stays as before it.
         if (!xr.focused() && interaction.dragging())

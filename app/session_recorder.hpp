@@ -1,5 +1,5 @@
-// The review's session recording (`pushpull review --record FILE`): JSON Lines, written as the session goes and
-// flushed after every line, so a crash keeps everything up to the crash.
+// The review's session recording (`pushpull review --record FILE`): JSON Lines, written as the session goes
+// and flushed after every line, so a crash keeps everything up to the crash.
 //
 //   {"record":"header","format":"pushpull-session-1","model":..,"model_sha256":..,"T_stage_model":[16],..}
 //   {"t":0.0,"path":"/user/head","pose":{"p":[x,y,z],"q":[x,y,z,w]}}              input, xr/sim script format
@@ -10,14 +10,15 @@
 //   {"record":"undo","time":..} {"record":"redo","time":..} {"record":"profile","time":..,"profile":".."}
 //   {"record":"end","time":..,"commits":n,"hash":".."}
 //
-// Input lines carry "t" and an OpenXR path. t counts the loop's frames: frame n at n / rate (the "clock" record
-// gives the rate, whole Hz), exactly where xr/sim's virtual clock puts its frame n, so a replay reads at every
-// frame what the loop read at the same frame, whatever the headset's timing was; derived records carry "record" and "time" but no "t", so xr/sim skips them and the recording is
-// its input script unchanged. Poses: stage space, metres, the float values the loop read (written exactly);
-// aim poses and the head are written every frame (the runtime interpolates between lines, so holding and moving
-// are both reproduced at the recorded frame times); values only when they change; a button that went down is
-// written as 1 at that frame and 0 at the next. Derived positions (p0, p1, d) are model space, file units.
-// Hashes are deform::position_hash of the committed positions, as "0x" and 16 hex digits.
+// Input lines carry "t" and an OpenXR path. t counts the loop's frames: frame n at n / rate (the "clock"
+// record gives the rate, whole Hz), exactly where xr/sim's virtual clock puts its frame n, so a replay reads
+// at every frame what the loop read at the same frame, whatever the headset's timing was; derived records
+// carry "record" and "time" but no "t", so xr/sim skips them and the recording is its input script unchanged.
+// Poses: stage space, metres, the float values the loop read (written exactly); aim poses and the head are
+// written every frame (the runtime interpolates between lines, so holding and moving are both reproduced at
+// the recorded frame times); values only when they change; a button that went down is written as 1 at that
+// frame and 0 at the next. Derived positions (p0, p1, d) are model space, file units. Hashes are
+// deform::position_hash of the committed positions, as "0x" and 16 hex digits.
 //
 // Ownership: owns the file. Thread-safety: one thread (the frame loop).
 #pragma once
@@ -52,8 +53,8 @@ struct RecordingContext {
 // "0x" and 16 lowercase hex digits.
 [[nodiscard]] std::string hash_text(std::uint64_t hash);
 
-// The default recording path: out/recordings/review-YYYYMMDD-HHMMSS.jsonl under the current folder (UTC), with
-// -2, -3, ... when that file exists.
+// The default recording path: out/recordings/review-YYYYMMDD-HHMMSS.jsonl under the current folder (UTC),
+// with -2, -3, ... when that file exists.
 [[nodiscard]] std::string default_recording_path();
 
 class SessionRecorder {
@@ -67,11 +68,12 @@ class SessionRecorder {
 
   // The header: model file and SHA-256, life-size scale, T_stage_model (row-major 4x4, model -> stage),
   // method, mu and every solver option, radii, placement options, pushpull version, runtime.
-  void write_header(const ReviewCommandOptions& options, const ReviewSetup& setup, const RecordingContext& context);
+  void write_header(const ReviewCommandOptions& options, const ReviewSetup& setup,
+                    const RecordingContext& context);
   // One headset frame as the loop read it: t (frame clock, above), head pose (stage), both hands.
   // `profile` is the interaction profile the runtime chose (names the button paths; a change is recorded).
-  void write_frame_input(double t, const std::optional<XrPosef>& head, const std::array<xr::HandInput, 2>& hands,
-                         const std::string& profile);
+  void write_frame_input(double t, const std::optional<XrPosef>& head,
+                         const std::array<xr::HandInput, 2>& hands, const std::string& profile);
   // The method of the next push/pulls changed (a key in the window): a derived record that `pushpull replay`
   // applies at the same frame.
   void write_method(double t, deform::Method method);
@@ -83,6 +85,8 @@ class SessionRecorder {
   void write_drag(double t, const Eigen::Vector3d& d);
   // A commit the service finished: its index, hash and how the solve went.
   void write_commit(double t, const CommitRecord& commit);
+  // An event of the runtime a replay's simulated runtime raises again at t ("recenter": see xr/sim's script).
+  void write_runtime_event(double t, const std::string& event);
   // Any other derived record ("undo", "redo", "end", ...): `fields` gets "record" and "time".
   void write_record(const std::string& kind, double t, nlohmann::json fields = nlohmann::json::object());
 

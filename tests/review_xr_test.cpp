@@ -269,6 +269,30 @@ TEST(ReviewXr, AControllerOutOfTrackingHoldsTheDragWhereItWasLastSeen) {
       << replay.output;
 }
 
+// The reviewer recentres the view mid-drag (the runtime announces a change of the stage space): stage
+// coordinates jump, so the drag is cancelled and nothing is committed; a later push/pull commits as usual,
+// and the recording (which carries the event) replays with the same commits.
+TEST(ReviewXr, RecentringMidDragCancelsTheDrag) {
+  const fs::path dir = test_dir();
+  const std::string script = script_start() + R"({"t":0.8,"event":"recenter"}
+{"t":1.2,"path":"/user/hand/right/input/trigger/value","value":0.0}
+)" + push_pull_100mm_at(1.5) +
+                             R"({"t":3.0,"event":"exit"}
+)";
+  const ReviewRun run = run_review(dir, script, "--record " + (dir / "session.jsonl").string());
+  ASSERT_EQ(run.result.status, 0) << run.result.output;
+  EXPECT_EQ(run.of("press").size(), 2u) << run.result.output;
+  ASSERT_EQ(run.of("commit").size(), 1u) << run.result.output;  // the second drag only
+  EXPECT_NEAR(double(run.of("commit")[0].at("d")[1]), -0.1, 1e-6);
+
+  const auto replay = run_command(pushpull::testing::xr_sim_environment() + " " + PUSHPULL_EXECUTABLE +
+                                  " replay " + (dir / "session.jsonl").string() + " --out " +
+                                  (dir / "replay").string() + " --no-pictures");
+  ASSERT_EQ(replay.status, 0) << replay.output;
+  EXPECT_NE(replay.output.find("1 commit(s) replayed of 1 recorded; all checks passed"), std::string::npos)
+      << replay.output;
+}
+
 // The OpenXR core validation layer (between the app and the runtime) and VK_LAYER_KHRONOS_validation (on the
 // runtime's instance, --validation fails the run on any message) see a whole push/pull without complaint.
 TEST(ReviewXr, ValidationLayersReportNothingForAPushPull) {

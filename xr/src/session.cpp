@@ -17,7 +17,8 @@ namespace {
 std::string runtime_looked_for() {
   if (const char* json = std::getenv("XR_RUNTIME_JSON"); json && *json)
     return std::string("the runtime in XR_RUNTIME_JSON=") + json;
-  return "the active OpenXR runtime (active_runtime.json under $XDG_CONFIG_HOME/openxr/1 or /etc/xdg/openxr/1)";
+  return "the active OpenXR runtime (active_runtime.json under $XDG_CONFIG_HOME/openxr/1 or "
+         "/etc/xdg/openxr/1)";
 }
 
 constexpr const char* kPointAtRuntime =
@@ -40,6 +41,7 @@ struct Session::Impl {
   XrSession session = XR_NULL_HANDLE;
   XrSpace stage = XR_NULL_HANDLE;
   bool stage_is_local = false;
+  bool space_changed = false;  // a REFERENCE_SPACE_CHANGE_PENDING for the space in use, not yet taken
   std::vector<Swapchain> eyes;
   std::vector<XrViewConfigurationView> view_configs;
   XrEnvironmentBlendMode blend_mode = XR_ENVIRONMENT_BLEND_MODE_OPAQUE;
@@ -74,7 +76,8 @@ struct Session::Impl {
                                   ? "it does not offer XR_KHR_vulkan_enable2"
                                   : "xrCreateInstance failed with " + result_name(XR_NULL_HANDLE, r);
       throw RuntimeUnavailable("no usable OpenXR runtime: looked for " + runtime_looked_for() + ", " + why +
-                                   " (the loader's and runtime's messages above say more); " + kPointAtRuntime,
+                                   " (the loader's and runtime's messages above say more); " +
+                                   kPointAtRuntime,
                                r);
     }
     XrInstanceProperties properties{XR_TYPE_INSTANCE_PROPERTIES};
@@ -83,9 +86,9 @@ struct Session::Impl {
     XrSystemGetInfo system_info{XR_TYPE_SYSTEM_GET_INFO};
     system_info.formFactor = XR_FORM_FACTOR_HEAD_MOUNTED_DISPLAY;
     if (const XrResult r = xrGetSystem(instance, &system_info, &system); XR_FAILED(r))
-      throw RuntimeUnavailable("no headset: the OpenXR runtime \"" + runtime_name + "\" (" + runtime_looked_for() +
-                                   ") has no head-mounted display (xrGetSystem: " + result_name(instance, r) +
-                                   "); connect one, or " + kPointAtRuntime,
+      throw RuntimeUnavailable("no headset: the OpenXR runtime \"" + runtime_name + "\" (" +
+                                   runtime_looked_for() + ") has no head-mounted display (xrGetSystem: " +
+                                   result_name(instance, r) + "); connect one, or " + kPointAtRuntime,
                                r);
     XrSystemProperties system_properties{XR_TYPE_SYSTEM_PROPERTIES};
     CHECK(xrGetSystemProperties(instance, system, &system_properties));
@@ -93,18 +96,21 @@ struct Session::Impl {
   }
 
   void create_vulkan(const SessionOptions& options) {
-    auto requirements =
-        instance_function<PFN_xrGetVulkanGraphicsRequirements2KHR>(instance, "xrGetVulkanGraphicsRequirements2KHR");
+    auto requirements = instance_function<PFN_xrGetVulkanGraphicsRequirements2KHR>(
+        instance, "xrGetVulkanGraphicsRequirements2KHR");
     auto create_vk_instance =
         instance_function<PFN_xrCreateVulkanInstanceKHR>(instance, "xrCreateVulkanInstanceKHR");
-    auto get_device = instance_function<PFN_xrGetVulkanGraphicsDevice2KHR>(instance, "xrGetVulkanGraphicsDevice2KHR");
+    auto get_device =
+        instance_function<PFN_xrGetVulkanGraphicsDevice2KHR>(instance, "xrGetVulkanGraphicsDevice2KHR");
     auto create_device = instance_function<PFN_xrCreateVulkanDeviceKHR>(instance, "xrCreateVulkanDeviceKHR");
     XrGraphicsRequirementsVulkan2KHR req{XR_TYPE_GRAPHICS_REQUIREMENTS_VULKAN2_KHR};
     CHECK(requirements(instance, system, &req));
     if (XR_VERSION_MAJOR(req.maxApiVersionSupported) < 1 ||
-        (XR_VERSION_MAJOR(req.maxApiVersionSupported) == 1 && XR_VERSION_MINOR(req.maxApiVersionSupported) < 3))
-      std::fprintf(stderr, "pushpull: warning: the OpenXR runtime says it supports Vulkan up to %u.%u; the "
-                           "renderer needs 1.3\n",
+        (XR_VERSION_MAJOR(req.maxApiVersionSupported) == 1 &&
+         XR_VERSION_MINOR(req.maxApiVersionSupported) < 3))
+      std::fprintf(stderr,
+                   "pushpull: warning: the OpenXR runtime says it supports Vulkan up to %u.%u; the "
+                   "renderer needs 1.3\n",
                    unsigned(XR_VERSION_MAJOR(req.maxApiVersionSupported)),
                    unsigned(XR_VERSION_MINOR(req.maxApiVersionSupported)));
 
@@ -175,8 +181,9 @@ struct Session::Impl {
     xdci.vulkanCreateInfo = &dci;
     CHECK(create_device(instance, &xdci, &vk.device, &vr));
     if (vr != VK_SUCCESS)
-      throw XrError("vkCreateDevice through xrCreateVulkanDeviceKHR failed with VkResult " + std::to_string(int(vr)),
-                    XR_ERROR_RUNTIME_FAILURE);
+      throw XrError(
+          "vkCreateDevice through xrCreateVulkanDeviceKHR failed with VkResult " + std::to_string(int(vr)),
+          XR_ERROR_RUNTIME_FAILURE);
     vkGetDeviceQueue(vk.device, vk.queue_family_index, 0, &vk.queue);
   }
 
@@ -207,29 +214,32 @@ struct Session::Impl {
       info.referenceSpaceType = XR_REFERENCE_SPACE_TYPE_LOCAL;
       info.poseInReferenceSpace.position.y = -1.6f;
       stage_is_local = true;
-      std::fprintf(stderr, "pushpull: the OpenXR runtime has no STAGE space; using LOCAL with the floor guessed "
-                           "1.6 m below the head\n");
+      std::fprintf(stderr,
+                   "pushpull: the OpenXR runtime has no STAGE space; using LOCAL with the floor guessed "
+                   "1.6 m below the head\n");
     }
     CHECK(xrCreateReferenceSpace(session, &info, &stage));
   }
 
   void create_swapchains(const SessionOptions& options) {
     uint32_t n = 0;
-    CHECK(xrEnumerateViewConfigurationViews(instance, system, XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO, 0, &n,
-                                            nullptr));
+    CHECK(xrEnumerateViewConfigurationViews(instance, system, XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO, 0,
+                                            &n, nullptr));
     view_configs.assign(n, {XR_TYPE_VIEW_CONFIGURATION_VIEW});
-    CHECK(xrEnumerateViewConfigurationViews(instance, system, XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO, n, &n,
-                                            view_configs.data()));
+    CHECK(xrEnumerateViewConfigurationViews(instance, system, XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO, n,
+                                            &n, view_configs.data()));
     if (n != 2)
-      throw XrError("the runtime's PRIMARY_STEREO view configuration has " + std::to_string(n) + " views, not 2",
-                    XR_ERROR_VIEW_CONFIGURATION_TYPE_UNSUPPORTED);
+      throw XrError(
+          "the runtime's PRIMARY_STEREO view configuration has " + std::to_string(n) + " views, not 2",
+          XR_ERROR_VIEW_CONFIGURATION_TYPE_UNSUPPORTED);
     uint32_t format_count = 0;
     CHECK(xrEnumerateSwapchainFormats(session, 0, &format_count, nullptr));
     std::vector<int64_t> formats(format_count);
     CHECK(xrEnumerateSwapchainFormats(session, format_count, &format_count, formats.data()));
     int64_t format = 0;
     for (int64_t preferred : {int64_t(VK_FORMAT_R8G8B8A8_SRGB), int64_t(VK_FORMAT_B8G8R8A8_SRGB)})
-      if (format == 0 && std::find(formats.begin(), formats.end(), preferred) != formats.end()) format = preferred;
+      if (format == 0 && std::find(formats.begin(), formats.end(), preferred) != formats.end())
+        format = preferred;
     if (format == 0)
       throw XrError("the runtime offers no sRGB colour swapchain format (R8G8B8A8_SRGB or B8G8R8A8_SRGB)",
                     XR_ERROR_SWAPCHAIN_FORMAT_UNSUPPORTED);
@@ -246,7 +256,8 @@ struct Session::Impl {
     std::vector<XrEnvironmentBlendMode> modes(blend_count);
     CHECK(xrEnumerateEnvironmentBlendModes(instance, system, XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO,
                                            blend_count, &blend_count, modes.data()));
-    if (!modes.empty() && std::find(modes.begin(), modes.end(), XR_ENVIRONMENT_BLEND_MODE_OPAQUE) == modes.end())
+    if (!modes.empty() &&
+        std::find(modes.begin(), modes.end(), XR_ENVIRONMENT_BLEND_MODE_OPAQUE) == modes.end())
       blend_mode = modes.front();
   }
 
@@ -316,17 +327,40 @@ void Session::poll_events() {
         }
         break;
       }
+      case XR_TYPE_EVENT_DATA_REFERENCE_SPACE_CHANGE_PENDING: {
+        const auto& change = reinterpret_cast<const XrEventDataReferenceSpaceChangePending&>(event);
+        const XrReferenceSpaceType used =
+            s.stage_is_local ? XR_REFERENCE_SPACE_TYPE_LOCAL : XR_REFERENCE_SPACE_TYPE_STAGE;
+        if (change.session == s.session && change.referenceSpaceType == used) s.space_changed = true;
+        break;
+      }
       default:
-        break;  // interaction profile and reference space changes: Input and the caller query them
+        break;  // interaction profile changes: Input queries them
     }
   }
 }
 
-bool Session::running() const { return impl_->running && !impl_->lost; }
-bool Session::focused() const { return impl_->state == XR_SESSION_STATE_FOCUSED; }
-bool Session::exit_requested() const { return impl_->exit; }
-bool Session::lost() const { return impl_->lost; }
-XrSessionState Session::state() const { return impl_->state; }
+bool Session::take_space_change() {
+  const bool changed = impl_->space_changed;
+  impl_->space_changed = false;
+  return changed;
+}
+
+bool Session::running() const {
+  return impl_->running && !impl_->lost;
+}
+bool Session::focused() const {
+  return impl_->state == XR_SESSION_STATE_FOCUSED;
+}
+bool Session::exit_requested() const {
+  return impl_->exit;
+}
+bool Session::lost() const {
+  return impl_->lost;
+}
+XrSessionState Session::state() const {
+  return impl_->state;
+}
 
 void Session::request_exit() {
   if (impl_->running) {
@@ -393,13 +427,15 @@ void Session::end_frame(const FrameViews& frame, bool rendered) {
 bool Session::recreate_after_loss(double timeout_s) {
   Impl& s = *impl_;
   if (s.instance_lost) return false;
-  // The lost session's handles go first (the spec: destroy it, then poll xrGetSystem until the headset is back).
+  // The lost session's handles go first (the spec: destroy it, then poll xrGetSystem until the headset is
+  // back).
   s.eyes.clear();
   if (s.stage != XR_NULL_HANDLE) xrDestroySpace(s.stage);
   if (s.session != XR_NULL_HANDLE) xrDestroySession(s.session);
   s.stage = XR_NULL_HANDLE;
   s.session = XR_NULL_HANDLE;
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(std::max(timeout_s, 0.0));
+  const auto deadline =
+      std::chrono::steady_clock::now() + std::chrono::duration<double>(std::max(timeout_s, 0.0));
   XrSystemGetInfo system_info{XR_TYPE_SYSTEM_GET_INFO};
   system_info.formFactor = XR_FORM_FACTOR_HEAD_MOUNTED_DISPLAY;
   XrSystemId system = XR_NULL_SYSTEM_ID;
@@ -426,13 +462,29 @@ bool Session::recreate_after_loss(double timeout_s) {
   return true;
 }
 
-Swapchain& Session::eye(int index) { return impl_->eyes.at(size_t(index)); }
-const VulkanDevice& Session::vulkan() const { return impl_->vk; }
-XrInstance Session::instance() const { return impl_->instance; }
-XrSession Session::handle() const { return impl_->session; }
-XrSpace Session::stage_space() const { return impl_->stage; }
-bool Session::stage_is_local() const { return impl_->stage_is_local; }
-const std::string& Session::runtime_name() const { return impl_->runtime_name; }
-const std::string& Session::system_name() const { return impl_->system_name; }
+Swapchain& Session::eye(int index) {
+  return impl_->eyes.at(size_t(index));
+}
+const VulkanDevice& Session::vulkan() const {
+  return impl_->vk;
+}
+XrInstance Session::instance() const {
+  return impl_->instance;
+}
+XrSession Session::handle() const {
+  return impl_->session;
+}
+XrSpace Session::stage_space() const {
+  return impl_->stage;
+}
+bool Session::stage_is_local() const {
+  return impl_->stage_is_local;
+}
+const std::string& Session::runtime_name() const {
+  return impl_->runtime_name;
+}
+const std::string& Session::system_name() const {
+  return impl_->system_name;
+}
 
 }  // namespace pushpull::xr

@@ -23,8 +23,8 @@ XrResult XRAPI_CALL wait_frame(XrSession handle, const XrFrameWaitInfo* info, Xr
                    [&] { return !handle_is(s, HandleKind::session) || !s->waited_not_begun || !s->running; });
   if (!handle_is(s, HandleKind::session)) return XR_ERROR_HANDLE_INVALID;
   if (!s->running) return XR_ERROR_SESSION_NOT_RUNNING;
-  // Sleeps until `due` on the real clock with the lock released, holding the frame slot; false when the session
-  // was destroyed meanwhile.
+  // Sleeps until `due` on the real clock with the lock released, holding the frame slot; false when the
+  // session was destroyed meanwhile.
   auto sleep_until = [&](XrTime due, XrTime now) {
     s->waited_not_begun = true;
     lock.unlock();

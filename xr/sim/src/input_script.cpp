@@ -72,8 +72,10 @@ InputScript InputScript::parse(std::istream& in, const std::string& source) {
           kind = ScriptEventKind::loss;
         else if (e == "capture")
           kind = ScriptEventKind::capture;
+        else if (e == "recenter")
+          kind = ScriptEventKind::recenter;
         else
-          fail(source, line, "unknown event \"" + e + "\" (exit, loss, capture)");
+          fail(source, line, "unknown event \"" + e + "\" (exit, loss, capture, recenter)");
         script.events_.push_back({t, kind});
         continue;
       }

@@ -30,7 +30,7 @@ struct InputValue {
   bool operator==(const InputValue&) const = default;
 };
 
-enum class ScriptEventKind { exit, loss, capture };
+enum class ScriptEventKind { exit, loss, capture, recenter };
 
 struct ScriptEvent {
   double t = 0.0;  // seconds

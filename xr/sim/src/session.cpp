@@ -47,13 +47,28 @@ void run_script_events(Session& s, XrTime now) {
       case ScriptEventKind::capture:
         s.capture_requested = true;
         break;
+      case ScriptEventKind::recenter:  // the reviewer recentred the view: STAGE and LOCAL are about to move
+        for (const XrReferenceSpaceType type :
+             {XR_REFERENCE_SPACE_TYPE_STAGE, XR_REFERENCE_SPACE_TYPE_LOCAL}) {
+          XrEventDataBuffer buffer{};
+          auto* change = reinterpret_cast<XrEventDataReferenceSpaceChangePending*>(&buffer);
+          change->type = XR_TYPE_EVENT_DATA_REFERENCE_SPACE_CHANGE_PENDING;
+          change->session = to_handle<XrSession>(&s);
+          change->referenceSpaceType = type;
+          change->changeTime = now;
+          change->poseValid = XR_FALSE;
+          change->poseInPreviousSpace.orientation.w = 1.0f;
+          s.instance->push_event(buffer);
+        }
+        break;
     }
   }
 }
 
 void destroy_session(Session* s) {
   if (s->is_virtual_clock())
-    s->instance->script_resume = Instance::ScriptResume{s->clock_origin, s->frames_waited, s->next_script_event};
+    s->instance->script_resume =
+        Instance::ScriptResume{s->clock_origin, s->frames_waited, s->next_script_event};
   while (!s->spaces.empty()) destroy_space(s->spaces.back());
   while (!s->swapchains.empty()) destroy_swapchain(s->swapchains.back());
   for (ActionSet* set : s->attached) set->attached_to = nullptr;
@@ -64,15 +79,17 @@ void destroy_session(Session* s) {
   auto& events = s->instance->events;
   const XrSession handle = to_handle<XrSession>(s);
   events.erase(
-      std::remove_if(events.begin(), events.end(),
-                     [&](const XrEventDataBuffer& e) {
-                       if (e.type == XR_TYPE_EVENT_DATA_SESSION_STATE_CHANGED)
-                         return reinterpret_cast<const XrEventDataSessionStateChanged&>(e).session == handle;
-                       if (e.type == XR_TYPE_EVENT_DATA_INTERACTION_PROFILE_CHANGED)
-                         return reinterpret_cast<const XrEventDataInteractionProfileChanged&>(e).session ==
-                                handle;
-                       return false;
-                     }),
+      std::remove_if(
+          events.begin(), events.end(),
+          [&](const XrEventDataBuffer& e) {
+            if (e.type == XR_TYPE_EVENT_DATA_SESSION_STATE_CHANGED)
+              return reinterpret_cast<const XrEventDataSessionStateChanged&>(e).session == handle;
+            if (e.type == XR_TYPE_EVENT_DATA_REFERENCE_SPACE_CHANGE_PENDING)
+              return reinterpret_cast<const XrEventDataReferenceSpaceChangePending&>(e).session == handle;
+            if (e.type == XR_TYPE_EVENT_DATA_INTERACTION_PROFILE_CHANGED)
+              return reinterpret_cast<const XrEventDataInteractionProfileChanged&>(e).session == handle;
+            return false;
+          }),
       events.end());
   unregister_handle(s);
   delete s;

@@ -23,9 +23,9 @@
 #include <cstdint>
 #include <deque>
 #include <map>
-#include <optional>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <set>
 #include <string>
 #include <unordered_map>
@@ -43,7 +43,8 @@ constexpr XrSystemId kSystemId = 1;
 //   PUSHPULL_XR_SIM_CAPTURE_EVERY     also capture every N frames (default 0: only at "capture" events)
 //   PUSHPULL_XR_SIM_PROFILE           interaction profile to make current (default: first suggested of
 //                                     khr/simple, oculus/touch, valve/index, htc/vive, microsoft/motion)
-//   PUSHPULL_XR_SIM_PACE              1: with an input script, xrWaitFrame still waits for the frame's moment on
+//   PUSHPULL_XR_SIM_PACE              1: with an input script, xrWaitFrame still waits for the frame's moment
+//   on
 //                                     the real clock (a headset's pacing: the app idles between frames; for
 //                                     frame-time benchmarks); default 0: returns at once
 //   PUSHPULL_XR_SIM_VK_DEVICE         substring of the Vulkan device name to use (default: a GPU, else

@@ -45,7 +45,8 @@ struct SessionOptions {
   // VkDeviceCreateInfo (the renderer's Context::require_features).
   std::function<void(VkPhysicalDeviceVulkan13Features&)> require_vulkan13_features;
   // Vulkan extensions beyond the runtime's own (e.g. a mirror window's surface extensions and
-  // VK_KHR_swapchain): added to the create infos handed to xrCreateVulkanInstanceKHR / xrCreateVulkanDeviceKHR.
+  // VK_KHR_swapchain): added to the create infos handed to xrCreateVulkanInstanceKHR /
+  // xrCreateVulkanDeviceKHR.
   std::vector<std::string> vulkan_instance_extensions;
   std::vector<std::string> vulkan_device_extensions;
   std::vector<std::string> vulkan_layers;  // instance layers, e.g. VK_LAYER_KHRONOS_validation
@@ -90,11 +91,15 @@ class Session {
   [[nodiscard]] bool exit_requested() const;  // leave the frame loop
   [[nodiscard]] bool lost() const;            // the session or the instance was lost
   [[nodiscard]] XrSessionState state() const;
-  // After a lost session (lost(), or a call that failed with XR_ERROR_SESSION_LOST): destroys the lost session, polls xrGetSystem until the
-  // headset is back (XR_ERROR_FORM_FACTOR_UNAVAILABLE meanwhile) or timeout_s passed, then creates the session,
-  // the stage space and the eye swapchains again on the same instance and Vulkan device (eye(i) are new
-  // swapchains; an Input made for the old session must be made again). Returns false when it cannot (instance
-  // lost, timeout); throws XrError when the headset came back as another system.
+  // Whether the runtime announced a change of the stage space (recentring, a new play area) since the last
+  // call: stage coordinates jump at its change time, so a gesture spanning it is meaningless.
+  [[nodiscard]] bool take_space_change();
+  // After a lost session (lost(), or a call that failed with XR_ERROR_SESSION_LOST): destroys the lost
+  // session, polls xrGetSystem until the headset is back (XR_ERROR_FORM_FACTOR_UNAVAILABLE meanwhile) or
+  // timeout_s passed, then creates the session, the stage space and the eye swapchains again on the same
+  // instance and Vulkan device (eye(i) are new swapchains; an Input made for the old session must be made
+  // again). Returns false when it cannot (instance lost, timeout); throws XrError when the headset came back
+  // as another system.
   bool recreate_after_loss(double timeout_s);
   // Asks the runtime to end the session (xrRequestExitSession); the loop goes on until exit_requested().
   void request_exit();
