@@ -266,6 +266,13 @@ void run_review(const ReviewCommandOptions& o) {
         xr.poll_events();
         if (xr.exit_requested()) continue;  // ends the loop, or (lost) handled at its top
         if (!xr.running()) {
+          // The headset is idle (standby, not yet ready): the supervisor's window still answers (close, Esc).
+          if (mirror) {
+            mirror->poll_events();
+            for (int key : mirror->take_key_presses())
+              if (key == 256 /* GLFW_KEY_ESCAPE */) xr.request_exit();
+            if (mirror->should_close()) xr.request_exit();
+          }
           std::this_thread::sleep_for(std::chrono::milliseconds(10));
           continue;
         }

@@ -293,6 +293,23 @@ TEST(ReviewXr, RecentringMidDragCancelsTheDrag) {
       << replay.output;
 }
 
+// A runtime whose headset joins a moment after start (streaming runtimes: XR_ERROR_FORM_FACTOR_UNAVAILABLE
+// until it connects) is waited for instead of sending the reviewer to the desktop window.
+TEST(ReviewXr, AHeadsetThatJoinsLateIsWaitedFor) {
+  const fs::path dir = test_dir();
+  const ReviewRun run =
+      run_review(dir, script_start() + R"({"t":1.4,"path":"/user/hand/right/input/trigger/value","value":1.0}
+{"t":1.5,"path":"/user/hand/right/input/trigger/value","value":0.0}
+{"t":2.0,"event":"exit"}
+)",
+                 "", "PUSHPULL_XR_SIM_HEADSET_AFTER_MS=700");
+  ASSERT_EQ(run.result.status, 0) << run.result.output;
+  EXPECT_NE(run.result.output.find("has no headset yet; waiting up to 3 s"), std::string::npos)
+      << run.result.output;
+  EXPECT_EQ(run.result.output.find("desktop window"), std::string::npos) << run.result.output;
+  EXPECT_EQ(run.of("commit").size(), 1u) << run.result.output;
+}
+
 // The OpenXR core validation layer (between the app and the runtime) and VK_LAYER_KHRONOS_validation (on the
 // runtime's instance, --validation fails the run on any message) see a whole push/pull without complaint.
 TEST(ReviewXr, ValidationLayersReportNothingForAPushPull) {

@@ -85,7 +85,19 @@ struct Session::Impl {
     runtime_name = properties.runtimeName;
     XrSystemGetInfo system_info{XR_TYPE_SYSTEM_GET_INFO};
     system_info.formFactor = XR_FORM_FACTOR_HEAD_MOUNTED_DISPLAY;
-    if (const XrResult r = xrGetSystem(instance, &system_info, &system); XR_FAILED(r))
+    XrResult r = xrGetSystem(instance, &system_info, &system);
+    if (r == XR_ERROR_FORM_FACTOR_UNAVAILABLE && options.headset_wait_s > 0.0) {
+      std::fprintf(stderr,
+                   "pushpull: the OpenXR runtime \"%s\" has no headset yet; waiting up to %.0f s for it\n",
+                   runtime_name.c_str(), options.headset_wait_s);
+      const auto give_up =
+          std::chrono::steady_clock::now() + std::chrono::duration<double>(options.headset_wait_s);
+      while (r == XR_ERROR_FORM_FACTOR_UNAVAILABLE && std::chrono::steady_clock::now() < give_up) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(100));
+        r = xrGetSystem(instance, &system_info, &system);
+      }
+    }
+    if (XR_FAILED(r))
       throw RuntimeUnavailable("no headset: the OpenXR runtime \"" + runtime_name + "\" (" +
                                    runtime_looked_for() + ") has no head-mounted display (xrGetSystem: " +
                                    result_name(instance, r) + "); connect one, or " + kPointAtRuntime,
@@ -108,11 +120,14 @@ struct Session::Impl {
     if (XR_VERSION_MAJOR(req.maxApiVersionSupported) < 1 ||
         (XR_VERSION_MAJOR(req.maxApiVersionSupported) == 1 &&
          XR_VERSION_MINOR(req.maxApiVersionSupported) < 3))
-      std::fprintf(stderr,
-                   "pushpull: warning: the OpenXR runtime says it supports Vulkan up to %u.%u; the "
-                   "renderer needs 1.3\n",
-                   unsigned(XR_VERSION_MAJOR(req.maxApiVersionSupported)),
-                   unsigned(XR_VERSION_MINOR(req.maxApiVersionSupported)));
+      // maxApiVersionSupported is the newest version the runtime was tested with (SteamVR says 1.2), not a
+      // limit: the device the runtime picks decides (checked below).
+      std::fprintf(
+          stderr,
+          "pushpull: note: the OpenXR runtime was tested with Vulkan up to %u.%u; pushpull uses 1.3 and "
+          "goes on if the runtime's GPU offers it\n",
+          unsigned(XR_VERSION_MAJOR(req.maxApiVersionSupported)),
+          unsigned(XR_VERSION_MINOR(req.maxApiVersionSupported)));
 
     VkApplicationInfo app{};
     app.sType = VK_STRUCTURE_TYPE_APPLICATION_INFO;
@@ -145,6 +160,17 @@ struct Session::Impl {
     gi.systemId = system;
     gi.vulkanInstance = vk.instance;
     CHECK(get_device(instance, &gi, &vk.physical_device));
+    {  // A GPU without Vulkan 1.3 cannot run the renderer: say so, and the review opens the desktop window.
+      VkPhysicalDeviceProperties gpu{};
+      vkGetPhysicalDeviceProperties(vk.physical_device, &gpu);
+      if (VK_API_VERSION_MAJOR(gpu.apiVersion) == 1 && VK_API_VERSION_MINOR(gpu.apiVersion) < 3)
+        throw RuntimeUnavailable("the OpenXR runtime \"" + runtime_name + "\" renders on " + gpu.deviceName +
+                                     ", which offers Vulkan " +
+                                     std::to_string(VK_API_VERSION_MAJOR(gpu.apiVersion)) + "." +
+                                     std::to_string(VK_API_VERSION_MINOR(gpu.apiVersion)) +
+                                     "; pushpull needs 1.3 (update the GPU driver)",
+                                 XR_ERROR_RUNTIME_FAILURE);
+    }
 
     uint32_t n = 0;
     vkGetPhysicalDeviceQueueFamilyProperties(vk.physical_device, &n, nullptr);

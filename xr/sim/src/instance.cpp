@@ -61,6 +61,7 @@ XrResult XRAPI_CALL create_instance(const XrInstanceCreateInfo* info, XrInstance
       return XR_ERROR_EXTENSION_NOT_PRESENT;
   auto instance = std::make_unique<Instance>();
   instance->config = Config::from_env();
+  instance->created = monotonic_now();
   instance->application_name = info->applicationInfo.applicationName;
   for (uint32_t i = 0; i < info->enabledExtensionCount; ++i)
     instance->extensions.insert(info->enabledExtensionNames[i]);
@@ -166,6 +167,8 @@ XrResult XRAPI_CALL get_system(XrInstance handle, const XrSystemGetInfo* info, X
     return XR_ERROR_VALIDATION_FAILURE;
   if (info->formFactor == XR_FORM_FACTOR_HANDHELD_DISPLAY) return XR_ERROR_FORM_FACTOR_UNSUPPORTED;
   if (info->formFactor != XR_FORM_FACTOR_HEAD_MOUNTED_DISPLAY) return XR_ERROR_VALIDATION_FAILURE;
+  if (monotonic_now() - instance->created < XrTime(instance->config.headset_after_ms) * 1000000)
+    return XR_ERROR_FORM_FACTOR_UNAVAILABLE;
   instance->system_queried = true;
   *system = kSystemId;
   return XR_SUCCESS;

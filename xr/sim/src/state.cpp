@@ -41,6 +41,7 @@ Config Config::from_env() {
   c.vk_device = env_string("PUSHPULL_XR_SIM_VK_DEVICE");
   c.haptics_log = env_string("PUSHPULL_XR_SIM_HAPTICS");
   c.pace = env_uint("PUSHPULL_XR_SIM_PACE", 0) != 0;
+  c.headset_after_ms = env_uint("PUSHPULL_XR_SIM_HEADSET_AFTER_MS", 0);
   return c;
 }
 

@@ -64,6 +64,10 @@ struct Config {
   std::string haptics_log;
   bool pace = false;  // scripted: also wait for each frame's moment on the real clock
   float ipd_m = 0.064f;
+  // The headset connects this many milliseconds (real clock) after the instance is created; before,
+  // xrGetSystem says XR_ERROR_FORM_FACTOR_UNAVAILABLE, as a streaming runtime does before its headset
+  // connects.
+  uint32_t headset_after_ms = 0;
   static Config from_env();
 };
 
@@ -95,6 +99,7 @@ struct Action;
 struct Instance {
   static constexpr HandleKind kKind = HandleKind::instance;
   Config config;
+  XrTime created = 0;                         // monotonic_now() at xrCreateInstance
   std::shared_ptr<const InputScript> script;  // null: real-time clock, no scripted input
   std::set<std::string> extensions;
   std::string application_name;

@@ -54,6 +54,10 @@ struct SessionOptions {
   uint32_t eye_width = 0, eye_height = 0;
   // Extensions the session must enable beyond XR_KHR_vulkan_enable2 (e.g. for tests); unknown ones fail.
   std::vector<std::string> extensions;
+  // A runtime whose headset is not connected yet (xrGetSystem: XR_ERROR_FORM_FACTOR_UNAVAILABLE, "temporarily
+  // unavailable": streaming runtimes before the headset joins) is asked again for this many seconds before
+  // the session gives up with RuntimeUnavailable.
+  double headset_wait_s = 3.0;
 };
 
 // What the renderer borrows (renderer::ExternalVulkan has the same fields). Owned by the Session.
