@@ -482,7 +482,11 @@ void run_review(const ReviewCommandOptions& o) {
           const uint32_t right = xr.eye(1).acquire();
           eye_views = {eye_view(frame.eyes[0]), eye_view(frame.eyes[1])};
           eye_targets = eyes->targets(left, right);
-          passes.push_back({eye_views, draws, scene.settings(), &eye_targets, {}});
+          renderer::FrameSettings eye_settings = scene.settings();
+          if (xr.blend_mode() !=
+              XR_ENVIRONMENT_BLEND_MODE_OPAQUE)  // see-through: the world is the background
+            eye_settings.clear_colour = {0.0f, 0.0f, 0.0f, 0.0f};
+          passes.push_back({eye_views, draws, eye_settings, &eye_targets, {}});
           rendered = true;
         }
         std::optional<renderer::MirrorWindow::Frame> mirror_target;

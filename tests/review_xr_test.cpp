@@ -310,6 +310,23 @@ TEST(ReviewXr, AHeadsetThatJoinsLateIsWaitedFor) {
   EXPECT_EQ(run.of("commit").size(), 1u) << run.result.output;
 }
 
+// A see-through display (the runtime offers only ADDITIVE blending): the eyes' background is black
+// (transparent there), not the studio grey that would cover the world; the model still shows.
+TEST(ReviewXr, ASeeThroughDisplayGetsABlackBackground) {
+  const fs::path dir = test_dir();
+  const ReviewRun run = run_review(dir, script_start() + R"({"t":0.3,"event":"capture"}
+{"t":0.6,"event":"exit"}
+)",
+                                   "", "PUSHPULL_XR_SIM_BLEND=additive");
+  ASSERT_EQ(run.result.status, 0) << run.result.output;
+  const auto image = pushpull::renderer::read_png(dir / "capture" / "frame_000009_left.png");
+  EXPECT_EQ(int(image.pixels[0]) + int(image.pixels[1]) + int(image.pixels[2]), 0);  // the top-left corner
+  size_t lit = 0;
+  for (size_t i = 0; i < image.pixels.size(); i += 4)
+    if (image.pixels[i] + image.pixels[i + 1] + image.pixels[i + 2] > 60) ++lit;
+  EXPECT_GT(lit, image.pixels.size() / 4 / 20);  // the bonnet
+}
+
 // The OpenXR core validation layer (between the app and the runtime) and VK_LAYER_KHRONOS_validation (on the
 // runtime's instance, --validation fails the run on any message) see a whole push/pull without complaint.
 TEST(ReviewXr, ValidationLayersReportNothingForAPushPull) {

@@ -372,6 +372,10 @@ bool Session::take_space_change() {
   return changed;
 }
 
+XrEnvironmentBlendMode Session::blend_mode() const {
+  return impl_->blend_mode;
+}
+
 bool Session::running() const {
   return impl_->running && !impl_->lost;
 }
@@ -442,6 +446,9 @@ void Session::end_frame(const FrameViews& frame, bool rendered) {
       views[i].subImage.imageArrayIndex = 0;
     }
     layer.space = s.stage;
+    // See-through blending by alpha: the eyes' cleared background (alpha 0) lets the world through.
+    if (s.blend_mode == XR_ENVIRONMENT_BLEND_MODE_ALPHA_BLEND)
+      layer.layerFlags = XR_COMPOSITION_LAYER_BLEND_TEXTURE_SOURCE_ALPHA_BIT;
     layer.viewCount = 2;
     layer.views = views.data();
     end.layerCount = 1;

@@ -91,8 +91,9 @@ XrResult XRAPI_CALL end_frame(XrSession handle, const XrFrameEndInfo* info) {
   if (!s->running) return XR_ERROR_SESSION_NOT_RUNNING;
   if (!s->frame_begun) return XR_ERROR_CALL_ORDER_INVALID;
   if (info->displayTime <= 0) return XR_ERROR_TIME_INVALID;
-  if (info->environmentBlendMode != XR_ENVIRONMENT_BLEND_MODE_OPAQUE) {
-    const bool known = info->environmentBlendMode == XR_ENVIRONMENT_BLEND_MODE_ADDITIVE ||
+  if (info->environmentBlendMode != s->instance->config.blend_mode) {
+    const bool known = info->environmentBlendMode == XR_ENVIRONMENT_BLEND_MODE_OPAQUE ||
+                       info->environmentBlendMode == XR_ENVIRONMENT_BLEND_MODE_ADDITIVE ||
                        info->environmentBlendMode == XR_ENVIRONMENT_BLEND_MODE_ALPHA_BLEND;
     return known ? XR_ERROR_ENVIRONMENT_BLEND_MODE_UNSUPPORTED : XR_ERROR_VALIDATION_FAILURE;
   }

@@ -217,10 +217,12 @@ XrResult XRAPI_CALL enumerate_environment_blend_modes(XrInstance handle, XrSyste
                                                       uint32_t capacity, uint32_t* count,
                                                       XrEnvironmentBlendMode* modes) {
   Lock lock(big_lock());
-  if (const XrResult r = check_system(handle, system, nullptr); XR_FAILED(r)) return r;
+  Instance* instance = nullptr;
+  if (const XrResult r = check_system(handle, system, &instance); XR_FAILED(r)) return r;
   if (const XrResult r = check_view_configuration(view_configuration); XR_FAILED(r)) return r;
   if (capacity != 0 && modes == nullptr) return XR_ERROR_VALIDATION_FAILURE;
-  return two_call(capacity, count, 1, [&](uint32_t i) { modes[i] = XR_ENVIRONMENT_BLEND_MODE_OPAQUE; });
+  const XrEnvironmentBlendMode mode = instance->config.blend_mode;
+  return two_call(capacity, count, 1, [&](uint32_t i) { modes[i] = mode; });
 }
 
 XrResult XRAPI_CALL enumerate_view_configurations(XrInstance handle, XrSystemId system, uint32_t capacity,

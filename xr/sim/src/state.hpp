@@ -68,6 +68,8 @@ struct Config {
   // xrGetSystem says XR_ERROR_FORM_FACTOR_UNAVAILABLE, as a streaming runtime does before its headset
   // connects.
   uint32_t headset_after_ms = 0;
+  // The one environment blend mode the display offers: OPAQUE (a headset), or ADDITIVE (see-through).
+  XrEnvironmentBlendMode blend_mode = XR_ENVIRONMENT_BLEND_MODE_OPAQUE;
   static Config from_env();
 };
 

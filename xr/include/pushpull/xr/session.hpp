@@ -98,6 +98,9 @@ class Session {
   // Whether the runtime announced a change of the stage space (recentring, a new play area) since the last
   // call: stage coordinates jump at its change time, so a gesture spanning it is meaningless.
   [[nodiscard]] bool take_space_change();
+  // How the runtime shows frames: OPAQUE (the usual headset), or ADDITIVE / ALPHA_BLEND on see-through
+  // displays, where the eyes' background must be transparent black rather than a studio grey.
+  [[nodiscard]] XrEnvironmentBlendMode blend_mode() const;
   // After a lost session (lost(), or a call that failed with XR_ERROR_SESSION_LOST): destroys the lost
   // session, polls xrGetSystem until the headset is back (XR_ERROR_FORM_FACTOR_UNAVAILABLE meanwhile) or
   // timeout_s passed, then creates the session, the stage space and the eye swapchains again on the same
