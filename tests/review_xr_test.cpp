@@ -327,6 +327,27 @@ TEST(ReviewXr, ASeeThroughDisplayGetsABlackBackground) {
   EXPECT_GT(lit, image.pixels.size() / 4 / 20);  // the bonnet
 }
 
+// A headset that reports orientation without position (3-DoF tracking, or positional tracking lost) still
+// gets frames: the eyes are drawn from the last located (here: a standing reviewer's) position, not left
+// black.
+TEST(ReviewXr, ViewsWithOrientationOnlyAreStillDrawn) {
+  const fs::path dir = test_dir();
+  const ReviewRun run = run_review(dir, script_start() + R"({"t":0.3,"event":"capture"}
+{"t":0.6,"event":"exit"}
+)",
+                                   "", "PUSHPULL_XR_SIM_ROTATION_ONLY=1");
+  ASSERT_EQ(run.result.status, 0) << run.result.output;
+  const auto image = pushpull::renderer::read_png(dir / "capture" / "frame_000009_left.png");
+  const uint8_t* bg = image.pixels.data();
+  size_t model = 0;
+  for (size_t i = 0; i < image.pixels.size(); i += 4)
+    if (std::abs(image.pixels[i] - bg[0]) + std::abs(image.pixels[i + 1] - bg[1]) +
+            std::abs(image.pixels[i + 2] - bg[2]) >
+        30)
+      ++model;
+  EXPECT_GT(model, image.pixels.size() / 4 / 20);  // the bonnet, seen from 1.6 m
+}
+
 // The OpenXR core validation layer (between the app and the runtime) and VK_LAYER_KHRONOS_validation (on the
 // runtime's instance, --validation fails the run on any message) see a whole push/pull without complaint.
 TEST(ReviewXr, ValidationLayersReportNothingForAPushPull) {

@@ -1,6 +1,7 @@
 #include "pushpull/xr/session.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -41,7 +42,11 @@ struct Session::Impl {
   XrSession session = XR_NULL_HANDLE;
   XrSpace stage = XR_NULL_HANDLE;
   bool stage_is_local = false;
-  bool space_changed = false;  // a REFERENCE_SPACE_CHANGE_PENDING for the space in use, not yet taken
+  bool space_changed = false;
+  // The eyes' last located positions (stage), for frames whose views have orientation only.
+  std::array<XrVector3f, 2> last_eye_position{
+      {{-0.032f, 1.6f, 0.0f},
+       {0.032f, 1.6f, 0.0f}}};  // a REFERENCE_SPACE_CHANGE_PENDING for the space in use, not yet taken
   std::vector<Swapchain> eyes;
   std::vector<XrViewConfigurationView> view_configs;
   XrEnvironmentBlendMode blend_mode = XR_ENVIRONMENT_BLEND_MODE_OPAQUE;
@@ -419,9 +424,18 @@ FrameViews Session::begin_frame() {
   std::array<XrView, 2> views{{{XR_TYPE_VIEW}, {XR_TYPE_VIEW}}};
   uint32_t n = 0;
   if (!CHECK_UNLESS_LOST(xrLocateViews(s.session, &locate, &view_state, 2, &n, views.data()))) return frame;
-  const XrViewStateFlags valid = XR_VIEW_STATE_ORIENTATION_VALID_BIT | XR_VIEW_STATE_POSITION_VALID_BIT;
-  if (n != 2 || (view_state.viewStateFlags & valid) != valid) return frame;
-  for (int i = 0; i < 2; ++i) frame.eyes[size_t(i)] = {views[size_t(i)].pose, views[size_t(i)].fov};
+  if (n != 2 || (view_state.viewStateFlags & XR_VIEW_STATE_ORIENTATION_VALID_BIT) == 0) return frame;
+  // Orientation without position (rotation-only tracking, or positional tracking lost): the eyes stay where
+  // they were last located (else at a standing reviewer's height) rather than the view going black.
+  const bool position = (view_state.viewStateFlags & XR_VIEW_STATE_POSITION_VALID_BIT) != 0;
+  for (int i = 0; i < 2; ++i) {
+    XrPosef& pose = views[size_t(i)].pose;
+    if (position)
+      s.last_eye_position[size_t(i)] = pose.position;
+    else
+      pose.position = s.last_eye_position[size_t(i)];
+    frame.eyes[size_t(i)] = {pose, views[size_t(i)].fov};
+  }
   frame.should_render = true;
   return frame;
 }

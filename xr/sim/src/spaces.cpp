@@ -194,6 +194,9 @@ XrResult XRAPI_CALL locate_views(XrSession handle, const XrViewLocateInfo* info,
     if (views[i].type != XR_TYPE_VIEW) return XR_ERROR_VALIDATION_FAILURE;
   const auto base_pose = space_in_stage(*s, *base, info->displayTime);
   state->viewStateFlags = base_pose ? kAllValid : 0;
+  if (s->instance->config.rotation_only)
+    state->viewStateFlags &=
+        ~XrViewStateFlags(XR_VIEW_STATE_POSITION_VALID_BIT | XR_VIEW_STATE_POSITION_TRACKED_BIT);
   const XrPosef head = head_pose(*s, info->displayTime);
   const float half_ipd = s->instance->config.ipd_m * 0.5f;
   return two_call(capacity, count, 2, [&](uint32_t i) {

@@ -42,6 +42,7 @@ Config Config::from_env() {
   c.haptics_log = env_string("PUSHPULL_XR_SIM_HAPTICS");
   c.pace = env_uint("PUSHPULL_XR_SIM_PACE", 0) != 0;
   c.headset_after_ms = env_uint("PUSHPULL_XR_SIM_HEADSET_AFTER_MS", 0);
+  c.rotation_only = env_uint("PUSHPULL_XR_SIM_ROTATION_ONLY", 0) != 0;
   if (env_string("PUSHPULL_XR_SIM_BLEND") == "additive") c.blend_mode = XR_ENVIRONMENT_BLEND_MODE_ADDITIVE;
   return c;
 }

@@ -70,6 +70,7 @@ struct Config {
   uint32_t headset_after_ms = 0;
   // The one environment blend mode the display offers: OPAQUE (a headset), or ADDITIVE (see-through).
   XrEnvironmentBlendMode blend_mode = XR_ENVIRONMENT_BLEND_MODE_OPAQUE;
+  bool rotation_only = false;  // views report orientation, not position (a 3-DoF headset)
   static Config from_env();
 };
 
