@@ -205,7 +205,7 @@ void ReviewScene::set_highlight(const std::vector<int>& vertices) {
   std::vector<renderer::OverlayWeights> overlays(positions_.size() / 3, renderer::OverlayWeights{});
   for (size_t r = 0; r < overlays.size(); ++r) {
     const int d = render_.deform_vertex[r];
-    if (d >= 0 && mark[size_t(d)]) overlays[r].handle = 1.0f;
+    if (d >= 0 && mark[size_t(d)]) overlays[r].handle = overlays[r].fixed = 1.0f;  // the hover colour
   }
   renderer_.update_vertices(mesh_, positions_, {}, {}, overlays);
   highlight_shown_ = !vertices.empty();

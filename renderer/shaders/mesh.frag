@@ -121,10 +121,16 @@ void main() {
   }
 
   if (mapped && frame.colour_params.w > 0.5) {
-    // Review overlays: ROI tinted light, fixed vertices blue, handle red (the paper's Fig. 12 top row).
+    // Review overlays: ROI tinted light, fixed vertices blue, handle red (the paper's Fig. 12 top row); fixed and
+    // handle together: the handle a press would grab, magenta, a colour no colour map uses (red would vanish on
+    // the displacement map's top).
     if (in_aux.y > 0.5) base.rgb = mix(base.rgb, vec3(0.55, 0.95, 0.55), mode == 0u ? 0.45 : 0.0);
-    if (in_aux.z > 0.5) { base.rgb = vec3(0.10, 0.25, 0.95); metallic = 0.0; roughness = 0.5; }
-    if (in_aux.w > 0.5) { base.rgb = vec3(0.95, 0.08, 0.06); metallic = 0.0; roughness = 0.5; }
+    if (in_aux.z > 0.5 && in_aux.w > 0.5) {
+      base.rgb = vec3(0.90, 0.15, 0.95); metallic = 0.0; roughness = 0.5;
+    } else {
+      if (in_aux.z > 0.5) { base.rgb = vec3(0.10, 0.25, 0.95); metallic = 0.0; roughness = 0.5; }
+      if (in_aux.w > 0.5) { base.rgb = vec3(0.95, 0.08, 0.06); metallic = 0.0; roughness = 0.5; }
+    }
   }
 
   if (frame.mode.y == 0u) {

@@ -46,7 +46,8 @@ struct Material {
 };
 
 // Per-vertex review overlay weights (0 or 1; interpolated across faces so class boundaries fall at
-// mid-edges). A vertex may be in several (a handle vertex is also in the ROI).
+// mid-edges). A vertex may be in several (a handle vertex is also in the ROI). Drawn: ROI tinted, fixed blue,
+// handle red; fixed and handle both set marks a hover highlight (magenta, outside every colour map).
 struct OverlayWeights {
   float roi = 0.0f;
   float fixed = 0.0f;
