@@ -98,6 +98,16 @@ ReviewRun run_review(const fs::path& dir, const std::string& script, const std::
   return run;
 }
 
+// `pushpull replay` of the session a test recorded to dir/session.jsonl reproduces its one commit.
+void expect_replays_with_one_commit(const fs::path& dir) {
+  const auto replay = run_command(pushpull::testing::xr_sim_environment() + " " + PUSHPULL_EXECUTABLE +
+                                  " replay " + (dir / "session.jsonl").string() + " --out " +
+                                  (dir / "replay").string() + " --no-pictures");
+  ASSERT_EQ(replay.status, 0) << replay.output;
+  EXPECT_NE(replay.output.find("1 commit(s) replayed of 1 recorded; all checks passed"), std::string::npos)
+      << replay.output;
+}
+
 std::string number(double v) {
   char text[64];
   std::snprintf(text, sizeof text, "%.17g", v);
@@ -156,8 +166,8 @@ TEST(ReviewXr, DragCommitsWhatDeformComputesForTheSameP0AndD) {
   EXPECT_NEAR((reviewed.V - rest.V).rowwise().norm().maxCoeff(), 0.1, 1e-3);  // it did move
 
   // Both eyes see the bonnet in the displacement colours: many pixels unlike the background (the top-left
-  // corner), among them the map's red (pulled 100 mm) and blue (still) ends; the hand still aims at the pulled
-  // spot, whose handle-to-be shows magenta, apart from the red around it.
+  // corner), among them the map's red (pulled 100 mm) and blue (still) ends; the hand still aims at the
+  // pulled spot, whose handle-to-be shows magenta, apart from the red around it.
   int images = 0;
   for (const auto& entry : fs::directory_iterator(dir / "capture")) {
     const auto image = pushpull::renderer::read_png(entry.path());
@@ -221,12 +231,7 @@ TEST(ReviewXr, LostSessionComesBackAndTheReviewGoesOnAndReplays) {
   const auto d = run.of("commit")[0].at("d");
   EXPECT_NEAR(double(d[1]), -0.1, 1e-6);
 
-  const auto replay = run_command(pushpull::testing::xr_sim_environment() + " " + PUSHPULL_EXECUTABLE +
-                                  " replay " + (dir / "session.jsonl").string() + " --out " +
-                                  (dir / "replay").string() + " --no-pictures");
-  ASSERT_EQ(replay.status, 0) << replay.output;
-  EXPECT_NE(replay.output.find("1 commit(s) replayed of 1 recorded; all checks passed"), std::string::npos)
-      << replay.output;
+  expect_replays_with_one_commit(dir);
 
   const ReviewRun ended = run_review(dir, script, "--reconnect 0");
   ASSERT_EQ(ended.result.status, 0) << ended.result.output;
@@ -264,12 +269,7 @@ TEST(ReviewXr, AControllerOutOfTrackingHoldsTheDragWhereItWasLastSeen) {
   const auto d = run.of("commit")[0].at("d");
   EXPECT_NEAR(double(d[1]), -0.05, 1e-6) << run.result.output;  // 50 mm, not 250
 
-  const auto replay = run_command(pushpull::testing::xr_sim_environment() + " " + PUSHPULL_EXECUTABLE +
-                                  " replay " + (dir / "session.jsonl").string() + " --out " +
-                                  (dir / "replay").string() + " --no-pictures");
-  ASSERT_EQ(replay.status, 0) << replay.output;
-  EXPECT_NE(replay.output.find("1 commit(s) replayed of 1 recorded; all checks passed"), std::string::npos)
-      << replay.output;
+  expect_replays_with_one_commit(dir);
 }
 
 // The reviewer recentres the view mid-drag (the runtime announces a change of the stage space): stage
@@ -288,12 +288,7 @@ TEST(ReviewXr, RecentringMidDragCancelsTheDrag) {
   ASSERT_EQ(run.of("commit").size(), 1u) << run.result.output;  // the second drag only
   EXPECT_NEAR(double(run.of("commit")[0].at("d")[1]), -0.1, 1e-6);
 
-  const auto replay = run_command(pushpull::testing::xr_sim_environment() + " " + PUSHPULL_EXECUTABLE +
-                                  " replay " + (dir / "session.jsonl").string() + " --out " +
-                                  (dir / "replay").string() + " --no-pictures");
-  ASSERT_EQ(replay.status, 0) << replay.output;
-  EXPECT_NE(replay.output.find("1 commit(s) replayed of 1 recorded; all checks passed"), std::string::npos)
-      << replay.output;
+  expect_replays_with_one_commit(dir);
 }
 
 // A runtime whose headset joins a moment after start (streaming runtimes: XR_ERROR_FORM_FACTOR_UNAVAILABLE
@@ -522,8 +517,8 @@ TEST(ReviewXr, MenuPanelChoosesTheMethodOfTheNextPushPullAndReadoutsShow) {
   EXPECT_EQ(methods[0].at("method"), above);
   EXPECT_EQ(commits[0].at("method"), above);
 
-  // Frame 9 (t = 0.3): aiming, the handle-to-be is magenta on the blue (undisplaced) bonnet and the readout panel
-  // (near black) floats by the hand; frame 33 (t = 1.1): the open panel covers much more of the view.
+  // Frame 9 (t = 0.3): aiming, the handle-to-be is magenta on the blue (undisplaced) bonnet and the readout
+  // panel (near black) floats by the hand; frame 33 (t = 1.1): the open panel covers much more of the view.
   auto count = [&](const std::string& file, auto predicate) {
     const auto image = pushpull::renderer::read_png(dir / "capture" / file);
     size_t n = 0;
