@@ -168,6 +168,39 @@ TEST(Renderer, OverlaysPaintHandleRedFixedBlueAndArrow) {
   EXPECT_EQ(context.validation_message_count(), 0u);
 }
 
+// The hover highlight (fixed and handle together) on the displacement map's top: magenta, apart from the
+// map's red around it (a red highlight would vanish there).
+TEST(Renderer, AHoverHighlightIsMagentaOnTheDisplacementMapsRed) {
+  Context context = make_context();
+  {
+    Renderer renderer(context);
+    RenderMesh sheet = make_sheet(64);
+    sheet.scalars.assign(sheet.vertex_count(), 1.0f);  // everything at the map's top
+    sheet.overlays.resize(sheet.vertex_count());
+    for (size_t v = 0; v < sheet.overlays.size(); ++v) {
+      const float x = sheet.positions[3 * v], y = sheet.positions[3 * v + 1];
+      const float hover = (std::abs(x) < 0.15f && std::abs(y) < 0.15f) ? 1.0f : 0.0f;
+      sheet.overlays[v].fixed = sheet.overlays[v].handle = hover;
+    }
+    const MeshId mesh = renderer.add_mesh(sheet);
+    OffscreenTarget target(context, kSize, kSize);
+    const View view = testing::sheet_camera();
+    const Draw draw{mesh, glm::mat4(1.0f)};
+    FrameSettings settings;
+    settings.color_mode = ColorMode::displacement;
+    settings.scalar_max = 1.0f;
+    settings.lighting = false;
+    renderer.render(std::span(&view, 1), std::span(&draw, 1), settings, target.targets());
+    const TextureRGBA8 image = target.read_back();
+    const auto hover = pixel(image, kSize / 2, kSize / 2);
+    EXPECT_GT(hover.r, hover.g + 80) << "magenta";
+    EXPECT_GT(hover.b, hover.g + 80) << "magenta";
+    const auto map = pixel(image, kSize / 2 + kSize / 4, kSize / 2);
+    EXPECT_GT(map.r, map.b + 80) << "the map's red";
+  }
+  EXPECT_EQ(context.validation_message_count(), 0u);
+}
+
 class StereoTest : public ::testing::TestWithParam<VkSampleCountFlagBits> {};
 
 TEST_P(StereoTest, TwoLayersAndTwoImagesAgree) {
