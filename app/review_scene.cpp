@@ -52,13 +52,31 @@ ReviewScene::ReviewScene(renderer::Renderer& renderer, const assets::Model& mode
   mesh.normals = render_.file_normals;
   mesh.scalars.assign(mesh.vertex_count(), 0.0f);
   for (auto& sub : mesh.submeshes) sub.material = sub.material >= 0 ? material_ids[size_t(sub.material)] : -1;
+  vertex_count_ = mesh.vertex_count();
   mesh_ = renderer_.add_mesh(mesh, /*streamed=*/true);
   set_placement(placement);
-  if (async)
+  if (async) {
+    stream_ = renderer_.vertex_stream(mesh_);
     converter_ =
         std::make_unique<NewestOnlyWorker<ConversionJob, SnapshotVertices>>([this](const ConversionJob& job) {
-          return convert_snapshot(render_, rest_V_, F_, scale_, job.colour, job.snapshot);
+          SnapshotVertices out = convert_snapshot(render_, rest_V_, F_, scale_, job.colour, job.snapshot);
+          if (!stream_) return out;
+          // Into a vertex set the frame loop binds as it is (none free: the frame loop copies the vectors).
+          const auto start = std::chrono::steady_clock::now();
+          renderer::VertexStream::Lease set = stream_->acquire();
+          if (!set) return out;
+          std::copy(out.positions.begin(), out.positions.end(), set.positions().begin());
+          std::copy(out.normals.begin(), out.normals.end(), set.normals().begin());
+          std::copy(out.scalars.begin(), out.scalars.end(), set.scalars().begin());
+          out.set = std::move(set);
+          out.positions = {};  // freed here, not on the frame's thread
+          out.normals = {};
+          out.scalars = {};
+          out.cpu_ms +=
+              std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+          return out;
         });
+  }
 }
 
 void ReviewScene::set_placement(const StagePlacement& placement) {
@@ -131,12 +149,11 @@ void ReviewScene::apply(SnapshotVertices v) {
   const deform::Snapshot& snapshot = *v.snapshot;
   generation_ = snapshot.generation;
   if (colour_ == ReviewColour::Displacement) scalar_max_ = v.scalar_max;
-  const std::vector<float>& positions = v.positions;
   // The drag's region while its previews show; nothing once committed, cancelled or undone.
   const bool show = snapshot.kind == deform::Snapshot::Kind::Preview && snapshot.region != nullptr;
   std::vector<renderer::OverlayWeights> overlays;
   if (show ? snapshot.region != shown_region_ : (overlays_shown_ || highlight_shown_)) {
-    overlays.assign(positions.size() / 3, renderer::OverlayWeights{});
+    overlays.assign(vertex_count_, renderer::OverlayWeights{});
     if (show) {
       const auto& role = snapshot.region->role;
       for (size_t r = 0; r < overlays.size(); ++r) {
@@ -154,8 +171,13 @@ void ReviewScene::apply(SnapshotVertices v) {
     highlight_.clear();
   }
   last_cpu_ms_ = v.cpu_ms;
-  renderer_.update_vertices(mesh_, v.positions, v.normals, v.scalars, overlays);
-  positions_ = std::move(v.positions);
+  if (v.set) {  // written by the converter: no copy here
+    if (!overlays.empty()) renderer_.update_vertices(mesh_, {}, {}, {}, overlays);
+    stream_->publish(std::move(v.set));
+  } else {
+    renderer_.update_vertices(mesh_, v.positions, v.normals, v.scalars, overlays);
+  }
+  drawn_ = true;
   update_legend();
 }
 
@@ -196,18 +218,18 @@ void ReviewScene::update_legend() {
 
 void ReviewScene::set_highlight(const std::vector<int>& vertices) {
   // The drag's own overlays (region, handle, fixed border) win while its previews show.
-  if (overlays_shown_ || positions_.empty()) return;
+  if (overlays_shown_ || !drawn_) return;
   if (vertices == highlight_ && highlight_shown_ == !vertices.empty()) return;
   highlight_ = vertices;
   std::vector<char> mark(size_t(rest_V_.rows()), 0);
   for (int v : vertices)
     if (v >= 0 && v < int(mark.size())) mark[size_t(v)] = 1;
-  std::vector<renderer::OverlayWeights> overlays(positions_.size() / 3, renderer::OverlayWeights{});
+  std::vector<renderer::OverlayWeights> overlays(vertex_count_, renderer::OverlayWeights{});
   for (size_t r = 0; r < overlays.size(); ++r) {
     const int d = render_.deform_vertex[r];
     if (d >= 0 && mark[size_t(d)]) overlays[r].handle = overlays[r].fixed = 1.0f;  // the hover colour
   }
-  renderer_.update_vertices(mesh_, positions_, {}, {}, overlays);
+  renderer_.update_vertices(mesh_, {}, {}, {}, overlays);  // the overlays alone (positions as they are)
   highlight_shown_ = !vertices.empty();
 }
 

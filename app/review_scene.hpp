@@ -27,11 +27,14 @@
 
 namespace pushpull::app {
 
-// A snapshot turned into the render mesh's vertex data for one colour map (positions, normals, scalars).
+// A snapshot turned into the render mesh's vertex data for one colour map (positions, normals, scalars):
+// in the vectors, or (the async scene, where the renderer has a VertexStream) in `set`, a vertex set of the
+// stream written on the converter's thread, the vectors then empty.
 struct SnapshotVertices {
   std::shared_ptr<const deform::Snapshot> snapshot;
   ReviewColour colour = ReviewColour::Displacement;
   std::vector<float> positions, normals, scalars;
+  renderer::VertexStream::Lease set;
   double scalar_max = 0.0;  // displacement: the colour map's top (model units)
   double cpu_ms = 0.0;      // time the conversion took, on whichever thread ran it
 };
@@ -46,8 +49,10 @@ struct SnapshotVertices {
 class ReviewScene {
  public:
   // life_size_scale: metres per model unit (displacement legend in mm). async: snapshots are turned into
-  // vertex data on a thread of the scene's own (NewestOnlyWorker), so the frame loop only copies them (the
-  // headset: O(#Vr) of CPU per preview off the frame's thread, drawn one or more frames later).
+  // vertex data on a thread of the scene's own (NewestOnlyWorker), drawn one or more frames later; where the
+  // renderer has a VertexStream for the mesh, that thread writes them into a vertex set the frame loop only
+  // publishes (no per-frame copy of vertex data on the frame's thread), else the frame loop copies them
+  // (Renderer::update_vertices).
   ReviewScene(renderer::Renderer& renderer, const assets::Model& model, const StagePlacement& placement,
               ReviewColour colour, double life_size_scale, bool async = false);
 
@@ -93,7 +98,11 @@ class ReviewScene {
   bool overlays_shown_ = false;
   std::vector<int> highlight_;    // the handle-to-be under the aim
   bool highlight_shown_ = false;  // its overlays are in the mesh
-  std::vector<float> positions_;  // the render positions last uploaded
+  size_t vertex_count_ = 0;       // #Vr
+  bool drawn_ = false;            // a snapshot's vertex data has been given to the renderer
+  // The renderer's zero-copy stream for the mesh (async scenes only; null: update_vertices copies). Written
+  // into by the converter's thread.
+  std::shared_ptr<renderer::VertexStream> stream_;
   double last_cpu_ms_ = 0.0;
   uint32_t legend_width_ = 960, legend_height_ = 540;
   bool legend_wanted_ = false;  // a window has asked for the legend (set_legend_window)
@@ -104,8 +113,8 @@ class ReviewScene {
     std::shared_ptr<const deform::Snapshot> snapshot;
     ReviewColour colour;
   };
-  // Last: its thread reads render_, rest_V_, F_ and scale_ (never changed after construction) and must stop
-  // before they go.
+  // Last: its thread reads render_, rest_V_, F_, scale_ and stream_ (never changed after construction) and
+  // must stop before they go (its results' leases of stream_ too: before the renderer goes).
   std::unique_ptr<NewestOnlyWorker<ConversionJob, SnapshotVertices>> converter_;
 };
 

@@ -2,6 +2,7 @@
 
 #include "pipelines.hpp"
 #include "pushpull/renderer/geometry.hpp"
+#include "pushpull/renderer/vk_check.hpp"
 
 #include <array>
 #include <cstring>
@@ -33,7 +34,8 @@ void check_size(const char* what, size_t got, size_t expected) {
 
 }  // namespace
 
-GpuMesh GpuMesh::create(const Context& context, const RenderMesh& mesh, bool streamed, uint32_t slots) {
+GpuMesh GpuMesh::create(const Context& context, const RenderMesh& mesh, bool streamed, uint32_t slots,
+                        uint32_t vertex_sets) {
   const size_t v = mesh.vertex_count();
   if (mesh.positions.size() % 3 != 0) throw std::invalid_argument("RenderMesh: positions is not #V*3 floats");
   if (mesh.indices.size() % 3 != 0) throw std::invalid_argument("RenderMesh: indices is not #T*3");
@@ -76,6 +78,23 @@ GpuMesh GpuMesh::create(const Context& context, const RenderMesh& mesh, bool str
     for (Staging& s : gpu.staging_)
       s.buffer = create_buffer(context, std::max<VkDeviceSize>(16, 10 * v * sizeof(float)),
                                VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
+    if (vertex_sets > 0 && v > 0) {
+      // Bound as vertex buffers and written by the CPU: only where that memory is also device local (else the
+      // GPU would read vertices over the bus every frame; the staging copies stay).
+      const VkMemoryPropertyFlags props = VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT |
+                                          VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
+                                          VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+      try {
+        std::vector<float*> bases;
+        for (uint32_t i = 0; i < vertex_sets; ++i) {
+          gpu.sets_.push_back(create_buffer(context, 7 * v * sizeof(float), vertex, props));
+          bases.push_back(static_cast<float*>(gpu.sets_.back().mapped));
+        }
+        gpu.stream_ = std::make_shared<VertexStream>(uint32_t(v), std::move(bases));
+      } catch (const VulkanError&) {  // no such memory type (or too little of it): the staging copies only
+        gpu.sets_.clear();
+      }
+    }
   }
   return gpu;
 }
@@ -156,10 +175,17 @@ uint64_t GpuMesh::record_pending_uploads(VkCommandBuffer cmd, uint32_t slot) {
 }
 
 void GpuMesh::bind(VkCommandBuffer cmd) const {
-  const std::array<VkBuffer, kBindingCount> buffers{positions_.buffer.get(), normals_.buffer.get(),
-                                                    uvs_.buffer.get(), scalars_.buffer.get(),
-                                                    overlays_.buffer.get()};
-  const std::array<VkDeviceSize, kBindingCount> offsets{};
+  std::array<VkBuffer, kBindingCount> buffers{positions_.buffer.get(), normals_.buffer.get(),
+                                              uvs_.buffer.get(), scalars_.buffer.get(),
+                                              overlays_.buffer.get()};
+  std::array<VkDeviceSize, kBindingCount> offsets{};
+  if (frame_set_ >= 0) {
+    const VkBuffer set = sets_[size_t(frame_set_)].buffer.get();
+    const VkDeviceSize v = vertex_count;
+    buffers[kPositions] = buffers[kNormals] = buffers[kScalars] = set;
+    offsets[kNormals] = 3 * v * sizeof(float);
+    offsets[kScalars] = 6 * v * sizeof(float);
+  }
   vkCmdBindVertexBuffers(cmd, 0, kBindingCount, buffers.data(), offsets.data());
   vkCmdBindIndexBuffer(cmd, indices_.buffer.get(), 0, VK_INDEX_TYPE_UINT32);
 }

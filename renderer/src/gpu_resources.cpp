@@ -30,6 +30,14 @@ UniqueCommandPool create_command_pool(const Context& context, VkCommandPoolCreat
 }
 
 Buffer create_buffer(const Context& context, VkDeviceSize size, VkBufferUsageFlags usage, bool host_visible) {
+  const VkMemoryPropertyFlags props =
+      host_visible ? VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT
+                   : VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
+  return create_buffer(context, size, usage, props);
+}
+
+Buffer create_buffer(const Context& context, VkDeviceSize size, VkBufferUsageFlags usage,
+                     VkMemoryPropertyFlags props) {
   VkDevice device = context.device();
   Buffer result;
   result.size = size;
@@ -44,12 +52,9 @@ Buffer create_buffer(const Context& context, VkDeviceSize size, VkBufferUsageFla
 
   VkMemoryRequirements requirements;
   vkGetBufferMemoryRequirements(device, buffer, &requirements);
-  const VkMemoryPropertyFlags props =
-      host_visible ? VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT
-                   : VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
   result.memory = allocate_memory(context, requirements, props);
   PP_VK_CHECK(vkBindBufferMemory(device, buffer, result.memory.get(), 0));
-  if (host_visible)
+  if (props & VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT)
     PP_VK_CHECK(vkMapMemory(device, result.memory.get(), 0, VK_WHOLE_SIZE, 0, &result.mapped));
   return result;
 }

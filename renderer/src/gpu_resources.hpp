@@ -19,6 +19,10 @@ struct Buffer {
 
 // host_visible: HOST_VISIBLE|HOST_COHERENT and mapped; otherwise DEVICE_LOCAL.
 Buffer create_buffer(const Context& context, VkDeviceSize size, VkBufferUsageFlags usage, bool host_visible);
+// With these memory properties; mapped when they include HOST_VISIBLE. Throws VulkanError when no memory
+// type has them.
+Buffer create_buffer(const Context& context, VkDeviceSize size, VkBufferUsageFlags usage,
+                     VkMemoryPropertyFlags properties);
 
 struct Image {
   UniqueImage image;

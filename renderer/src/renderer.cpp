@@ -351,7 +351,10 @@ MeshId Renderer::add_mesh(const RenderMesh& mesh, bool streamed) {
     if (sub.material >= static_cast<int>(r.materials.size()))
       throw std::invalid_argument("RenderMesh submesh refers to material " + std::to_string(sub.material) +
                                   " that was never added");
-  r.meshes.push_back(GpuMesh::create(r.context, mesh, streamed, static_cast<uint32_t>(r.slots.size())));
+  const uint32_t slots = static_cast<uint32_t>(r.slots.size());
+  // Sets: one per frame in flight (the one being built included), one published and waiting, two writers.
+  r.meshes.push_back(
+      GpuMesh::create(r.context, mesh, streamed, slots, r.options.zero_copy_streaming ? slots + 3 : 0));
   return static_cast<MeshId>(r.meshes.size() - 1);
 }
 
@@ -362,7 +365,16 @@ void Renderer::update_vertices(MeshId mesh, std::span<const float> positions, st
   if (mesh >= r.meshes.size()) throw std::invalid_argument("update_vertices: unknown mesh id");
   const uint32_t slot = r.slot_index();
   r.wait_slot(slot);  // the frame that used this staging slot N frames ago, not the one in flight
-  r.meshes[mesh].stage(slot, positions, normals, scalars, overlays);
+  GpuMesh& gpu = r.meshes[mesh];
+  gpu.stage(slot, positions, normals, scalars, overlays);
+  if (gpu.stream() && (!positions.empty() || !normals.empty() || !scalars.empty()))
+    gpu.stream()->detach(r.frame_index);  // newer than any set published: the mesh's own buffers again
+}
+
+std::shared_ptr<VertexStream> Renderer::vertex_stream(MeshId mesh) const {
+  impl_->assert_owner();
+  if (mesh >= impl_->meshes.size()) throw std::invalid_argument("vertex_stream: unknown mesh id");
+  return impl_->meshes[mesh].stream();
 }
 
 void Renderer::set_legend(std::optional<TextureRGBA8> legend, glm::vec4 rect) {
@@ -573,7 +585,9 @@ void Renderer::render_frame(std::span<const RenderPass> passes) {
   FrameSlot& slot = r.slots[slot_id];
   r.wait_slot(slot_id);
   // Every frame up to this slot's previous one has been waited for (each frame waits for its slot).
-  if (r.frame_index >= r.slots.size()) r.release_retired(r.frame_index - r.slots.size() + 1);
+  const uint64_t frames_finished = r.frame_index >= r.slots.size() ? r.frame_index - r.slots.size() + 1 : 0;
+  if (frames_finished > 0) r.release_retired(frames_finished);
+  for (GpuMesh& mesh : r.meshes) mesh.begin_frame(r.frame_index, frames_finished);  // the sets it draws
 
   std::array<VkCommandBufferSubmitInfo, kMaxPasses> cmd_infos{};
   std::array<VkSemaphoreSubmitInfo, kMaxPasses> wait_infos{}, signal_infos{};

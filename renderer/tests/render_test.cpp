@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
+#include <thread>
 #include <vector>
 
 namespace pushpull::renderer {
@@ -302,6 +304,125 @@ TEST(Renderer, StreamedPositionsMatchAStaticUploadOfTheSameMesh) {
     const ImageComparison cmp = compare_images(streamed_image, target.read_back(), 1);
     EXPECT_EQ(cmp.differing_pixels, 0u);
     testing::expect_matches_reference(streamed_image, "sheet_bump_displacement", 8, 64);
+  }
+  EXPECT_EQ(context.validation_message_count(), 0u);
+}
+
+// Zero copy: a producer thread writes shapes into the mesh's VertexStream and publishes them while the render
+// thread keeps frames in flight; the image after the last one equals a static upload of the same data, with
+// no upload recorded. Overlays given to update_vertices draw over the bound set; positions, normals and
+// scalars given to update_vertices win over a set published before them.
+TEST(Renderer, ZeroCopyStreamedSetsMatchAStaticUploadOfTheSameMesh) {
+  Context context = make_context();
+  {
+    Renderer renderer(context);
+    RenderMesh flat = make_sheet(64);
+    RenderMesh bent = flat;
+    for (size_t v = 0; v < bent.vertex_count(); ++v) {
+      const float x = bent.positions[3 * v], y = bent.positions[3 * v + 1];
+      bent.positions[3 * v + 2] = 0.4f * std::exp(-4.0f * (x * x + y * y));
+      bent.scalars[v] = bent.positions[3 * v + 2] / 0.4f;
+    }
+    bent.normals = compute_vertex_normals(bent.positions, bent.indices);
+    RenderMesh marked = bent;
+    marked.overlays.resize(marked.vertex_count());
+    for (size_t v = 0; v < marked.vertex_count(); ++v) {
+      const float x = marked.positions[3 * v];
+      marked.overlays[v] = {1.0f, x > 0.5f ? 1.0f : 0.0f, std::abs(x) < 0.2f ? 1.0f : 0.0f};
+    }
+    const MeshId streamed = renderer.add_mesh(flat, true);
+    const MeshId reference = renderer.add_mesh(bent, false);
+    const MeshId marked_reference = renderer.add_mesh(marked, false);
+    const std::shared_ptr<VertexStream> stream = renderer.vertex_stream(streamed);
+    ASSERT_NE(stream, nullptr);  // lavapipe: all its memory is device local and host visible
+    EXPECT_EQ(renderer.vertex_stream(reference), nullptr);
+    EXPECT_EQ(stream->vertex_count(), bent.vertex_count());
+    OffscreenTarget target(context, kSize, kSize);
+    View view = testing::sheet_camera();
+    view.view = glm::lookAt(glm::vec3(0.0f, -2.5f, 2.0f), glm::vec3(0.0f), glm::vec3(0.0f, 0.0f, 1.0f));
+    FrameSettings settings;
+    settings.color_mode = ColorMode::displacement;
+    settings.up = {0.0f, 0.0f, 1.0f};
+    auto draw_and_read = [&](MeshId mesh) {
+      const Draw draw{mesh, glm::mat4(1.0f)};
+      renderer.render(std::span(&view, 1), std::span(&draw, 1), settings, target.targets());
+      return target.read_back();
+    };
+    auto fill = [&](VertexStream::Lease& set, float s) {
+      std::vector<float> positions = bent.positions;
+      for (size_t v = 0; v < bent.vertex_count(); ++v) positions[3 * v + 2] *= s;
+      const std::vector<float> normals = compute_vertex_normals(positions, bent.indices);
+      std::copy(positions.begin(), positions.end(), set.positions().begin());
+      std::copy(normals.begin(), normals.end(), set.normals().begin());
+      for (size_t v = 0; v < bent.vertex_count(); ++v) set.scalars()[v] = bent.scalars[v] * s;
+    };
+
+    constexpr int kShapes = 40;  // the last is `bent`
+    std::atomic<bool> done{false};
+    std::thread producer([&] {
+      for (int k = 1; k <= kShapes; ++k) {
+        VertexStream::Lease set;
+        while (!(set = stream->acquire()))
+          std::this_thread::yield();  // every set in use: the next frame frees one
+        fill(set, float(k) / kShapes);
+        stream->publish(std::move(set));
+        if (k % 4 == 0) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+      }
+      done = true;
+    });
+    const Draw draw{streamed, glm::mat4(1.0f)};
+    int frames = 0;
+    while (!done || frames < 6) {  // frames in flight: render() does not wait for the GPU
+      renderer.render(std::span(&view, 1), std::span(&draw, 1), settings, target.targets());
+      EXPECT_EQ(renderer.last_upload_bytes(), 0u);
+      ++frames;
+    }
+    producer.join();
+    const TextureRGBA8 streamed_image = draw_and_read(streamed);
+    EXPECT_EQ(compare_images(streamed_image, draw_and_read(reference), 0).differing_pixels, 0u);
+    testing::expect_matches_reference(streamed_image, "sheet_bump_displacement", 8, 64);
+
+    // Sets in use go back once their frames are done; a lease dropped unpublished goes back at once.
+    std::vector<VertexStream::Lease> leases;
+    while (VertexStream::Lease set = stream->acquire()) leases.push_back(std::move(set));
+    EXPECT_GE(leases.size(), stream->set_count() - 2);  // the current set, maybe one retiring
+    const size_t free_sets = leases.size();
+    leases.clear();
+    while (VertexStream::Lease set = stream->acquire()) leases.push_back(std::move(set));
+    EXPECT_EQ(leases.size(), free_sets);
+    leases.clear();
+
+    // Overlays alone: drawn over the bound set.
+    renderer.update_vertices(streamed, {}, {}, {}, marked.overlays);
+    const TextureRGBA8 marked_image = draw_and_read(streamed);
+    EXPECT_EQ(renderer.last_upload_bytes(), 3u * marked.vertex_count() * sizeof(float));
+    EXPECT_EQ(compare_images(marked_image, draw_and_read(marked_reference), 0).differing_pixels, 0u);
+
+    // A flat set published, then update_vertices with the bent data: the later one (the mesh's own buffers).
+    VertexStream::Lease set = stream->acquire();
+    ASSERT_TRUE(set);
+    fill(set, 0.0f);
+    stream->publish(std::move(set));
+    renderer.update_vertices(streamed, bent.positions, bent.normals, bent.scalars);
+    EXPECT_EQ(compare_images(draw_and_read(streamed), marked_image, 0).differing_pixels, 0u);
+    // And a set published after it wins again.
+    set = stream->acquire();
+    ASSERT_TRUE(set);
+    fill(set, 0.5f);
+    stream->publish(std::move(set));
+    EXPECT_GT(compare_images(draw_and_read(streamed), marked_image, 8).differing_pixels, 100u);
+  }
+  EXPECT_EQ(context.validation_message_count(), 0u);
+}
+
+// A renderer without zero copy has no stream: the staging copies only.
+TEST(Renderer, ZeroCopyStreamingCanBeTurnedOff) {
+  Context context = make_context();
+  {
+    RendererOptions options;
+    options.zero_copy_streaming = false;
+    Renderer renderer(context, options);
+    EXPECT_EQ(renderer.vertex_stream(renderer.add_mesh(make_sheet(8), true)), nullptr);
   }
   EXPECT_EQ(context.validation_message_count(), 0u);
 }

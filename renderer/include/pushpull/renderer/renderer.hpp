@@ -13,6 +13,12 @@
 // to finish the frame that used that slot frames_in_flight frames ago, never for the current one);
 // render() records a copy into the device-local vertex buffer before drawing, behind a barrier that
 // waits for earlier frames' vertex reads (no CPU stall; the GPU serialises copy and previous draw).
+// Zero copy (VertexStream, vertex_stream()): where the device has memory that is both device local and host
+// visible (lavapipe, integrated GPUs, ReBAR), a streamed mesh also has a ring of vertex sets bound directly
+// as its positions, normals and scalars: a producer thread writes the next shape into a free set and
+// publishes it, each frame draws the newest published set, and nothing is copied on the frame's thread.
+// update_vertices() with positions, normals or scalars switches the mesh back to its own buffers (give all
+// three then); overlays alone leave the stream's sets bound.
 // Normals are recomputed on the CPU by the caller, on the thread that produced the positions
 // (compute_vertex_normals in geometry.hpp: O(#V + #T), measured 0.8 ms for 110K triangles on one
 // core, up to 7 ms on a loaded 2-core machine), or passed empty to keep the previous ones. A GPU
@@ -29,6 +35,7 @@
 
 #include "pushpull/renderer/context.hpp"
 #include "pushpull/renderer/types.hpp"
+#include "pushpull/renderer/vertex_stream.hpp"
 
 #include <vulkan/vulkan.h>
 #include <glm/glm.hpp>
@@ -96,6 +103,8 @@ struct RendererOptions {
   // Loop frames (render or render_frame calls) the CPU may run ahead of the GPU; each owns a staging slot.
   uint32_t frames_in_flight = 2;
   VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_4_BIT;  // MSAA, resolved into the targets
+  // Streamed meshes get a VertexStream where the memory allows it (false: the staging copies only).
+  bool zero_copy_streaming = true;
 };
 
 class Renderer {
@@ -119,6 +128,11 @@ class Renderer {
   // mismatch or a mesh not created streamed.
   void update_vertices(MeshId mesh, std::span<const float> positions, std::span<const float> normals = {},
                        std::span<const float> scalars = {}, std::span<const OverlayWeights> overlays = {});
+
+  // The zero-copy stream of a streamed mesh (see VertexStream), or null: not streamed, or the device has no
+  // memory both device local and host visible, or RendererOptions::zero_copy_streaming is off. Every Lease of
+  // it must be gone before the Renderer is destroyed.
+  [[nodiscard]] std::shared_ptr<VertexStream> vertex_stream(MeshId mesh) const;
 
   // A screen-space legend (e.g. make_displacement_legend) drawn in every view at rect (x0, y0, x1,
   // y1 in 0..1, y down); std::nullopt removes it.
