@@ -12,18 +12,18 @@ void add_review_command(CLI::App& root) {
   auto o = std::make_shared<ReviewCommandOptions>();
   CLI::App* cmd = root.add_subcommand(
       "review",
-      "Review a model in an OpenXR headset at life size: aim at the surface, hold the trigger, drag, "
-      "release.\n"
+      "Review a model in an OpenXR headset at life size: "
+      "aim at the surface, hold the trigger, drag, release.\n"
       "The model stands on the stage floor in front of you; the deformation runs off the frame loop.\n"
-      "Controls: trigger = push/pull; undo = X/A (touch), A (index), left menu (simple, vive, motion); redo "
-      "=\n"
-      "Y/B (touch), B (index), right menu (simple, vive, motion); menu / thumbstick click = next colour "
-      "map;\n"
-      "grip = grab and move the model (both grips: scale; undo while gripping: back to the start "
-      "placement);\n"
+      "Controls: trigger = push/pull; "
+      "undo = X/A (touch), A (index), left menu (simple, vive, motion); redo =\n"
+      "Y/B (touch), B (index), right menu (simple, vive, motion); "
+      "menu / thumbstick click = next colour map;\n"
+      "grip = grab and move the model "
+      "(both grips: scale; undo while gripping: back to the start placement);\n"
       "right thumbstick between drags: handle radius (up/down) and region (left/right).\n"
-      "Without a headset: XR_RUNTIME_JSON=build/xr/sim/pushpull_xr_sim.json runs it on the simulated "
-      "runtime.");
+      "Without a headset: "
+      "XR_RUNTIME_JSON=build/xr/sim/pushpull_xr_sim.json runs it on the simulated runtime.");
   cmd->add_option("model", o->model, "Model file: .gltf .glb .drc .off .obj .ply")->required();
   cmd->add_option("--method", o->method,
                   "Deformation method (asan, arap-s, arap-sr, arap-m, arap-n, sr-arap, arap-h, arap-sr-h)")
@@ -89,11 +89,9 @@ void add_review_command(CLI::App& root) {
            o->solver_idle = value == "idle";
            if (!o->solver_idle) o->solver_nice = std::stoi(value);
          },
-         "Headset: the solver threads' share of the cores, a niceness 0 (as the frame loop) to 19, or idle "
-         "(only "
-         "time no other thread wants: a waking frame takes the core at once, but a machine busy with other "
-         "work "
-         "starves previews and commits)")
+         "Headset: the solver threads' share of the cores, a niceness 0 (as the frame loop) to 19, or "
+         "idle (only time no other thread wants: a waking frame takes the core at once, but a machine "
+         "busy with other work starves previews and commits)")
       ->check(CLI::IsMember({"idle"}) | CLI::Range(0, 19))
       ->default_str("10");
   add_life_size_options(*cmd, o->life_size);

@@ -76,10 +76,10 @@ struct FrameStats {
   void print() const {
     auto ratio = [](double a, double b) { return b > 0.0 ? a / b : 0.0; };
     std::printf(
-        "frame time (xrBeginFrame .. xrEndFrame, CPU; the first %zu frames left out as warm-up): idle %.2f "
-        "ms "
-        "mean, %.2f median, %.2f p95 (%zu frames); solver running %.2f ms mean, %.2f median, %.2f p95 (%zu "
-        "frames); ratio %.3f of the means, %.3f of the medians\n",
+        "frame time (xrBeginFrame .. xrEndFrame, CPU; the first %zu frames left out as warm-up): "
+        "idle %.2f ms mean, %.2f median, %.2f p95 (%zu frames); "
+        "solver running %.2f ms mean, %.2f median, %.2f p95 (%zu frames); "
+        "ratio %.3f of the means, %.3f of the medians\n",
         kWarmUpFrames, mean(idle_ms), percentile(idle_ms, 0.5), percentile(idle_ms, 0.95), idle_ms.size(),
         mean(solving_ms), percentile(solving_ms, 0.5), percentile(solving_ms, 0.95), solving_ms.size(),
         ratio(mean(solving_ms), mean(idle_ms)), ratio(percentile(solving_ms, 0.5), percentile(idle_ms, 0.5)));
@@ -180,8 +180,8 @@ void run_review(const ReviewCommandOptions& o) {
     // Live: snapshots become vertex data on the scene's own thread (the frame thread only copies them). A
     // replay converts on this thread, so every drawn frame shows exactly the settled snapshot.
     ReviewScene scene(renderer, model, placement, colour, life.scale(), /*async=*/!o.settle_drawn_frames);
-    std::optional<EyeTargets>
-        eyes;  // the current session's swapchain images (made again after a lost session)
+    // The current session's swapchain images (made again after a lost session).
+    std::optional<EyeTargets> eyes;
     eyes.emplace(vk.device, xr.eye(0), xr.eye(1));
     CommitWatch commits;  // before the service: its worker calls into it until the service is destroyed
     deform::ServiceOptions service_options{commits.callback()};
@@ -233,8 +233,8 @@ void run_review(const ReviewCommandOptions& o) {
       if (const auto e = interaction.cancel()) log_event(*e);
       log.write({{"event", "lost"}});
       recorder.write_record("lost", t);
-      recorder.write_event_input(t,
-                                 "loss");  // as xr/sim's script event: a replay loses the session there too
+      // As xr/sim's script event: a replay loses the session there too.
+      recorder.write_event_input(t, "loss");
       if (!(o.reconnect_s > 0.0)) return false;
       std::printf("pushpull review: waiting up to %.0f s for the headset to come back\n", o.reconnect_s);
       std::fflush(stdout);
@@ -310,7 +310,7 @@ void run_review(const ReviewCommandOptions& o) {
         // The stage space moves (the reviewer recentred the view): hand positions jump, and a drag spanning
         // the jump would push it into the model; it is cancelled, the model stays as before it.
         if (xr.take_space_change()) {
-          recorder.write_runtime_event(t, "recenter");
+          recorder.write_event_input(t, "recenter");  // xr/sim raises it again in a replay
           if (interaction.dragging())
             if (const auto e = interaction.cancel()) log_event(*e);
         }
@@ -483,9 +483,8 @@ void run_review(const ReviewCommandOptions& o) {
           eye_views = {eye_view(frame.eyes[0]), eye_view(frame.eyes[1])};
           eye_targets = eyes->targets(left, right);
           renderer::FrameSettings eye_settings = scene.settings();
-          if (xr.blend_mode() !=
-              XR_ENVIRONMENT_BLEND_MODE_OPAQUE)  // see-through: the world is the background
-            eye_settings.clear_colour = {0.0f, 0.0f, 0.0f, 0.0f};
+          // See-through display: the world is the background.
+          if (xr.blend_mode() != XR_ENVIRONMENT_BLEND_MODE_OPAQUE) eye_settings.clear_colour = {0, 0, 0, 0};
           passes.push_back({eye_views, draws, eye_settings, &eye_targets, {}});
           rendered = true;
         }

@@ -32,10 +32,10 @@ struct ReviewCommandOptions {
   std::string out;
   std::string events;
   bool benchmark = false;
-  bool quiet =
-      false;  // no status lines on stdout (start, press/commit, wrote); errors and warnings still show
-  bool fixed_method =
-      false;  // the method stays `method` (keys and the menu do not change it; replay --method)
+  // No status lines on stdout (start, press/commit, wrote); errors and warnings still show.
+  bool quiet = false;
+  // The method stays `method` (keys and the menu do not change it; replay --method).
+  bool fixed_method = false;
   // The headset review's solver thread: this niceness (deform::ServiceOptions::worker_nice, 0-19), or the
   // idle scheduling class (worker_idle). --solver-priority: the niceness or "idle".
   bool solver_idle = false;

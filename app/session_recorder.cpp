@@ -268,10 +268,6 @@ void SessionRecorder::write_commit(double t, const CommitRecord& c) {
                 {"region_vertices", s.region ? s.region->size() : 0}});
 }
 
-void SessionRecorder::write_runtime_event(double t, const std::string& event) {
-  write_line({{"t", t}, {"event", event}});
-}
-
 void SessionRecorder::write_record(const std::string& kind, double t, json fields) {
   fields["record"] = kind;
   fields["time"] = t;

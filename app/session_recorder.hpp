@@ -85,8 +85,6 @@ class SessionRecorder {
   void write_drag(double t, const Eigen::Vector3d& d);
   // A commit the service finished: its index, hash and how the solve went.
   void write_commit(double t, const CommitRecord& commit);
-  // An event of the runtime a replay's simulated runtime raises again at t ("recenter": see xr/sim's script).
-  void write_runtime_event(double t, const std::string& event);
   // Any other derived record ("undo", "redo", "end", ...): `fields` gets "record" and "time".
   void write_record(const std::string& kind, double t, nlohmann::json fields = nlohmann::json::object());
 

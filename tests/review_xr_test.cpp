@@ -98,6 +98,26 @@ ReviewRun run_review(const fs::path& dir, const std::string& script, const std::
   return run;
 }
 
+// Pixels of an RGBA8 image for which predicate(r, g, b) holds.
+template <class Predicate>
+size_t count_pixels(const pushpull::renderer::TextureRGBA8& image, Predicate predicate) {
+  size_t n = 0;
+  for (size_t i = 0; i < image.pixels.size(); i += 4)
+    if (predicate(int(image.pixels[i]), int(image.pixels[i + 1]), int(image.pixels[i + 2]))) ++n;
+  return n;
+}
+
+// The left eye at t = 0.3 s (frame 9 at the tests' 30 Hz) of a review that only aims at the bonnet, with the
+// simulated runtime's extra settings `extra_env`; the run must end cleanly.
+pushpull::renderer::TextureRGBA8 left_eye_while_aiming(const fs::path& dir, const std::string& extra_env) {
+  const ReviewRun run = run_review(dir, script_start() + R"({"t":0.3,"event":"capture"}
+{"t":0.6,"event":"exit"}
+)",
+                                   "", extra_env);
+  EXPECT_EQ(run.result.status, 0) << run.result.output;
+  return pushpull::renderer::read_png(dir / "capture" / "frame_000009_left.png");
+}
+
 // `pushpull replay` of the session a test recorded to dir/session.jsonl reproduces its one commit.
 void expect_replays_with_one_commit(const fs::path& dir) {
   const auto replay = run_command(pushpull::testing::xr_sim_environment() + " " + PUSHPULL_EXECUTABLE +
@@ -308,17 +328,9 @@ TEST(ReviewXr, AHeadsetThatJoinsLateIsWaitedFor) {
 // A see-through display (the runtime offers only ADDITIVE blending): the eyes' background is black
 // (transparent there), not the studio grey that would cover the world; the model still shows.
 TEST(ReviewXr, ASeeThroughDisplayGetsABlackBackground) {
-  const fs::path dir = test_dir();
-  const ReviewRun run = run_review(dir, script_start() + R"({"t":0.3,"event":"capture"}
-{"t":0.6,"event":"exit"}
-)",
-                                   "", "PUSHPULL_XR_SIM_BLEND=additive");
-  ASSERT_EQ(run.result.status, 0) << run.result.output;
-  const auto image = pushpull::renderer::read_png(dir / "capture" / "frame_000009_left.png");
+  const auto image = left_eye_while_aiming(test_dir(), "PUSHPULL_XR_SIM_BLEND=additive");
   EXPECT_EQ(int(image.pixels[0]) + int(image.pixels[1]) + int(image.pixels[2]), 0);  // the top-left corner
-  size_t lit = 0;
-  for (size_t i = 0; i < image.pixels.size(); i += 4)
-    if (image.pixels[i] + image.pixels[i + 1] + image.pixels[i + 2] > 60) ++lit;
+  const size_t lit = count_pixels(image, [](int r, int g, int b) { return r + g + b > 60; });
   EXPECT_GT(lit, image.pixels.size() / 4 / 20);  // the bonnet
 }
 
@@ -326,20 +338,11 @@ TEST(ReviewXr, ASeeThroughDisplayGetsABlackBackground) {
 // gets frames: the eyes are drawn from the last located (here: a standing reviewer's) position, not left
 // black.
 TEST(ReviewXr, ViewsWithOrientationOnlyAreStillDrawn) {
-  const fs::path dir = test_dir();
-  const ReviewRun run = run_review(dir, script_start() + R"({"t":0.3,"event":"capture"}
-{"t":0.6,"event":"exit"}
-)",
-                                   "", "PUSHPULL_XR_SIM_ROTATION_ONLY=1");
-  ASSERT_EQ(run.result.status, 0) << run.result.output;
-  const auto image = pushpull::renderer::read_png(dir / "capture" / "frame_000009_left.png");
-  const uint8_t* bg = image.pixels.data();
-  size_t model = 0;
-  for (size_t i = 0; i < image.pixels.size(); i += 4)
-    if (std::abs(image.pixels[i] - bg[0]) + std::abs(image.pixels[i + 1] - bg[1]) +
-            std::abs(image.pixels[i + 2] - bg[2]) >
-        30)
-      ++model;
+  const auto image = left_eye_while_aiming(test_dir(), "PUSHPULL_XR_SIM_ROTATION_ONLY=1");
+  const int bg_r = image.pixels[0], bg_g = image.pixels[1], bg_b = image.pixels[2];
+  const size_t model = count_pixels(image, [&](int r, int g, int b) {
+    return std::abs(r - bg_r) + std::abs(g - bg_g) + std::abs(b - bg_b) > 30;
+  });
   EXPECT_GT(model, image.pixels.size() / 4 / 20);  // the bonnet, seen from 1.6 m
 }
 
@@ -517,11 +520,7 @@ TEST(ReviewXr, MenuPanelChoosesTheMethodOfTheNextPushPullAndReadoutsShow) {
   // Frame 9 (t = 0.3): aiming, the handle-to-be is magenta on the blue (undisplaced) bonnet and the readout
   // panel (near black) floats by the hand; frame 33 (t = 1.1): the open panel covers much more of the view.
   auto count = [&](const std::string& file, auto predicate) {
-    const auto image = pushpull::renderer::read_png(dir / "capture" / file);
-    size_t n = 0;
-    for (size_t i = 0; i < image.pixels.size(); i += 4)
-      if (predicate(int(image.pixels[i]), int(image.pixels[i + 1]), int(image.pixels[i + 2]))) ++n;
-    return n;
+    return count_pixels(pushpull::renderer::read_png(dir / "capture" / file), predicate);
   };
   auto dark = [](int r, int g, int b) { return r < 50 && g < 50 && b < 55; };  // the panels: linear 0.015
   auto magenta = [](int r, int g, int b) { return r > g + 80 && b > g + 80; };

@@ -120,9 +120,9 @@ int run_warm(const Problem& p, References& references) {
     const pd::DeformResult& reference = reference_of(p, method, references);
     auto mesh = std::make_shared<const pd::Mesh>(p.mesh);
     for (const double fraction : {0.9, 0.97, 0.995}) {
+      pd::Deformer deformer(mesh, p.roi, options);  // the previous request's solve, shared by both rows
+      const pd::DeformResult previous = deformer.solve(fraction * p.d);
       for (const bool hint : {false, true}) {
-        pd::Deformer deformer(mesh, p.roi, options);
-        const pd::DeformResult previous = deformer.solve(fraction * p.d);
         pd::ConstraintTargets targets = deformer.push_pull_targets(p.d);
         targets.initial_guess = previous.V;
         if (hint) targets.rate_hint = previous.contraction_rate;

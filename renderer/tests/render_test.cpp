@@ -46,6 +46,19 @@ View sphere_view() {
   return frame_bounds(b, camera, 1.0f);
 }
 
+// `flat` (a make_sheet) with a Gaussian bump 0.4 high at the centre, its scalars the height / 0.4 (0..1 for
+// the displacement map) and normals to match: a streamed shape's target.
+RenderMesh bump_on(const RenderMesh& flat) {
+  RenderMesh bent = flat;
+  for (size_t v = 0; v < bent.vertex_count(); ++v) {
+    const float x = bent.positions[3 * v], y = bent.positions[3 * v + 1];
+    bent.positions[3 * v + 2] = 0.4f * std::exp(-4.0f * (x * x + y * y));
+    bent.scalars[v] = bent.positions[3 * v + 2] / 0.4f;
+  }
+  bent.normals = compute_vertex_normals(bent.positions, bent.indices);
+  return bent;
+}
+
 Material red_paint() {
   Material m;
   m.base_colour = {0.5f, 0.02f, 0.02f, 1.0f};
@@ -270,13 +283,7 @@ TEST(Renderer, StreamedPositionsMatchAStaticUploadOfTheSameMesh) {
   {
     Renderer renderer(context);
     RenderMesh flat = make_sheet(64);
-    RenderMesh bent = flat;
-    for (size_t v = 0; v < bent.vertex_count(); ++v) {
-      const float x = bent.positions[3 * v], y = bent.positions[3 * v + 1];
-      bent.positions[3 * v + 2] = 0.4f * std::exp(-4.0f * (x * x + y * y));
-      bent.scalars[v] = bent.positions[3 * v + 2] / 0.4f;
-    }
-    bent.normals = compute_vertex_normals(bent.positions, bent.indices);
+    const RenderMesh bent = bump_on(flat);
     const MeshId streamed = renderer.add_mesh(flat, true);
     const MeshId reference = renderer.add_mesh(bent, false);
     OffscreenTarget target(context, kSize, kSize);
@@ -317,13 +324,7 @@ TEST(Renderer, ZeroCopyStreamedSetsMatchAStaticUploadOfTheSameMesh) {
   {
     Renderer renderer(context);
     RenderMesh flat = make_sheet(64);
-    RenderMesh bent = flat;
-    for (size_t v = 0; v < bent.vertex_count(); ++v) {
-      const float x = bent.positions[3 * v], y = bent.positions[3 * v + 1];
-      bent.positions[3 * v + 2] = 0.4f * std::exp(-4.0f * (x * x + y * y));
-      bent.scalars[v] = bent.positions[3 * v + 2] / 0.4f;
-    }
-    bent.normals = compute_vertex_normals(bent.positions, bent.indices);
+    const RenderMesh bent = bump_on(flat);
     RenderMesh marked = bent;
     marked.overlays.resize(marked.vertex_count());
     for (size_t v = 0; v < marked.vertex_count(); ++v) {

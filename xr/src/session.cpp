@@ -33,6 +33,22 @@ Fn instance_function(XrInstance instance, const char* name) {
   return reinterpret_cast<Fn>(f);
 }
 
+// xrGetSystem for a head-mounted display, asked again every 100 ms while the headset is not connected
+// (XR_ERROR_FORM_FACTOR_UNAVAILABLE, "temporarily unavailable") for up to wait_s seconds; returns the last
+// result.
+XrResult get_hmd_system(XrInstance instance, XrSystemId& system, double wait_s) {
+  const auto deadline =
+      std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                             std::chrono::duration<double>(std::max(wait_s, 0.0)));
+  XrSystemGetInfo info{XR_TYPE_SYSTEM_GET_INFO};
+  info.formFactor = XR_FORM_FACTOR_HEAD_MOUNTED_DISPLAY;
+  for (;;) {
+    const XrResult r = xrGetSystem(instance, &info, &system);
+    if (r != XR_ERROR_FORM_FACTOR_UNAVAILABLE || std::chrono::steady_clock::now() >= deadline) return r;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+}
+
 }  // namespace
 
 struct Session::Impl {
@@ -42,11 +58,9 @@ struct Session::Impl {
   XrSession session = XR_NULL_HANDLE;
   XrSpace stage = XR_NULL_HANDLE;
   bool stage_is_local = false;
-  bool space_changed = false;
+  bool space_changed = false;  // a REFERENCE_SPACE_CHANGE_PENDING for the space in use, not yet taken
   // The eyes' last located positions (stage), for frames whose views have orientation only.
-  std::array<XrVector3f, 2> last_eye_position{
-      {{-0.032f, 1.6f, 0.0f},
-       {0.032f, 1.6f, 0.0f}}};  // a REFERENCE_SPACE_CHANGE_PENDING for the space in use, not yet taken
+  std::array<XrVector3f, 2> last_eye_position{{{-0.032f, 1.6f, 0.0f}, {0.032f, 1.6f, 0.0f}}};
   std::vector<Swapchain> eyes;
   std::vector<XrViewConfigurationView> view_configs;
   XrEnvironmentBlendMode blend_mode = XR_ENVIRONMENT_BLEND_MODE_OPAQUE;
@@ -88,19 +102,12 @@ struct Session::Impl {
     XrInstanceProperties properties{XR_TYPE_INSTANCE_PROPERTIES};
     CHECK(xrGetInstanceProperties(instance, &properties));
     runtime_name = properties.runtimeName;
-    XrSystemGetInfo system_info{XR_TYPE_SYSTEM_GET_INFO};
-    system_info.formFactor = XR_FORM_FACTOR_HEAD_MOUNTED_DISPLAY;
-    XrResult r = xrGetSystem(instance, &system_info, &system);
+    XrResult r = get_hmd_system(instance, system, 0.0);
     if (r == XR_ERROR_FORM_FACTOR_UNAVAILABLE && options.headset_wait_s > 0.0) {
       std::fprintf(stderr,
                    "pushpull: the OpenXR runtime \"%s\" has no headset yet; waiting up to %.0f s for it\n",
                    runtime_name.c_str(), options.headset_wait_s);
-      const auto give_up =
-          std::chrono::steady_clock::now() + std::chrono::duration<double>(options.headset_wait_s);
-      while (r == XR_ERROR_FORM_FACTOR_UNAVAILABLE && std::chrono::steady_clock::now() < give_up) {
-        std::this_thread::sleep_for(std::chrono::milliseconds(100));
-        r = xrGetSystem(instance, &system_info, &system);
-      }
+      r = get_hmd_system(instance, system, options.headset_wait_s);
     }
     if (XR_FAILED(r))
       throw RuntimeUnavailable("no headset: the OpenXR runtime \"" + runtime_name + "\" (" +
@@ -481,22 +488,14 @@ bool Session::recreate_after_loss(double timeout_s) {
   if (s.session != XR_NULL_HANDLE) xrDestroySession(s.session);
   s.stage = XR_NULL_HANDLE;
   s.session = XR_NULL_HANDLE;
-  const auto deadline =
-      std::chrono::steady_clock::now() + std::chrono::duration<double>(std::max(timeout_s, 0.0));
-  XrSystemGetInfo system_info{XR_TYPE_SYSTEM_GET_INFO};
-  system_info.formFactor = XR_FORM_FACTOR_HEAD_MOUNTED_DISPLAY;
   XrSystemId system = XR_NULL_SYSTEM_ID;
-  for (;;) {
-    const XrResult r = xrGetSystem(s.instance, &system_info, &system);
-    if (XR_SUCCEEDED(r)) break;
-    if (r == XR_ERROR_INSTANCE_LOST) {
-      s.instance_lost = true;
-      return false;
-    }
-    if (r != XR_ERROR_FORM_FACTOR_UNAVAILABLE) check_xr(r, s.instance, "xrGetSystem", __FILE__, __LINE__);
-    if (std::chrono::steady_clock::now() >= deadline) return false;
-    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  const XrResult r = get_hmd_system(s.instance, system, timeout_s);
+  if (r == XR_ERROR_INSTANCE_LOST) {
+    s.instance_lost = true;
+    return false;
   }
+  if (r == XR_ERROR_FORM_FACTOR_UNAVAILABLE) return false;  // not back in time
+  if (XR_FAILED(r)) check_xr(r, s.instance, "xrGetSystem", __FILE__, __LINE__);
   if (system != s.system)
     throw XrError("the headset came back as another system (" + std::to_string(system) + ", was " +
                       std::to_string(s.system) + "): the Vulkan device belongs to the old one; start again",

@@ -25,6 +25,29 @@ XrPosef head_pose(const Session& s, XrTime time) {
   return head;
 }
 
+namespace {
+
+// A script that moves only the aim (or only the grip) moves the whole controller: the other pose of
+// `component`'s controller.
+std::string other_pose(const std::string& component) {
+  const bool aim = component.size() > 9 && component.compare(component.size() - 9, 9, "/aim/pose") == 0;
+  return top_level_path(component) + (aim ? "/input/grip/pose" : "/input/aim/pose");
+}
+
+// The components bound to an action space's action on its subaction path (all of them without one).
+template <class Visit>
+void for_each_bound(const Session& s, const Space& space, Visit visit) {
+  for (const std::string& bound : space.action->bound) {
+    if (space.subaction != XR_NULL_PATH) {
+      const std::string* sub = s.instance->path_string(space.subaction);
+      if (sub == nullptr || top_level_path(bound) != *sub) continue;
+    }
+    if (visit(bound)) return;
+  }
+}
+
+}  // namespace
+
 std::optional<XrPosef> device_pose(const Session& s, const std::string& component, XrTime time) {
   const std::string user = top_level_path(component);
   if (s.inactive_devices.count(user) != 0) return std::nullopt;
@@ -34,10 +57,7 @@ std::optional<XrPosef> device_pose(const Session& s, const std::string& componen
   if (s.instance->script) {
     const double t = s.script_time(time);
     if (const auto p = s.instance->script->pose_at(component, t)) return *p;
-    // A script that moves only the aim (or only the grip) moves the whole controller.
-    const bool aim = component.size() > 9 && component.compare(component.size() - 9, 9, "/aim/pose") == 0;
-    const std::string other = user + (aim ? "/input/grip/pose" : "/input/aim/pose");
-    if (const auto p = s.instance->script->pose_at(other, t)) return *p;
+    if (const auto p = s.instance->script->pose_at(other_pose(component), t)) return *p;
   }
   XrPosef hand = pose_identity();
   const float side = user == "/user/hand/left" ? -1.f : 1.f;
@@ -70,32 +90,24 @@ std::optional<XrPosef> space_in_stage(const Session& s, const Space& space, XrTi
   if (action == nullptr) return std::nullopt;  // its action was destroyed
   const auto state = action->states.find(space.subaction);
   if (state == action->states.end() || !state->second.active) return std::nullopt;
-  for (const std::string& bound : action->bound) {
-    if (space.subaction != XR_NULL_PATH) {
-      const std::string* sub = s.instance->path_string(space.subaction);
-      if (sub == nullptr || top_level_path(bound) != *sub) continue;
-    }
-    if (const auto p = device_pose(s, bound, time)) return pose_mul(*p, space.offset);
-  }
-  return std::nullopt;
+  std::optional<XrPosef> pose;
+  for_each_bound(s, space, [&](const std::string& bound) {
+    if (const auto p = device_pose(s, bound, time)) pose = pose_mul(*p, space.offset);
+    return pose.has_value();
+  });
+  return pose;
 }
 
 bool space_position_tracked(const Session& s, const Space& space, XrTime time) {
   if (!space.is_action_space || space.action == nullptr || !s.instance->script) return true;
   const double t = s.script_time(time);
-  for (const std::string& bound : space.action->bound) {
-    const std::string user = top_level_path(bound);
-    if (space.subaction != XR_NULL_PATH) {
-      const std::string* sub = s.instance->path_string(space.subaction);
-      if (sub == nullptr || user != *sub) continue;
-    }
-    if (const auto tracked = s.instance->script->tracked_at(bound, t)) return *tracked;
-    const bool aim = bound.size() > 9 && bound.compare(bound.size() - 9, 9, "/aim/pose") == 0;
-    if (const auto tracked =
-            s.instance->script->tracked_at(user + (aim ? "/input/grip/pose" : "/input/aim/pose"), t))
-      return *tracked;
-  }
-  return true;
+  std::optional<bool> tracked;
+  for_each_bound(s, space, [&](const std::string& bound) {
+    tracked = s.instance->script->tracked_at(bound, t);
+    if (!tracked) tracked = s.instance->script->tracked_at(other_pose(bound), t);
+    return tracked.has_value();
+  });
+  return tracked.value_or(true);
 }
 
 }  // namespace pushpull::xrsim

@@ -43,15 +43,18 @@ constexpr XrSystemId kSystemId = 1;
 //   PUSHPULL_XR_SIM_CAPTURE_EVERY     also capture every N frames (default 0: only at "capture" events)
 //   PUSHPULL_XR_SIM_PROFILE           interaction profile to make current (default: first suggested of
 //                                     khr/simple, oculus/touch, valve/index, htc/vive, microsoft/motion)
-//   PUSHPULL_XR_SIM_PACE              1: with an input script, xrWaitFrame still waits for the frame's moment
-//   on
-//                                     the real clock (a headset's pacing: the app idles between frames; for
-//                                     frame-time benchmarks); default 0: returns at once
+//   PUSHPULL_XR_SIM_PACE              1: with an input script, xrWaitFrame still waits for the frame's
+//                                     moment on the real clock (a headset's pacing: the app idles between
+//                                     frames; for frame-time benchmarks); default 0: returns at once
 //   PUSHPULL_XR_SIM_VK_DEVICE         substring of the Vulkan device name to use (default: a GPU, else
 //                                     lavapipe)
 //   PUSHPULL_XR_SIM_HAPTICS           JSON Lines file each haptic output is appended to
 //                                     ({"t": s, "path": ..., "duration_ns": .., "frequency": .., "amplitude":
 //                                     ..} or {"t": s, "path": ..., "stop": true}; t in script seconds)
+//   PUSHPULL_XR_SIM_HEADSET_AFTER_MS  the headset connects N ms after xrCreateInstance (xrGetSystem says
+//                                     XR_ERROR_FORM_FACTOR_UNAVAILABLE before; default 0)
+//   PUSHPULL_XR_SIM_BLEND             additive: a see-through display (only ADDITIVE blending; default
+//   OPAQUE) PUSHPULL_XR_SIM_ROTATION_ONLY     1: views carry orientation, not position (a 3-DoF headset)
 struct Config {
   uint32_t width = 1440;
   uint32_t height = 1600;
@@ -265,7 +268,7 @@ void destroy_swapchain(Swapchain* swapchain);
 // Session helpers shared by the areas (caller holds big_lock()).
 // Checks a session handle; returns XR_ERROR_HANDLE_INVALID when it is not a live session.
 XrResult get_session(XrSession handle, Session** out);
-// Runs the script events due at or before `now` (exit, loss, capture) and queues their state changes.
+// Runs the script events due at or before `now` (exit, loss, capture, recenter) and queues their events.
 void run_script_events(Session& session, XrTime now);
 // Starts the runtime-initiated or app-requested exit: steps the state down to STOPPING.
 void begin_exit(Session& session, XrTime now);
