@@ -191,9 +191,28 @@ void run_review(const ReviewCommandOptions& o) {
     ReviewInteraction interaction(service, *rest, placement, interaction_options);
     std::size_t next_method_change = 0;  // into o.method_changes
     bool commands_pending = false;       // a commit, undo or redo was issued and the service may still run it
+    bool holding = false;                // a press is held back (press_hold.hpp) ...
+    double hold_from = 0.0;              // ... since the frame at this time
+    long held_frames = 0;                // frames it has been held back
+    std::size_t next_hold = 0;           // replay: into o.press_holds
     long recording_rate_hz = 0;          // the headset's display rate, whole Hz (0 before the first frame)
     std::int64_t recording_frames = 0;   // frames the loop has read input for
     double t = 0.0;  // the recording's time of this frame (seconds; the simulated runtime's script clock)
+    // Whether the press held back since `from` goes through in this frame (t). Live: when the service is idle
+    // (never waiting). Replay: at the end of the recorded hold that began at `from`, else at once (a
+    // recording without holds: the loop of older versions waited there); it waits for the service then, as
+    // the recorded loop found it idle.
+    auto admit_press = [&](double from) {
+      if (!o.press_holds) return service.idle();
+      const double half_frame = 0.5 / double(std::max(1L, recording_rate_hz));
+      const std::vector<PressHold>& holds = *o.press_holds;
+      while (next_hold < holds.size() && holds[next_hold].until < from - half_frame) ++next_hold;
+      const bool recorded = next_hold < holds.size() && std::abs(holds[next_hold].from - from) < half_frame;
+      if (recorded && holds[next_hold].until > t + half_frame) return false;
+      if (recorded) ++next_hold;
+      service.wait_idle();
+      return true;
+    };
     auto take_commits = [&] {
       for (const CommitRecord& c : commits.take()) {
         recorder.write_commit(t, c);
@@ -361,13 +380,33 @@ void run_review(const ReviewCommandOptions& o) {
           for (auto& hand : hands) hand.trigger = 0.0f;
         }
         // A press while a commit, undo or redo is still being solved would hit the surface the reviewer no
-        // longer sees and depend on the solver's timing: it waits for them (a stall only then), so the same
-        // input gives the same commits and a replay reproduces them.
-        if (commands_pending && !interaction.dragging() &&
-            (hands[0].trigger > 0.0f || hands[1].trigger > 0.0f)) {
-          service.wait_idle();
-          commands_pending = false;
-          interaction.sync_committed(*service.latest());
+        // longer sees: it is held back (the triggers read as released) until the service is idle, and the
+        // frame goes on. The hold is recorded, so a replay holds the same press over the same frames.
+        {
+          const bool pressing =
+              !interaction.dragging() && (hands[0].trigger > 0.0f || hands[1].trigger > 0.0f);
+          if (commands_pending && pressing) {
+            if (!holding) hold_from = t;
+            holding = true;
+            if (admit_press(hold_from)) {
+              if (held_frames > 0) {
+                recorder.write_record("press held", t, {{"from", hold_from}, {"admitted", true}});
+                log.write({{"event", "press held"}, {"frames", held_frames}});
+              }
+              holding = false;
+              held_frames = 0;
+              commands_pending = false;
+              interaction.sync_committed(*service.latest());
+            } else {
+              ++held_frames;
+              for (auto& hand : hands) hand.trigger = 0.0f;
+            }
+          } else if (holding) {  // let go while held: nothing was pressed
+            if (held_frames > 0)
+              recorder.write_record("press held", t, {{"from", hold_from}, {"admitted", false}});
+            holding = false;
+            held_frames = 0;
+          }
         }
         // Input is ours only while focused (unfocused, every input reads as released): no gestures then.
         for (const InteractionEvent& e :

@@ -7,6 +7,7 @@
 
 #include "commit_watch.hpp"
 #include "life_size.hpp"
+#include "press_hold.hpp"
 
 #include <functional>
 #include <optional>
@@ -59,6 +60,11 @@ struct ReviewCommandOptions {
   // Headset loop (replay): method changes made with a key during the recorded session, (recording time s,
   // method name) in time order; each applies after the gesture of the frame at that time, as the key did.
   std::vector<std::pair<double, std::string>> method_changes;
+  // Headset loop (replay): the presses the recorded session held back (press_hold.hpp), in time order. Set:
+  // a press held back while solving is let through at exactly the recorded frame (the loop waits for the
+  // service there) and any other press at once (waiting too), as the recorded loop did. Unset (live): a press
+  // is held back until the service is idle, and no frame waits.
+  std::optional<std::vector<PressHold>> press_holds;
   // Headset loop: whether to draw the eyes of the frame at recording time t (s); empty: every frame. Frames
   // not drawn end without layers. `pushpull replay` draws only the frames the simulated runtime captures: the
   // loop computes the same either way, and a software rasterizer spends its time on the frames that are kept.

@@ -8,6 +8,8 @@
 //   {"record":"drag","time":0.53,"d":[..]}     {"record":"release","time":1.0,"p1":[..],"d":[..]}
 //   {"record":"commit","time":1.1,"index":1,"hash":"0x..","iterations":..,"converged":..}
 //   {"record":"undo","time":..} {"record":"redo","time":..} {"record":"profile","time":..,"profile":".."}
+//   {"record":"press held","time":1.2,"from":1.13,"admitted":true}   a press held back while solving
+//                                                                     (press_hold.hpp), ended at "time"
 //   {"record":"end","time":..,"commits":n,"hash":".."}
 //
 // Input lines carry "t" and an OpenXR path. t counts the loop's frames: frame n at n / rate (the "clock"

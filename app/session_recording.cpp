@@ -118,6 +118,13 @@ SessionRecording read_session_recording(const std::string& path) {
                            j["time"].is_number() && is_method_name(j["method"].get<std::string>());
         if (!valid) corrupted(path, number, "a method record needs \"time\" and a known \"method\"");
         r.method_changes.emplace_back(j["time"].get<double>(), j["method"].get<std::string>());
+      } else if (kind == "press held") {
+        const bool valid = j.contains("time") && j["time"].is_number() && j.contains("from") &&
+                           j["from"].is_number() && j.contains("admitted") && j["admitted"].is_boolean() &&
+                           j["from"].get<double>() <= j["time"].get<double>();
+        if (!valid)
+          corrupted(path, number, "a press held record needs \"from\" <= \"time\" and a boolean \"admitted\"");
+        r.press_holds.push_back({j["from"].get<double>(), j["time"].get<double>(), j["admitted"].get<bool>()});
       } else if (kind == "clock") {
         r.rate_hz = j.value("rate_hz", 0.0);
       } else if (kind == "profile" && r.profile.empty()) {

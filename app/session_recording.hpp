@@ -8,6 +8,8 @@
 // Thread-safety: plain values.
 #pragma once
 
+#include "press_hold.hpp"
+
 #include <nlohmann/json.hpp>
 
 #include <cstddef>
@@ -29,6 +31,7 @@ struct SessionRecording {
   std::vector<nlohmann::json> records;       // every derived record, in order, with "line" added
   std::vector<RecordedCommit> commits;       // the commit records, in commit order
   std::vector<std::pair<double, std::string>> method_changes;  // "method" records: (time s, method name), in order
+  std::vector<PressHold> press_holds;        // "press held" records, in order
   std::string script;                        // the complete lines before any cut, '\n'-terminated (for xr/sim)
   double last_input_time = 0.0;              // largest "t" of an input line (seconds)
   double rate_hz = 0.0;                      // display rate of the recorded session (0: unknown)

@@ -68,11 +68,14 @@ std::vector<nlohmann::json> records(const std::vector<nlohmann::json>& lines, co
   return out;
 }
 
-// Records kScript with `pushpull review --record dir/session.jsonl`.
+// Records kScript with `pushpull review --record dir/session.jsonl`, its frames paced in real time as a
+// headset's are: the second press comes 0.4 s after the first release, time enough for the commit to land
+// (unpaced, the loop's virtual clock outruns the solver, and the press is held back for the whole drag).
 fs::path record_session(const fs::path& dir) {
   std::ofstream(dir / "script.jsonl") << kScript;
   const auto r = run_command(sim_env() + " PUSHPULL_XR_SIM_INPUT=" + (dir / "script.jsonl").string() +
                              " PUSHPULL_XR_SIM_WIDTH=64 PUSHPULL_XR_SIM_HEIGHT=64 PUSHPULL_XR_SIM_RATE=30"
+                             " PUSHPULL_XR_SIM_PACE=1"
                              " PUSHPULL_XR_SIM_PROFILE=/interaction_profiles/oculus/touch_controller " +
                              PUSHPULL_EXECUTABLE + " review " + kHood + kPlacement + " --record " +
                              (dir / "session.jsonl").string());
@@ -280,6 +283,20 @@ TEST(ReplayXr, CorruptedLineIsNamedByItsNumber) {
   const auto r = replay(session, dir / "out", "--no-pictures");
   EXPECT_NE(r.status, 0) << r.output;
   EXPECT_NE(r.output.find(session.string() + ":12: corrupted line"), std::string::npos) << r.output;
+}
+
+TEST(ReplayXr, AMalformedPressHeldRecordIsNamedByItsLine) {
+  const fs::path dir = test_dir();
+  const fs::path session = record_session(dir);
+  auto lines = text_lines(session);
+  ASSERT_GT(lines.size(), 20u);
+  // A hold that ends before it begins.
+  lines.insert(lines.begin() + 11, R"({"record":"press held","time":0.5,"from":0.9,"admitted":true})");  // line 12
+  write_lines(session, lines);
+  const auto r = replay(session, dir / "out", "--no-pictures");
+  EXPECT_NE(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find(session.string() + ":12: corrupted line: a press held record needs"), std::string::npos)
+      << r.output;
 }
 
 // The bundled session (examples/sessions): the paper's three push/pulls on the bundled car replay with the

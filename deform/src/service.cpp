@@ -496,6 +496,11 @@ std::shared_ptr<const Snapshot> Service::wait_idle() const {
   return latest();
 }
 
+bool Service::idle() const {
+  std::lock_guard lock(impl_->mutex);
+  return !impl_->busy && impl_->commands.empty() && !impl_->pending;
+}
+
 std::uint64_t Service::revision() const {
   return impl_->revision.load();
 }

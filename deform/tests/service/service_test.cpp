@@ -89,6 +89,19 @@ TEST(Service, NullOrInvalidMeshIsRefused) {
   EXPECT_THROW(Service(std::make_shared<const Mesh>(bad)), MeshValidationError);
 }
 
+// idle() answers without waiting: false while a solve runs or waits, true once the worker has nothing to do.
+TEST(Service, IdleAnswersWithoutWaitingForTheSolve) {
+  const Problem p = make_problem(20);
+  Service service(p.mesh);
+  (void)service.wait_idle();
+  EXPECT_TRUE(service.idle());
+  service.submit(slow_request(p, {0.0, 0.0, 0.05}));  // 100,000 iterations unless stopped
+  EXPECT_FALSE(service.idle());                       // had it waited for the solve, it would say true
+  service.cancel();
+  (void)service.wait_idle();
+  EXPECT_TRUE(service.idle());
+}
+
 TEST(Service, FirstRequestEqualsTheDeformer) {
   const Problem p = make_problem(20);
   Service service(p.mesh);

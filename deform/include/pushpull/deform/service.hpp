@@ -171,6 +171,10 @@ class Service {
   [[nodiscard]] std::shared_ptr<const Snapshot> latest() const;
   // Blocks until the worker has nothing left to do (tests, replay). Returns the newest snapshot.
   std::shared_ptr<const Snapshot> wait_idle() const;
+  // Whether the worker has nothing left to do now (wait_idle() would return at once). Never waits for a solve
+  // (a short lock the worker holds only between steps); the answer may be stale as soon as it is returned
+  // if other threads submit.
+  [[nodiscard]] bool idle() const;
 
   // The committed revision (1 = the initial state; every commit, undo and redo moves it) and the history.
   // revision() reflects the commands the worker has run.
