@@ -123,6 +123,9 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
     orbit.azimuth_deg = 30.0f;
     orbit.elevation_deg = 25.0f;
     renderer::MirrorWindow::Pointer last{};
+    bool press_held = false;       // the left button is down, its press held back while the service solves
+    bool held_last_frame = false;  // press_held in the previous frame
+    long held_frames = 0;          // frames the press has been held back
     bool dragging = false;
     Eigen::Vector3d p0_stage = Eigen::Vector3d::Zero(), normal_stage = Eigen::Vector3d::UnitY();
     Eigen::Vector3d plane_normal = Eigen::Vector3d::UnitZ();
@@ -151,10 +154,23 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
       // p1 - p0 (the headset gesture's d is the hand's travel). It goes through the float aim pose the recording
       // keeps, and through the same gesture as a headset hand, so a replay of the recording on the simulated
       // runtime reproduces p0, d and every commit bit for bit.
-      if (p.left && !last.left && !interaction.dragging()) {
-        // As in the headset loop: a press hits the committed surface, never one a pending commit replaces.
-        service.wait_idle();
-        interaction.sync_committed(*service.latest());
+
+      // As in the headset loop: a press hits the committed surface, never one a pending commit, undo or redo
+      // replaces; while one is solving the press is held back (the trigger reads as released, and the window
+      // keeps drawing) and goes through, where the cursor then is, once the service is idle. The recording
+      // shows the trigger pressed from that frame, where a replay finds the service idle too.
+      if (!p.left) press_held = false, held_frames = 0;
+      if (p.left && (!last.left || press_held) && !interaction.dragging()) {
+        press_held = !service.idle();
+        if (press_held) {
+          ++held_frames;
+        } else {
+          if (held_frames > 0) log.write({{"event", "press held"}, {"frames", held_frames}});
+          held_frames = 0;
+          interaction.sync_committed(*service.latest());
+        }
+      }
+      if (p.left && !press_held && (!last.left || held_last_frame) && !interaction.dragging()) {
         if (const auto hit = interaction.hit(origin, direction)) {
           p0_stage = setup.placement.to_stage_point(hit->point);
           const Eigen::Matrix3d A = setup.placement.T_stage_model.topLeftCorner<3, 3>();
@@ -181,7 +197,8 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
       // trigger the left button, its A and B buttons undo and redo), C as the left menu button.
       std::array<xr::HandInput, 2> hands_in;
       hands_in[1].T_stage_aim = pointer_pose(hand_origin, hand_direction);
-      hands_in[1].trigger = p.left ? 1.0f : 0.0f;
+      hands_in[1].trigger = p.left && !press_held ? 1.0f : 0.0f;
+      held_last_frame = press_held;
       hands_in[1].undo_pressed = undo && !interaction.dragging();
       hands_in[1].redo_pressed = redo && !interaction.dragging();
       hands_in[0].menu_pressed = colour;

@@ -807,6 +807,57 @@ wait $pid
   EXPECT_GT((desktop_model.V - rest.V).cwiseAbs().maxCoeff(), 0.05);  // commit 1 moved the bonnet
 }
 
+// Desktop mode: a click while the last commit is still solving is held back (the window keeps drawing) and
+// goes through once it has landed; the recording replays with both commits.
+TEST(ReviewXrWindow, DesktopPressWhileACommitIsSolvingIsHeldBack) {
+  if (std::getenv("DISPLAY") == nullptr) GTEST_SKIP() << "no DISPLAY (ctest runs this under xvfb-run)";
+  ASSERT_EQ(run_command("command -v xdotool").status, 0) << "xdotool is missing (scripts/setup installs it)";
+  const fs::path dir = test_dir();
+  const fs::path recording = dir / "desktop.jsonl", bonnet = dir / "bonnet.off";
+  write_bonnet(bonnet, 121, 91);  // its commit takes about half a second to solve
+  // Drag, release, press again at once and hold still for 3 s before dragging on.
+  std::ofstream(dir / "drive.sh") << "set -e\n"
+                                  << PUSHPULL_EXECUTABLE << " review " << bonnet.string() << kPlacement
+                                  << " --desktop --mirror-size 400 300 --record " << recording.string()
+                                  << " --events " << (dir / "events.jsonl").string() << " > "
+                                  << (dir / "review.log").string() << " 2>&1 &\n"
+                                  << R"SH(pid=$!
+wid=$(timeout 60 xdotool search --sync --onlyvisible --name "pushpull review \(desktop\)" | head -1)
+sleep 1
+xdotool mousemove --window $wid 200 150; sleep 0.3; xdotool mousedown 1
+for i in 1 2 3 4 5 6 7 8; do xdotool mousemove_relative -- 3 0; sleep 0.05; done
+sleep 0.3; xdotool mouseup 1; xdotool mousedown 1; sleep 3
+for i in 1 2 3 4 5 6 7 8; do xdotool mousemove_relative -- 0 -3; sleep 0.05; done
+sleep 0.3; xdotool mouseup 1; sleep 1
+xdotool key Escape
+wait $pid
+)SH";
+  const auto driven = run_command("timeout 120 bash " + (dir / "drive.sh").string());
+  std::ifstream log_file(dir / "review.log");
+  const std::string log((std::istreambuf_iterator<char>(log_file)), std::istreambuf_iterator<char>());
+  ASSERT_EQ(driven.status, 0) << driven.output << log;
+  std::vector<nlohmann::json> held;
+  size_t commits = 0;
+  {
+    std::ifstream in(dir / "events.jsonl");
+    for (std::string line; std::getline(in, line);) {
+      const auto j = nlohmann::json::parse(line);
+      if (j.value("event", "") == "press held") held.push_back(j);
+      if (j.value("event", "") == "commit") ++commits;
+    }
+  }
+  ASSERT_EQ(commits, 2u) << log;
+  ASSERT_EQ(held.size(), 1u) << log;
+  EXPECT_GE(int(held[0].at("frames")), 1);
+
+  const auto replay = run_command(std::string(PUSHPULL_EXECUTABLE) + " replay " + recording.string() +
+                                  " --model " + bonnet.string() + " --out " + (dir / "replay").string() +
+                                  " --no-pictures");
+  ASSERT_EQ(replay.status, 0) << replay.output;
+  EXPECT_NE(replay.output.find("2 commit(s) replayed of 2 recorded; all checks passed"), std::string::npos)
+      << replay.output;
+}
+
 TEST(ReviewXr, WithoutARuntimeSaysWhichOneItLookedForAndHowToPointAtOne) {
   // No display either: the command ends with the message instead of opening the desktop window.
   const auto result =
