@@ -745,6 +745,19 @@ TEST(ReviewXrWindow, WithoutARuntimeItSaysSoAndOpensTheDesktopWindow) {
 // Desktop mode driven by real X input (xdotool under Xvfb): two mouse push/pulls with undo, redo and a method
 // change in between, recorded; `pushpull replay` of that recording on the simulated runtime reproduces every
 // commit bit for bit and ends with the same model.
+// The start of an xdotool script driving `pushpull review --desktop ... --record RECORDING &`: the window id
+// in $wid, and `await KIND N`, which waits (up to 60 s) until the recording holds N records of KIND, so the
+// script goes on when the loop has seen an input, not after a fixed sleep that a loaded machine outlasts.
+std::string desktop_drive_prelude(const fs::path& recording) {
+  return R"SH(pid=$!
+wid=$(timeout 60 xdotool search --sync --onlyvisible --name "pushpull review \(desktop\)" | head -1)
+await() { for i in $(seq 600); do
+    [ "$(grep -c "\"record\":\"$1\"" ")SH" +
+         recording.string() + R"SH(" || true)" -ge "$2" ] && return 0; sleep 0.1; done
+  echo "no $2 $1 record(s) after 60 s" >&2; return 1; }
+sleep 1)SH";
+}
+
 TEST(ReviewXrWindow, DesktopMouseGesturesCommitAndTheirRecordingReplaysBitIdentically) {
   if (std::getenv("DISPLAY") == nullptr) GTEST_SKIP() << "no DISPLAY (ctest runs this under xvfb-run)";
   ASSERT_EQ(run_command("command -v xdotool").status, 0) << "xdotool is missing (scripts/setup installs it)";
@@ -756,18 +769,17 @@ TEST(ReviewXrWindow, DesktopMouseGesturesCommitAndTheirRecordingReplaysBitIdenti
                                   << " --desktop --mirror-size 400 300 --record " << recording.string()
                                   << " --out " << out.string() << " > " << (dir / "review.log").string()
                                   << " 2>&1 &\n"
-                                  << R"SH(pid=$!
-wid=$(timeout 60 xdotool search --sync --onlyvisible --name "pushpull review \(desktop\)" | head -1)
-sleep 1
-drag() { xdotool mousemove --window $wid $1 $2; sleep 0.3; xdotool mousedown 1
+                                  << desktop_drive_prelude(recording) << R"SH(
+# drag X Y DX DY N: the N-th press at (X, Y), 8 steps of (DX, DY) pixels, release.
+drag() { xdotool mousemove --window $wid $1 $2; sleep 0.3; xdotool mousedown 1; await press $5
   for i in 1 2 3 4 5 6 7 8; do xdotool mousemove_relative -- $3 $4; sleep 0.05; done
-  sleep 0.3; xdotool mouseup 1; sleep 1; }
-key() { xdotool key $1; sleep 0.4; }  # to the window under the pointer (no window manager)
-drag 200 150 3 0
-key u; key r; key m; key m
-drag 150 170 0 -3
-key u
-key Escape
+  sleep 0.3; xdotool mouseup 1; await release $5; }
+key() { xdotool key $1; await $2 $3; }  # to the window under the pointer (no window manager)
+drag 200 150 3 0 1
+key u undo 1; key r redo 1; key m method 1; key m method 2
+drag 150 170 0 -3 2
+key u undo 2
+xdotool key Escape
 wait $pid
 )SH";
   const auto driven = run_command("timeout 120 bash " + (dir / "drive.sh").string());
@@ -814,21 +826,20 @@ TEST(ReviewXrWindow, DesktopPressWhileACommitIsSolvingIsHeldBack) {
   ASSERT_EQ(run_command("command -v xdotool").status, 0) << "xdotool is missing (scripts/setup installs it)";
   const fs::path dir = test_dir();
   const fs::path recording = dir / "desktop.jsonl", bonnet = dir / "bonnet.off";
-  write_bonnet(bonnet, 121, 91);  // its commit takes about half a second to solve
-  // Drag, release, press again at once and hold still for 3 s before dragging on.
+  write_bonnet(bonnet, 161, 121);  // 19K vertices: its commit takes over a second to solve
+  // Drag, release, press again as soon as the release is seen (the commit is solving), drag on once the
+  // press went through.
   std::ofstream(dir / "drive.sh") << "set -e\n"
                                   << PUSHPULL_EXECUTABLE << " review " << bonnet.string() << kPlacement
                                   << " --desktop --mirror-size 400 300 --record " << recording.string()
                                   << " --events " << (dir / "events.jsonl").string() << " > "
                                   << (dir / "review.log").string() << " 2>&1 &\n"
-                                  << R"SH(pid=$!
-wid=$(timeout 60 xdotool search --sync --onlyvisible --name "pushpull review \(desktop\)" | head -1)
-sleep 1
-xdotool mousemove --window $wid 200 150; sleep 0.3; xdotool mousedown 1
+                                  << desktop_drive_prelude(recording) << R"SH(
+xdotool mousemove --window $wid 200 150; sleep 0.3; xdotool mousedown 1; await press 1
 for i in 1 2 3 4 5 6 7 8; do xdotool mousemove_relative -- 3 0; sleep 0.05; done
-sleep 0.3; xdotool mouseup 1; xdotool mousedown 1; sleep 3
+sleep 0.3; xdotool mouseup 1; await release 1; xdotool mousedown 1; await press 2
 for i in 1 2 3 4 5 6 7 8; do xdotool mousemove_relative -- 0 -3; sleep 0.05; done
-sleep 0.3; xdotool mouseup 1; sleep 1
+sleep 0.3; xdotool mouseup 1; await release 2
 xdotool key Escape
 wait $pid
 )SH";
