@@ -247,7 +247,7 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
           // projection[1][1] = -1 / tan(fov_y / 2) (Vulkan's clip y points down).
           const double tan_half_fov = 1.0 / std::max(1e-6, std::abs(double(view.projection[1][1])));
           const double line = 0.035 * 2.0 * distance * tan_half_fov;
-          cursor_label.set_text(readout_lines(interaction, *snapshot, life));
+          cursor_label.set_text(readout_lines(interaction, *snapshot, life, press_held));
           cursor_label.place(*anchor + Eigen::Vector3d(0.0, 0.5 * line, 0.0), camera, line / 0.02);
           if (const auto d = cursor_label.draw()) draws.push_back(*d);
         }

@@ -21,9 +21,10 @@ Eigen::Vector3d to_eigen(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
 }  // namespace
 
 std::vector<std::string> readout_lines(const ReviewInteraction& interaction, const deform::Snapshot& s,
-                                       const LifeSize& life) {
+                                       const LifeSize& life, bool press_held) {
   char a[96], b[96];
   const std::string method(deform::method_name(interaction.method()));
+  if (!interaction.dragging() && press_held) return {"press held", "the last commit is solving"};
   if (!interaction.dragging()) {
     std::snprintf(a, sizeof a, "%s", method.c_str());
     std::snprintf(b, sizeof b, "handle %.0f mm  region %.0f mm", life.to_mm(interaction.handle_radius()),

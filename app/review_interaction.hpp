@@ -59,9 +59,10 @@ class ReviewInteraction;
 
 // The readout shown by the hand (headset) or the cursor (desktop): while dragging "|d| 70.7 mm" and the method,
 // iterations and solver state ("asan  10 it  converged", "solving", or the error); while aiming the method and
-// the handle and region sizes. Lengths in life-size mm.
+// the handle and region sizes, or with press_held (a press held back until the last commit lands) that it
+// waits. Lengths in life-size mm.
 [[nodiscard]] std::vector<std::string> readout_lines(const ReviewInteraction& interaction, const deform::Snapshot& s,
-                                                     const LifeSize& life);
+                                                     const LifeSize& life, bool press_held = false);
 
 // The method after `method` in deform::kAllMethods, the first after the last (a key cycles through them).
 [[nodiscard]] deform::Method next_method(deform::Method method);

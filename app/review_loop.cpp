@@ -483,7 +483,7 @@ void run_review(const ReviewCommandOptions& o) {
           static const std::vector<int> kNoVertices;
           scene.set_highlight(h >= 0 && !interaction.dragging() ? interaction.hover_handle(h) : kNoVertices);
           if (h >= 0 && hands[size_t(h)].tracked) {
-            hand_label.set_text(readout_lines(interaction, *snapshot, life));
+            hand_label.set_text(readout_lines(interaction, *snapshot, life, holding));
             hand_label.place(hands[size_t(h)].origin_stage + Eigen::Vector3d(0.0, 0.05, 0.0), head_position);
           } else {
             hand_label.hide();
