@@ -153,8 +153,8 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
       // The mouse as a controller: outside a drag the cursor ray; during a drag the ray of the press moved by
       // p1 - p0 (the headset gesture's d is the hand's travel). It goes through the float aim pose the recording
       // keeps, and through the same gesture as a headset hand, so a replay of the recording on the simulated
-      // runtime reproduces p0, d and every commit bit for bit.
-
+      // runtime reproduces p0, d and every commit bit for bit (the press below, the drag after it).
+      //
       // As in the headset loop: a press hits the committed surface, never one a pending commit, undo or redo
       // replaces; while one is solving the press is held back (the trigger reads as released, and the window
       // keeps drawing) and goes through, where the cursor then is, once the service is idle. The recording

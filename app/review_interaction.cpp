@@ -9,6 +9,9 @@
 namespace pushpull::app {
 namespace {
 
+// After a cancelled drag, a hand's trigger at or below this is seen released, and the hand may press again.
+constexpr float kRearmTrigger = 0.1f;
+
 xr::GestureOptions gesture_options(double scale) {
   xr::GestureOptions o;
   o.min_displacement_m = 1e-4 / scale;  // the gesture sees model units
@@ -88,6 +91,23 @@ void ReviewInteraction::submit(const Eigen::Vector3d& d) {
   submitted_ = true;
 }
 
+bool ReviewInteraction::would_press(const std::array<HandSample, 2>& hands) const {
+  if (dragging()) return false;
+  for (size_t h = 0; h < 2; ++h) {
+    const HandSample& in = hands[h];
+    if (armed_[h] && in.tracked && !gestures_[h].trigger_down() &&
+        in.trigger >= gestures_[h].options().press_threshold)
+      return true;
+  }
+  return false;
+}
+
+bool ReviewInteraction::trigger_held(const std::array<HandSample, 2>& hands) const {
+  for (size_t h = 0; h < 2; ++h)
+    if (hands[h].trigger > gestures_[h].options().release_threshold) return true;
+  return false;
+}
+
 std::vector<InteractionEvent> ReviewInteraction::update(const std::array<HandSample, 2>& hands) {
   std::vector<InteractionEvent> events;
   for (int h = 0; h < 2; ++h) {
@@ -95,7 +115,7 @@ std::vector<InteractionEvent> ReviewInteraction::update(const std::array<HandSam
     rays_[size_t(h)] = in.tracked ? std::optional(std::pair(in.origin_stage, in.direction_stage)) : std::nullopt;
     hovers_[size_t(h)] = in.tracked ? hit(in.origin_stage, in.direction_stage) : std::nullopt;
     // After a cancelled drag (session or focus lost) a trigger still held does not grab again: it must be let go.
-    if (!armed_[size_t(h)] && in.tracked && in.trigger <= 0.1f) armed_[size_t(h)] = true;
+    if (!armed_[size_t(h)] && in.tracked && in.trigger <= kRearmTrigger) armed_[size_t(h)] = true;
     // One drag at a time: the other hand's gesture sees a released trigger while one hand drags.
     xr::ControllerSample sample;
     sample.trigger = armed_[size_t(h)] && (drag_hand_ < 0 || drag_hand_ == h) ? in.trigger : 0.0f;

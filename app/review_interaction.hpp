@@ -94,6 +94,12 @@ class ReviewInteraction {
 
   [[nodiscard]] bool dragging() const { return drag_hand_ >= 0; }
   [[nodiscard]] int drag_hand() const { return drag_hand_; }
+  // Whether update(hands) would see a trigger go down: a tracked, armed hand whose trigger reaches the press
+  // threshold while its gesture's trigger is up, and no drag. Whether it grabs also depends on the aim; this
+  // does not look at the surface, so the answer depends on the input alone (not on when a commit landed).
+  [[nodiscard]] bool would_press(const std::array<HandSample, 2>& hands) const;
+  // Whether some hand's trigger is still above the release threshold (a press held back is kept).
+  [[nodiscard]] bool trigger_held(const std::array<HandSample, 2>& hands) const;
   // Where each hand's ray meets the committed surface (model space), for the cursor.
   [[nodiscard]] const std::array<std::optional<deform::TriangleBvh::Hit>, 2>& hovers() const { return hovers_; }
   [[nodiscard]] const Eigen::Vector3d& current_d() const { return last_d_; }

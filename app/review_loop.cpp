@@ -206,12 +206,26 @@ void run_review(const ReviewCommandOptions& o) {
       if (!o.press_holds) return service.idle();
       const double half_frame = 0.5 / double(std::max(1L, recording_rate_hz));
       const std::vector<PressHold>& holds = *o.press_holds;
-      while (next_hold < holds.size() && holds[next_hold].until < from - half_frame) ++next_hold;
+      for (; next_hold < holds.size() && holds[next_hold].until < from - half_frame; ++next_hold) {
+        if (holds[next_hold].admitted)  // the recorded press went through, this replay never held it
+          std::fprintf(stderr,
+                       "pushpull replay: warning: the press held from %.3f s to %.3f s in the recording was not "
+                       "reproduced (the replay diverged before it)\n",
+                       holds[next_hold].from, holds[next_hold].until);
+      }
       const bool recorded = next_hold < holds.size() && std::abs(holds[next_hold].from - from) < half_frame;
-      if (recorded && holds[next_hold].until > t + half_frame) return false;
+      // A recorded hold that did not go through holds until the trigger is let go (or the session ends).
+      if (recorded && (!holds[next_hold].admitted || holds[next_hold].until > t + half_frame)) return false;
       if (recorded) ++next_hold;
       service.wait_idle();
       return true;
+    };
+    // A hold that ends without its press going through (let go, session lost, review ended).
+    auto end_hold = [&] {
+      if (holding && held_frames > 0)
+        recorder.write_record("press held", t, {{"from", hold_from}, {"admitted", false}});
+      holding = false;
+      held_frames = 0;
     };
     auto take_commits = [&] {
       for (const CommitRecord& c : commits.take()) {
@@ -249,6 +263,7 @@ void run_review(const ReviewCommandOptions& o) {
     // when the headset is back. Returns whether it is back.
     auto resume_after_loss = [&]() -> bool {
       std::printf("pushpull review: the OpenXR session was lost\n");
+      end_hold();
       if (const auto e = interaction.cancel()) log_event(*e);
       log.write({{"event", "lost"}});
       recorder.write_record("lost", t);
@@ -382,10 +397,12 @@ void run_review(const ReviewCommandOptions& o) {
         // A press while a commit, undo or redo is still being solved would hit the surface the reviewer no
         // longer sees: it is held back (the triggers read as released) until the service is idle, and the
         // frame goes on. The hold is recorded, so a replay holds the same press over the same frames.
+        // The hold starts when a trigger goes down as a press (ReviewInteraction::would_press: the input alone
+        // decides, so a replay starts it at the same frame) and lasts while the trigger stays pulled.
         {
-          const bool pressing =
-              !interaction.dragging() && (hands[0].trigger > 0.0f || hands[1].trigger > 0.0f);
-          if (commands_pending && pressing) {
+          const bool pressing = holding ? interaction.trigger_held(hands)
+                                        : commands_pending && interaction.would_press(hands);
+          if (pressing) {
             if (!holding) hold_from = t;
             holding = true;
             if (admit_press(hold_from)) {
@@ -402,10 +419,7 @@ void run_review(const ReviewCommandOptions& o) {
               for (auto& hand : hands) hand.trigger = 0.0f;
             }
           } else if (holding) {  // let go while held: nothing was pressed
-            if (held_frames > 0)
-              recorder.write_record("press held", t, {{"from", hold_from}, {"admitted", false}});
-            holding = false;
-            held_frames = 0;
+            end_hold();
           }
         }
         // Input is ours only while focused (unfocused, every input reads as released): no gestures then.
@@ -579,6 +593,7 @@ void run_review(const ReviewCommandOptions& o) {
         session_lost = true;
       }
     }
+    end_hold();  // a press still held back when the review ended never went through
     renderer.wait_idle();
     service.wait_idle();
     take_commits();

@@ -121,9 +121,11 @@ SessionRecording read_session_recording(const std::string& path) {
       } else if (kind == "press held") {
         const bool valid = j.contains("time") && j["time"].is_number() && j.contains("from") &&
                            j["from"].is_number() && j.contains("admitted") && j["admitted"].is_boolean() &&
-                           j["from"].get<double>() <= j["time"].get<double>();
+                           j["from"].get<double>() < j["time"].get<double>();
         if (!valid)
-          corrupted(path, number, "a press held record needs \"from\" <= \"time\" and a boolean \"admitted\"");
+          corrupted(path, number, "a press held record needs \"from\" < \"time\" and a boolean \"admitted\"");
+        if (!r.press_holds.empty() && j["from"].get<double>() < r.press_holds.back().until)
+          corrupted(path, number, "a press held record begins before the previous one ended");
         r.press_holds.push_back({j["from"].get<double>(), j["time"].get<double>(), j["admitted"].get<bool>()});
       } else if (kind == "clock") {
         r.rate_hz = j.value("rate_hz", 0.0);

@@ -1,5 +1,6 @@
 // Reading a session recording (session_recorder.hpp) for `pushpull replay`: the header, the derived records
-// (press, release, commit with its hash, undo, redo, end) and the input script for xr/sim, checked line by line.
+// (press, release, commit with its hash, undo, redo, method, press held, end) and the input script for xr/sim,
+// checked line by line (method and press held records also steer the replay).
 //
 // Errors (CommandError, "FILE:LINE: problem"): a line that is not a JSON object, or a broken input line, in the
 // middle of the file (corrupted); a first line that is not a header. A recording cut short (the session crashed

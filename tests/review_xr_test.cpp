@@ -77,7 +77,8 @@ struct ReviewRun {
 };
 
 // `pushpull review` on the simulated runtime with a 256x256 eye, 30 Hz virtual clock, Touch controllers, of
-// `model` (hood.off or a bonnet of its shape) placed as hood.off.
+// `model` (hood.off or a bonnet of its shape) placed as hood.off. Unpaced unless extra_env sets
+// PUSHPULL_XR_SIM_PACE=1.
 ReviewRun run_review(const fs::path& dir, const std::string& script, const std::string& arguments,
                      const std::string& extra_env = "", const std::string& model = kHood) {
   std::ofstream(dir / "input.jsonl") << script;
@@ -436,14 +437,14 @@ void write_bonnet(const fs::path& path, int nx, int ny) {
 // same frames: both commits replay bit-identically.
 TEST(ReviewXr, APressWhileACommitIsSolvingIsHeldBackWithoutStallingTheFrame) {
   const fs::path dir = test_dir();
-  // Release at 1.5 s (frame 45 at 30 Hz); press again at frame 46 and hold; 100 mm further at 4.5 s, release
-  // at 5 s. The frames are paced in real time, as a headset's are (the solver gets 3 s to land the commit).
+  // Release at 1.5 s (frame 45 at 30 Hz); press again at frame 46 and hold; 100 mm further at 8 s, release
+  // at 8.5 s. The frames are paced in real time, as a headset's are (the solver gets 6 s to land the commit).
   const std::string second = R"({"t":1.4,"path":"/user/hand/right/input/trigger/value","value":1.0}
 {"t":1.5,"path":"/user/hand/right/input/trigger/value","value":0.0}
 {"t":1.5333333333,"path":"/user/hand/right/input/trigger/value","value":1.0}
-{"t":4.5,"path":"/user/hand/right/input/aim/pose","pose":{"p":[0.0123,0.5,-0.45],"q":[-0.70710678,0,0,0.70710678]}}
-{"t":5.0,"path":"/user/hand/right/input/trigger/value","value":0.0}
-{"t":5.2,"event":"exit"}
+{"t":8.0,"path":"/user/hand/right/input/aim/pose","pose":{"p":[0.0123,0.5,-0.45],"q":[-0.70710678,0,0,0.70710678]}}
+{"t":8.5,"path":"/user/hand/right/input/trigger/value","value":0.0}
+{"t":8.7,"event":"exit"}
 )";
   const fs::path recording = dir / "session.jsonl";
   // A bonnet of 11K vertices: its commit takes about half a second to solve, a frame at 256 px a few
@@ -467,6 +468,33 @@ TEST(ReviewXr, APressWhileACommitIsSolvingIsHeldBackWithoutStallingTheFrame) {
   EXPECT_NEAR(double(presses[1].at("time")), double(holds[0].at("time")), 1e-9);
 
   expect_replays_with_commits(dir, 2);
+}
+
+// A trigger only touched (below the press threshold) while the commit solves is not held; a press is, and
+// when the review ends before the commit lands the hold is recorded as not gone through; the replay holds
+// it too, and never presses.
+TEST(ReviewXr, APressStillHeldWhenTheReviewEndsIsRecordedAndReplaysWithoutAPress) {
+  const fs::path dir = test_dir();
+  const std::string tail = R"({"t":1.4,"path":"/user/hand/right/input/trigger/value","value":1.0}
+{"t":1.5,"path":"/user/hand/right/input/trigger/value","value":0.0}
+{"t":1.5333333333,"path":"/user/hand/right/input/trigger/value","value":0.3}
+{"t":1.6,"path":"/user/hand/right/input/trigger/value","value":1.0}
+{"t":1.8,"event":"exit"}
+)";
+  const fs::path recording = dir / "session.jsonl", bonnet = dir / "bonnet.off";
+  write_bonnet(bonnet, 161, 121);  // 19K vertices: the commit takes over a second, the review ends first
+  const ReviewRun run =
+      run_review(dir, script_start() + tail, "--record " + recording.string(), "PUSHPULL_XR_SIM_PACE=1",
+                 bonnet.string());
+  ASSERT_EQ(run.result.status, 0) << run.result.output;
+  for (const fs::path& file : {recording, dir / "replay" / "replay-session.jsonl"}) {
+    if (file != recording) expect_replays_with_commits(dir, 1);
+    const auto holds = recording_records(file, "press held");
+    ASSERT_EQ(holds.size(), 1u) << file;
+    EXPECT_NEAR(double(holds[0].at("from")), 1.6, 1e-6) << file;  // not at the touch (0.3)
+    EXPECT_FALSE(holds[0].at("admitted").get<bool>()) << file;
+    EXPECT_EQ(recording_records(file, "press").size(), 1u) << file;  // the first drag's only
+  }
 }
 
 // Grip moves the model: 0.5 m towards the reviewer; a later push/pull aimed at where the bonnet's front now
@@ -742,15 +770,13 @@ TEST(ReviewXrWindow, WithoutARuntimeItSaysSoAndOpensTheDesktopWindow) {
   EXPECT_EQ((written.V - rest.V).cwiseAbs().maxCoeff(), 0.0);  // nothing was pushed
 }
 
-// Desktop mode driven by real X input (xdotool under Xvfb): two mouse push/pulls with undo, redo and a method
-// change in between, recorded; `pushpull replay` of that recording on the simulated runtime reproduces every
-// commit bit for bit and ends with the same model.
 // The start of an xdotool script driving `pushpull review --desktop ... --record RECORDING &`: the window id
 // in $wid, and `await KIND N`, which waits (up to 60 s) until the recording holds N records of KIND, so the
 // script goes on when the loop has seen an input, not after a fixed sleep that a loaded machine outlasts.
 std::string desktop_drive_prelude(const fs::path& recording) {
   return R"SH(pid=$!
 wid=$(timeout 60 xdotool search --sync --onlyvisible --name "pushpull review \(desktop\)" | head -1)
+trap 'kill $pid 2>/dev/null || true' EXIT  # a failed step does not leave the review running
 await() { for i in $(seq 600); do
     [ "$(grep -c "\"record\":\"$1\"" ")SH" +
          recording.string() + R"SH(" || true)" -ge "$2" ] && return 0; sleep 0.1; done
@@ -758,6 +784,9 @@ await() { for i in $(seq 600); do
 sleep 1)SH";
 }
 
+// Desktop mode driven by real X input (xdotool under Xvfb): two mouse push/pulls with undo, redo and a method
+// change in between, recorded; `pushpull replay` of that recording on the simulated runtime reproduces every
+// commit bit for bit and ends with the same model.
 TEST(ReviewXrWindow, DesktopMouseGesturesCommitAndTheirRecordingReplaysBitIdentically) {
   if (std::getenv("DISPLAY") == nullptr) GTEST_SKIP() << "no DISPLAY (ctest runs this under xvfb-run)";
   ASSERT_EQ(run_command("command -v xdotool").status, 0) << "xdotool is missing (scripts/setup installs it)";
@@ -770,7 +799,8 @@ TEST(ReviewXrWindow, DesktopMouseGesturesCommitAndTheirRecordingReplaysBitIdenti
                                   << " --out " << out.string() << " > " << (dir / "review.log").string()
                                   << " 2>&1 &\n"
                                   << desktop_drive_prelude(recording) << R"SH(
-# drag X Y DX DY N: the N-th press at (X, Y), 8 steps of (DX, DY) pixels, release.
+# drag X Y DX DY N: the N-th press at (X, Y), 8 steps of (DX, DY) pixels, release (press and release awaited);
+# key K KIND N: key K, then await the N-th KIND record.
 drag() { xdotool mousemove --window $wid $1 $2; sleep 0.3; xdotool mousedown 1; await press $5
   for i in 1 2 3 4 5 6 7 8; do xdotool mousemove_relative -- $3 $4; sleep 0.05; done
   sleep 0.3; xdotool mouseup 1; await release $5; }

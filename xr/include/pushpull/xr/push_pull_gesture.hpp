@@ -47,6 +47,9 @@ class PushPullGesture {
   GestureEvent update(const ControllerSample& sample);
 
   [[nodiscard]] bool dragging() const { return dragging_; }
+  // Whether the trigger is down (pressed past press_threshold and not yet back to release_threshold).
+  [[nodiscard]] bool trigger_down() const { return trigger_down_; }
+  [[nodiscard]] const GestureOptions& options() const { return options_; }
 
  private:
   GestureOptions options_;
