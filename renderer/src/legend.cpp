@@ -41,6 +41,7 @@ struct Canvas {
     unsigned char colour[4] = {255, 255, 255, 255};
     std::vector<char> copy(s, s + std::char_traits<char>::length(s) + 1);
     const int n = stb_easy_font_print(0.0f, 0.0f, copy.data(), colour, quads.data(), int(quads.size()));
+    detail::lengthen_bars(copy.data(), 0.0f, quads.data(), n);
     for (int q = 0; q < n; ++q) {
       const float* v0 = reinterpret_cast<const float*>(quads.data() + (q * 4 + 0) * 16);
       const float* v2 = reinterpret_cast<const float*>(quads.data() + (q * 4 + 2) * 16);

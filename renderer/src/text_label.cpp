@@ -63,6 +63,7 @@ TextLabelLayout layout_text_label(std::span<const std::string> lines, float line
     text_width = std::max(text_width, float(stb_easy_font_width(text.data())));
     const int n = stb_easy_font_print(0.0f, float(l) * kFontLineHeight, text.data(), nullptr, buffer.data(),
                                       int(buffer.size() * sizeof(FontVertex)));
+    detail::lengthen_bars(text.data(), float(l) * kFontLineHeight, buffer.data(), n, int(sizeof(FontVertex)));
     glyphs.insert(glyphs.end(), buffer.begin(), buffer.begin() + 4 * n);
   }
   const float scale = line_height / kFontLineHeight;

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace {
@@ -46,7 +47,44 @@ TEST(TextLabel, LayoutSitsAboveTheOriginCentredAndScalesWithTheLineHeight) {
   EXPECT_NEAR(b.height, 2.0f * a.height, 1e-6f);
   // Unused glyph quads collapse to the origin.
   for (size_t v = 8 + 4 * size_t(a.quads); v < a.positions.size() / 3; ++v)
-    EXPECT_EQ(a.positions[3 * v] * a.positions[3 * v] + a.positions[3 * v + 1] * a.positions[3 * v + 1], 0.0f);
+    EXPECT_EQ(a.positions[3 * v] * a.positions[3 * v] + a.positions[3 * v + 1] * a.positions[3 * v + 1],
+              0.0f);
+}
+
+// stb_easy_font draws '|' as 'l'; the labels draw it taller, reaching below the baseline, so "|d|" does not
+// read "ldl".
+TEST(TextLabel, ABarIsTallerThanAnL) {
+  auto extent = [](const std::string& text) {
+    const std::vector<std::string> lines{text};
+    const TextLabelLayout layout = layout_text_label(lines, 0.012f, 10);
+    EXPECT_EQ(layout.quads, 1u) << text;
+    float lo = 1e9f, hi = -1e9f;
+    for (size_t v = 8; v < 12; ++v)
+      lo = std::min(lo, layout.positions[3 * v + 1]), hi = std::max(hi, layout.positions[3 * v + 1]);
+    return std::pair(lo, hi);
+  };
+  const auto [l_bottom, l_top] = extent("l");
+  const auto [bar_bottom, bar_top] = extent("|");
+  EXPECT_NEAR(l_top - l_bottom, 0.007f, 1e-6f);      // 7 font units of 0.001 (line height 12 units = 0.012)
+  EXPECT_NEAR(bar_top - bar_bottom, 0.010f, 1e-6f);  // 10: one above the cap line, two below the baseline
+  EXPECT_GT(bar_top, l_top);
+  EXPECT_LT(bar_bottom, l_bottom);
+}
+
+// In a line, every bar and only the bars: "|d| 2" has the quads of '|', 'd' (4), '|' and '2' (6).
+TEST(TextLabel, EveryBarOfALineAndNothingElseIsLengthened) {
+  const std::vector<std::string> with_bars{"|d| 2"}, with_ls{"ldl 2"};
+  const TextLabelLayout bars = layout_text_label(with_bars, 0.012f, 40),
+                        ls = layout_text_label(with_ls, 0.012f, 40);
+  ASSERT_EQ(bars.quads, ls.quads);
+  std::vector<uint32_t> differing;
+  for (uint32_t q = 0; q < bars.quads; ++q) {
+    bool same = true;
+    for (size_t k = 0; k < 12; ++k)
+      same = same && bars.positions[3 * 8 + 12 * size_t(q) + k] == ls.positions[3 * 8 + 12 * size_t(q) + k];
+    if (!same) differing.push_back(q);
+  }
+  EXPECT_EQ(differing, (std::vector<uint32_t>{0, 5}));  // the two bars; 'd' (1-4) and '2' (6-11) untouched
 }
 
 TEST(TextLabel, TextBeyondTheCapacityIsDroppedAndSaid) {
