@@ -6,6 +6,7 @@
 #include "review_interaction.hpp"
 #include "review_scene.hpp"
 #include "session_recorder.hpp"
+#include "window_hud.hpp"
 #include "world_label.hpp"
 
 #include "pushpull/deform/service.hpp"
@@ -119,6 +120,7 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
     // Orbit around the model's box on the stage, from the reviewer's side.
     const renderer::Bounds bounds = stage_bounds(setup.rest->V, setup.placement);
     WorldLabel cursor_label(renderer, 0.02f, 600);  // line height 0.02, scaled per frame
+    WorldLabel hud(renderer, 0.02f, 1200);          // the window's top-left corner
     renderer::OrbitCamera orbit;
     orbit.azimuth_deg = 30.0f;
     orbit.elevation_deg = 25.0f;
@@ -251,6 +253,12 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
           cursor_label.place(*anchor + Eigen::Vector3d(0.0, 0.5 * line, 0.0), camera, line / 0.02);
           if (const auto d = cursor_label.draw()) draws.push_back(*d);
         }
+        hud.set_text(window_hud_lines(
+            interaction, *snapshot, life, colour_name(scene.colour()), "",
+            {"left drag: push/pull (Shift: along the normal)  right drag: turn  wheel: zoom",
+             "U undo  R redo  C colour  M method  Esc end"}));
+        hud.place_top_left(view, 0.03);
+        if (const auto d = hud.draw()) draws.push_back(*d);
       }
       if (frame) {
         scene.set_legend_window(extent.width, extent.height);

@@ -13,6 +13,7 @@
 #include "session_recorder.hpp"
 #include "stage_placement.hpp"
 #include "vulkan_validation.hpp"
+#include "window_hud.hpp"
 #include "world_label.hpp"
 
 #include "pushpull/assets/model.hpp"
@@ -240,6 +241,8 @@ void run_review(const ReviewCommandOptions& o) {
     GrabPlacement grab(placement);
     ReviewMenu menu;
     WorldLabel hand_label(renderer, 0.02f, 600), menu_label(renderer, 0.03f, 1500);
+    WorldLabel mirror_hud(renderer, 0.02f, 1000);  // the mirror's own views only (a copied eye has none)
+    std::vector<renderer::Draw> mirror_draws;      // a frame's draws and the mirror's HUD (its pass spans them)
     Eigen::Vector3d head_position(0.0, 1.6, 0.0), head_forward(0.0, 0.0, -1.0);  // stage; the last seen
 
     // The model moved on the stage (grip): what aims at it, draws it and frames it follows.
@@ -556,8 +559,17 @@ void run_review(const ReviewCommandOptions& o) {
             const bool blit = rendered && mirror_view.mode() == MirrorMode::HeadsetEye &&
                               mirror->accepts_blit() &&
                               renderer.can_blit(eye_targets.format, mirror_target->targets.format);
-            renderer::RenderPass pass{std::span(&mirror_camera, 1), draws, scene.settings(/*legend=*/true),
-                                      &mirror_target->targets, mirror_target->sync};
+            mirror_draws = draws;
+            if (!blit) {
+              mirror_hud.set_text(window_hud_lines(interaction, *snapshot, life, colour_name(scene.colour()),
+                                                   mirror_mode_name(mirror_view.mode()),
+                                                   {"V view  C colour  M method  Esc end"}));
+              mirror_hud.place_top_left(mirror_camera, 0.03);
+              if (const auto d = mirror_hud.draw()) mirror_draws.push_back(*d);
+            }
+            renderer::RenderPass pass{std::span(&mirror_camera, 1), mirror_draws,
+                                      scene.settings(/*legend=*/true), &mirror_target->targets,
+                                      mirror_target->sync};
             if (blit) {
               pass.blit_from = &eye_targets.views[0];
               pass.blit_from_extent = eye_targets.extent;

@@ -3,6 +3,7 @@
 #include "pushpull/renderer/text_label.hpp"
 
 #include <Eigen/Geometry>
+#include <glm/matrix.hpp>
 
 #include <cmath>
 
@@ -29,6 +30,7 @@ void WorldLabel::set_text(const std::vector<std::string>& lines, int highlight_l
   const renderer::TextLabelLayout layout =
       renderer::layout_text_label(lines_, line_height_, max_quads_, highlight_line);
   height_ = layout.height;
+  width_ = layout.width;
   renderer_.update_vertices(mesh_, layout.positions);
 }
 
@@ -49,6 +51,27 @@ void WorldLabel::place(const Eigen::Vector3d& anchor, const Eigen::Vector3d& vie
     T[3][r] = float(anchor[r]);
   }
   T_stage_label_ = T;
+}
+
+void WorldLabel::place_top_left(const renderer::View& view, double line_fraction) {
+  // The projection of renderer/camera.cpp: eye looking down -Z, +Y up; p[1][1] = -1 / tan(fov_y / 2),
+  // p[0][0] = 1 / (aspect tan(fov_y / 2)), depth from p[2][2] = -f / (f - n) and p[3][2] = -f n / (f - n).
+  const glm::mat4& p = view.projection;
+  if (!(std::abs(p[1][1]) > 0.0f) || !(p[0][0] > 0.0f) || !(std::abs(p[2][2]) > 0.0f)) return;
+  const double n = double(p[3][2]) / double(p[2][2]);
+  const double f = std::abs(double(p[2][2]) + 1.0) > 1e-12 ? double(p[3][2]) / (double(p[2][2]) + 1.0) : 2.0 * n;
+  if (!(n > 0.0) || !(f > n)) return;
+  const double depth = n + 0.05 * (f - n);
+  const double half_height = depth / std::abs(double(p[1][1])), half_width = depth / double(p[0][0]);
+  const double scale = line_fraction * 2.0 * half_height / double(line_height_);
+  const double margin = 0.5 * line_fraction * 2.0 * half_height;
+  // The panel's bottom centre (its origin) in eye space, then to the world.
+  const glm::vec4 anchor_eye(float(-half_width + margin + 0.5 * scale * double(width_)),
+                             float(half_height - margin - scale * double(height_)), float(-depth), 1.0f);
+  const glm::mat4 T_world_eye = glm::inverse(view.view);
+  glm::mat4 T_eye_label{float(scale)};  // scale on the diagonal; the last column is the anchor
+  T_eye_label[3] = anchor_eye;
+  T_stage_label_ = T_world_eye * T_eye_label;
 }
 
 std::optional<renderer::Draw> WorldLabel::draw() const {

@@ -27,10 +27,15 @@ class WorldLabel {
   // Places the panel: its bottom centre at `anchor`, facing `viewer`, its text lines horizontal, `scale` times
   // its line height (a desktop camera far away: larger, to stay readable).
   void place(const Eigen::Vector3d& anchor, const Eigen::Vector3d& viewer, double scale = 1.0);
+  // Pins the panel to the top-left corner of `view`'s image (a window's heads-up display): parallel to the
+  // image plane, inside the view's depth range, a line `line_fraction` of the image height tall, half a line
+  // from the edges. Call per frame with the frame's view.
+  void place_top_left(const renderer::View& view, double line_fraction);
   void hide() { visible_ = false; }
   [[nodiscard]] bool visible() const { return visible_; }
   [[nodiscard]] const std::vector<std::string>& lines() const { return lines_; }
   [[nodiscard]] float height() const { return height_; }  // of the panel with the current text (metres)
+  [[nodiscard]] float width() const { return width_; }    // likewise
   // The draw while visible (on top, its own unlit materials).
   [[nodiscard]] std::optional<renderer::Draw> draw() const;
 
@@ -45,6 +50,7 @@ class WorldLabel {
   bool visible_ = false;
   glm::mat4 T_stage_label_{1.0f};
   float height_ = 0.0f;
+  float width_ = 0.0f;
 };
 
 }  // namespace pushpull::app

@@ -483,9 +483,8 @@ TEST(ReviewXr, APressStillHeldWhenTheReviewEndsIsRecordedAndReplaysWithoutAPress
 )";
   const fs::path recording = dir / "session.jsonl", bonnet = dir / "bonnet.off";
   write_bonnet(bonnet, 161, 121);  // 19K vertices: the commit takes over a second, the review ends first
-  const ReviewRun run =
-      run_review(dir, script_start() + tail, "--record " + recording.string(), "PUSHPULL_XR_SIM_PACE=1",
-                 bonnet.string());
+  const ReviewRun run = run_review(dir, script_start() + tail, "--record " + recording.string(),
+                                   "PUSHPULL_XR_SIM_PACE=1", bonnet.string());
   ASSERT_EQ(run.result.status, 0) << run.result.output;
   for (const fs::path& file : {recording, dir / "replay" / "replay-session.jsonl"}) {
     if (file != recording) expect_replays_with_commits(dir, 1);
@@ -770,6 +769,70 @@ TEST(ReviewXrWindow, WithoutARuntimeItSaysSoAndOpensTheDesktopWindow) {
   EXPECT_EQ((written.V - rest.V).cwiseAbs().maxCoeff(), 0.0);  // nothing was pushed
 }
 
+// Pixels of the box [0, w) x [0, h) of a screen dump (windows sit at the origin of Xvfb's screen: no window
+// manager): how many are the HUD panel's near-black and how many its light glyphs.
+std::pair<int, int> hud_pixels(const ScreenShot& screen, int w, int h) {
+  int dark = 0, light = 0;
+  for (int y = 0; y < std::min(h, screen.height); ++y)
+    for (int x = 0; x < std::min(w, screen.width); ++x) {
+      const uint8_t* p = &screen.rgb[3 * (size_t(y) * size_t(screen.width) + size_t(x))];
+      if (std::max({p[0], p[1], p[2]}) < 50) ++dark;
+      if (std::min({p[0], p[1], p[2]}) > 180) ++light;
+    }
+  return {dark, light};
+}
+
+// The supervisor's mirror window shows a HUD (method, |d|, iterations, state, colour map, view, keys) in its
+// top-left corner in its own views (not over the copied eye), and so does the desktop window.
+TEST(ReviewXrWindow, MirrorAndDesktopWindowsShowTheHudInTheirTopLeftCorner) {
+  if (std::getenv("DISPLAY") == nullptr) GTEST_SKIP() << "no DISPLAY (ctest runs this under xvfb-run)";
+  ASSERT_EQ(run_command("command -v xwd").status, 0) << "xwd is missing (scripts/setup installs x11-apps)";
+  ASSERT_EQ(run_command("command -v xdotool").status, 0) << "xdotool is missing (scripts/setup installs it)";
+  const fs::path dir = test_dir();
+  std::ofstream(dir / "input.jsonl") << script_start() << R"({"t":60.0,"event":"exit"}
+)";
+  const std::string env =
+      pushpull::testing::xr_sim_environment() + " PUSHPULL_XR_SIM_INPUT=" + (dir / "input.jsonl").string() +
+      " PUSHPULL_XR_SIM_WIDTH=128 PUSHPULL_XR_SIM_HEIGHT=128 PUSHPULL_XR_SIM_RATE=30"
+      " PUSHPULL_XR_SIM_PACE=1 PUSHPULL_XR_SIM_PROFILE=/interaction_profiles/oculus/touch_controller";
+  // Headset eye (the default), then V twice: free orbit; then the desktop window.
+  std::ofstream(dir / "drive.sh") << "set -e\n"
+                                  << env << " " << PUSHPULL_EXECUTABLE << " review " << kHood << kPlacement
+                                  << " --mirror --mirror-size 400 300 > " << (dir / "mirror.log").string()
+                                  << " 2>&1 &\n"
+                                  << R"SH(pid=$!
+trap 'kill $pid 2>/dev/null || true' EXIT
+wid=$(timeout 60 xdotool search --sync --onlyvisible --name "pushpull review" | head -1)
+sleep 2; xwd -root -silent > )SH" << (dir / "eye.xwd").string()
+                                  << R"SH(
+xdotool mousemove --window $wid 200 150; xdotool key V; sleep 0.5; xdotool key V; sleep 2
+xwd -root -silent > )SH" << (dir / "orbit.xwd").string()
+                                  << R"SH(
+xdotool key Escape; wait $pid
+)SH" << PUSHPULL_EXECUTABLE << " review "
+                                  << kHood << kPlacement << " --desktop --mirror-size 400 300 > "
+                                  << (dir / "desktop.log").string() << " 2>&1 &\n"
+                                  << R"SH(pid=$!
+wid=$(timeout 60 xdotool search --sync --onlyvisible --name "pushpull review \(desktop\)" | head -1)
+sleep 2; xwd -root -silent > )SH" << (dir / "desktop.xwd").string()
+                                  << R"SH(
+xdotool mousemove --window $wid 200 150; xdotool key Escape; wait $pid
+)SH";
+  const auto driven = run_command("timeout 120 bash " + (dir / "drive.sh").string());
+  ASSERT_EQ(driven.status, 0) << driven.output;
+  // The HUD's three or four lines at 3% of 300 px: a panel about 160 x 40 px from the corner.
+  const auto [eye_dark, eye_light] = hud_pixels(read_xwd(dir / "eye.xwd"), 140, 30);
+  const auto [orbit_dark, orbit_light] = hud_pixels(read_xwd(dir / "orbit.xwd"), 140, 30);
+  const auto [desktop_dark, desktop_light] = hud_pixels(read_xwd(dir / "desktop.xwd"), 140, 30);
+  std::printf("HUD box (140 x 30 px): dark/light pixels: eye copy %d/%d, orbit %d/%d, desktop %d/%d\n",
+              eye_dark, eye_light, orbit_dark, orbit_light, desktop_dark, desktop_light);
+  EXPECT_LT(eye_dark, 140 * 30 / 10);  // the copied eye has no HUD
+  EXPECT_GT(orbit_dark, 140 * 30 / 2);
+  EXPECT_GT(orbit_light, 100);
+  EXPECT_GT(desktop_dark, 140 * 30 / 2);
+  EXPECT_GT(desktop_light, 100);
+}
+
 // The start of an xdotool script driving `pushpull review --desktop ... --record RECORDING &`: the window id
 // in $wid, and `await KIND N`, which waits (up to 60 s) until the recording holds N records of KIND, so the
 // script goes on when the loop has seen an input, not after a fixed sleep that a loaded machine outlasts.
@@ -891,9 +954,9 @@ wait $pid
   ASSERT_EQ(held.size(), 1u) << log;
   EXPECT_GE(int(held[0].at("frames")), 1);
 
-  const auto replay = run_command(std::string(PUSHPULL_EXECUTABLE) + " replay " + recording.string() +
-                                  " --model " + bonnet.string() + " --out " + (dir / "replay").string() +
-                                  " --no-pictures");
+  const auto replay =
+      run_command(std::string(PUSHPULL_EXECUTABLE) + " replay " + recording.string() + " --model " +
+                  bonnet.string() + " --out " + (dir / "replay").string() + " --no-pictures");
   ASSERT_EQ(replay.status, 0) << replay.output;
   EXPECT_NE(replay.output.find("2 commit(s) replayed of 2 recorded; all checks passed"), std::string::npos)
       << replay.output;

@@ -1,0 +1,30 @@
+#include "window_hud.hpp"
+
+#include <cstdio>
+
+namespace pushpull::app {
+
+std::vector<std::string> window_hud_lines(const ReviewInteraction& interaction,
+                                          const deform::Snapshot& snapshot, const LifeSize& life,
+                                          const std::string& colour, const std::string& view_mode,
+                                          const std::vector<std::string>& keys) {
+  const std::string method(deform::method_name(interaction.method()));
+  char state[160];
+  if (snapshot.kind == deform::Snapshot::Kind::Error) {
+    std::snprintf(state, sizeof state, "%s  error", method.c_str());
+  } else if (interaction.dragging()) {
+    std::snprintf(state, sizeof state, "%s  |d| %.1f mm  %d it  %s", method.c_str(),
+                  life.to_mm(interaction.current_d().norm()), snapshot.iteration,
+                  snapshot.final ? (snapshot.converged ? "converged" : "not converged") : "solving");
+  } else if (!snapshot.final) {
+    std::snprintf(state, sizeof state, "%s  solving  %d it", method.c_str(), snapshot.iteration);
+  } else {
+    std::snprintf(state, sizeof state, "%s  ready", method.c_str());
+  }
+  std::vector<std::string> lines{state,
+                                 "colour: " + colour + (view_mode.empty() ? "" : "   view: " + view_mode)};
+  lines.insert(lines.end(), keys.begin(), keys.end());
+  return lines;
+}
+
+}  // namespace pushpull::app

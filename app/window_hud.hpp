@@ -1,0 +1,27 @@
+// The heads-up display of the supervisor's mirror window and of the desktop window: lines of text pinned to
+// the window's top-left corner (WorldLabel::place_top_left) with the method, the drag's |d| in life-size mm,
+// the solver's iterations and state, the colour map, the mirror's view mode and the keys. The window title
+// carries the same state; the HUD keeps it in view on a full-screen window or a projector. Thread-safety:
+// plain functions.
+#pragma once
+
+#include "life_size.hpp"
+#include "review_interaction.hpp"
+
+#include "pushpull/deform/service.hpp"
+
+#include <string>
+#include <vector>
+
+namespace pushpull::app {
+
+// Line 1: "asan  |d| 70.7 mm  30 it  converged" while dragging, "asan  solving  12 it" while a commit, undo
+// or redo is solved, else "asan  ready"; line 2: "colour: displacement" and, when view_mode is not empty, "
+// view: <view_mode>"; then `keys`, one line each.
+[[nodiscard]] std::vector<std::string> window_hud_lines(const ReviewInteraction& interaction,
+                                                        const deform::Snapshot& snapshot,
+                                                        const LifeSize& life, const std::string& colour,
+                                                        const std::string& view_mode,
+                                                        const std::vector<std::string>& keys);
+
+}  // namespace pushpull::app
