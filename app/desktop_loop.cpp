@@ -125,9 +125,7 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
     orbit.azimuth_deg = 30.0f;
     orbit.elevation_deg = 25.0f;
     renderer::MirrorWindow::Pointer last{};
-    bool press_held = false;       // the left button is down, its press held back while the service solves
-    bool held_last_frame = false;  // press_held in the previous frame
-    long held_frames = 0;          // frames the press has been held back
+    long held_frames = 0;  // frames the left button's press has been held back while the service solves
     bool dragging = false;
     Eigen::Vector3d p0_stage = Eigen::Vector3d::Zero(), normal_stage = Eigen::Vector3d::UnitY();
     Eigen::Vector3d plane_normal = Eigen::Vector3d::UnitZ();
@@ -161,18 +159,19 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
       // replaces; while one is solving the press is held back (the trigger reads as released, and the window
       // keeps drawing) and goes through, where the cursor then is, once the service is idle. The recording
       // shows the trigger pressed from that frame, where a replay finds the service idle too.
-      if (!p.left) press_held = false, held_frames = 0;
-      if (p.left && (!last.left || press_held) && !interaction.dragging()) {
-        press_held = !service.idle();
-        if (press_held) {
+      if (!p.left) held_frames = 0;
+      bool press = false;  // the trigger goes down this frame
+      if (p.left && (!last.left || held_frames > 0) && !interaction.dragging()) {
+        if (!service.idle()) {
           ++held_frames;
         } else {
           if (held_frames > 0) log.write({{"event", "press held"}, {"frames", held_frames}});
           held_frames = 0;
           interaction.sync_committed(*service.latest());
+          press = true;
         }
       }
-      if (p.left && !press_held && (!last.left || held_last_frame) && !interaction.dragging()) {
+      if (press) {
         if (const auto hit = interaction.hit(origin, direction)) {
           p0_stage = setup.placement.to_stage_point(hit->point);
           const Eigen::Matrix3d A = setup.placement.T_stage_model.topLeftCorner<3, 3>();
@@ -199,8 +198,7 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
       // trigger the left button, its A and B buttons undo and redo), C as the left menu button.
       std::array<xr::HandInput, 2> hands_in;
       hands_in[1].T_stage_aim = pointer_pose(hand_origin, hand_direction);
-      hands_in[1].trigger = p.left && !press_held ? 1.0f : 0.0f;
-      held_last_frame = press_held;
+      hands_in[1].trigger = p.left && held_frames == 0 ? 1.0f : 0.0f;
       hands_in[1].undo_pressed = undo && !interaction.dragging();
       hands_in[1].redo_pressed = redo && !interaction.dragging();
       hands_in[0].menu_pressed = colour;
@@ -249,7 +247,7 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
           // projection[1][1] = -1 / tan(fov_y / 2) (Vulkan's clip y points down).
           const double tan_half_fov = 1.0 / std::max(1e-6, std::abs(double(view.projection[1][1])));
           const double line = 0.035 * 2.0 * distance * tan_half_fov;
-          cursor_label.set_text(readout_lines(interaction, *snapshot, life, press_held));
+          cursor_label.set_text(readout_lines(interaction, *snapshot, life, held_frames > 0));
           cursor_label.place(*anchor + Eigen::Vector3d(0.0, 0.5 * line, 0.0), camera, line / 0.02);
           if (const auto d = cursor_label.draw()) draws.push_back(*d);
         }

@@ -38,8 +38,12 @@ std::vector<std::string> readout_lines(const ReviewInteraction& interaction, con
   if (s.kind == deform::Snapshot::Kind::Error)
     return {a, method + "  error: " + s.error.substr(0, 40)};
   std::snprintf(b, sizeof b, "%s  %d it  %s", method.c_str(), s.iteration,
-                s.final ? (s.converged ? "converged" : "not converged") : "solving");
+                solver_state(s));
   return {a, b};
+}
+
+const char* solver_state(const deform::Snapshot& s) {
+  return s.final ? (s.converged ? "converged" : "not converged") : "solving";
 }
 
 deform::Method next_method(deform::Method method) {

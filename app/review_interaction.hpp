@@ -64,6 +64,10 @@ class ReviewInteraction;
 [[nodiscard]] std::vector<std::string> readout_lines(const ReviewInteraction& interaction, const deform::Snapshot& s,
                                                      const LifeSize& life, bool press_held = false);
 
+// The solver's state in a snapshot, as the readouts say it: "solving" until it is final, then "converged" or
+// "not converged".
+[[nodiscard]] const char* solver_state(const deform::Snapshot& s);
+
 // The method after `method` in deform::kAllMethods, the first after the last (a key cycles through them).
 [[nodiscard]] deform::Method next_method(deform::Method method);
 

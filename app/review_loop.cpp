@@ -192,9 +192,8 @@ void run_review(const ReviewCommandOptions& o) {
     ReviewInteraction interaction(service, *rest, placement, interaction_options);
     std::size_t next_method_change = 0;  // into o.method_changes
     bool commands_pending = false;       // a commit, undo or redo was issued and the service may still run it
-    bool holding = false;                // a press is held back (press_hold.hpp) ...
-    double hold_from = 0.0;              // ... since the frame at this time
-    long held_frames = 0;                // frames it has been held back
+    long held_frames = 0;                // frames a press has been held back (press_hold.hpp); 0: none held
+    double hold_from = 0.0;              // the frame it has been held since
     std::size_t next_hold = 0;           // replay: into o.press_holds
     long recording_rate_hz = 0;          // the headset's display rate, whole Hz (0 before the first frame)
     std::int64_t recording_frames = 0;   // frames the loop has read input for
@@ -223,9 +222,7 @@ void run_review(const ReviewCommandOptions& o) {
     };
     // A hold that ends without its press going through (let go, session lost, review ended).
     auto end_hold = [&] {
-      if (holding && held_frames > 0)
-        recorder.write_record("press held", t, {{"from", hold_from}, {"admitted", false}});
-      holding = false;
+      if (held_frames > 0) recorder.write_record("press held", t, {{"from", hold_from}, {"admitted", false}});
       held_frames = 0;
     };
     auto take_commits = [&] {
@@ -403,17 +400,15 @@ void run_review(const ReviewCommandOptions& o) {
         // The hold starts when a trigger goes down as a press (ReviewInteraction::would_press: the input alone
         // decides, so a replay starts it at the same frame) and lasts while the trigger stays pulled.
         {
-          const bool pressing = holding ? interaction.trigger_held(hands)
-                                        : commands_pending && interaction.would_press(hands);
+          const bool pressing = held_frames > 0 ? interaction.trigger_held(hands)
+                                                : commands_pending && interaction.would_press(hands);
           if (pressing) {
-            if (!holding) hold_from = t;
-            holding = true;
+            if (held_frames == 0) hold_from = t;
             if (admit_press(hold_from)) {
               if (held_frames > 0) {
                 recorder.write_record("press held", t, {{"from", hold_from}, {"admitted", true}});
                 log.write({{"event", "press held"}, {"frames", held_frames}});
               }
-              holding = false;
               held_frames = 0;
               commands_pending = false;
               interaction.sync_committed(*service.latest());
@@ -421,7 +416,7 @@ void run_review(const ReviewCommandOptions& o) {
               ++held_frames;
               for (auto& hand : hands) hand.trigger = 0.0f;
             }
-          } else if (holding) {  // let go while held: nothing was pressed
+          } else {  // let go while held (if held): nothing was pressed
             end_hold();
           }
         }
@@ -500,7 +495,7 @@ void run_review(const ReviewCommandOptions& o) {
           static const std::vector<int> kNoVertices;
           scene.set_highlight(h >= 0 && !interaction.dragging() ? interaction.hover_handle(h) : kNoVertices);
           if (h >= 0 && hands[size_t(h)].tracked) {
-            hand_label.set_text(readout_lines(interaction, *snapshot, life, holding));
+            hand_label.set_text(readout_lines(interaction, *snapshot, life, held_frames > 0));
             hand_label.place(hands[size_t(h)].origin_stage + Eigen::Vector3d(0.0, 0.05, 0.0), head_position);
           } else {
             hand_label.hide();
@@ -554,8 +549,8 @@ void run_review(const ReviewCommandOptions& o) {
           if (mirror_target) {
             const VkExtent2D e = mirror_target->targets.extent;
             mirror_camera = mirror_view.update(*last_eyes, dt, float(e.width) / float(e.height));
-            // Headset-eye mode shows the left eye as drawn (a copy, no second drawing); the other modes draw
-            // their own view, with the colour-map legend.
+            // Headset-eye mode shows the left eye as drawn (a copy, no second drawing, nothing over it); the
+            // other modes draw their own view, with the colour-map legend and the HUD.
             const bool blit = rendered && mirror_view.mode() == MirrorMode::HeadsetEye &&
                               mirror->accepts_blit() &&
                               renderer.can_blit(eye_targets.format, mirror_target->targets.format);

@@ -14,8 +14,7 @@ std::vector<std::string> window_hud_lines(const ReviewInteraction& interaction,
     std::snprintf(state, sizeof state, "%s  error", method.c_str());
   } else if (interaction.dragging()) {
     std::snprintf(state, sizeof state, "%s  |d| %.1f mm  %d it  %s", method.c_str(),
-                  life.to_mm(interaction.current_d().norm()), snapshot.iteration,
-                  snapshot.final ? (snapshot.converged ? "converged" : "not converged") : "solving");
+                  life.to_mm(interaction.current_d().norm()), snapshot.iteration, solver_state(snapshot));
   } else if (!snapshot.final) {
     std::snprintf(state, sizeof state, "%s  solving  %d it", method.c_str(), snapshot.iteration);
   } else {

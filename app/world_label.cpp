@@ -59,7 +59,8 @@ void WorldLabel::place_top_left(const renderer::View& view, double line_fraction
   const glm::mat4& p = view.projection;
   if (!(std::abs(p[1][1]) > 0.0f) || !(p[0][0] > 0.0f) || !(std::abs(p[2][2]) > 0.0f)) return;
   const double n = double(p[3][2]) / double(p[2][2]);
-  const double f = std::abs(double(p[2][2]) + 1.0) > 1e-12 ? double(p[3][2]) / (double(p[2][2]) + 1.0) : 2.0 * n;
+  const double f =
+      std::abs(double(p[2][2]) + 1.0) > 1e-12 ? double(p[3][2]) / (double(p[2][2]) + 1.0) : 2.0 * n;
   if (!(n > 0.0) || !(f > n)) return;
   const double depth = n + 0.05 * (f - n);
   const double half_height = depth / std::abs(double(p[1][1])), half_width = depth / double(p[0][0]);

@@ -120,11 +120,12 @@ pushpull::renderer::TextureRGBA8 left_eye_while_aiming(const fs::path& dir, cons
   return pushpull::renderer::read_png(dir / "capture" / "frame_000009_left.png");
 }
 
-// `pushpull replay` of the session a test recorded to dir/session.jsonl reproduces its `commits` commits.
-void expect_replays_with_commits(const fs::path& dir, int commits = 1) {
+// `pushpull replay` of a session a test recorded (into the folder beside it, "replay", with `extra` options)
+// reproduces its `commits` commits.
+void expect_replays_with_commits(const fs::path& recording, int commits = 1, const std::string& extra = "") {
   const auto replay = run_command(pushpull::testing::xr_sim_environment() + " " + PUSHPULL_EXECUTABLE +
-                                  " replay " + (dir / "session.jsonl").string() + " --out " +
-                                  (dir / "replay").string() + " --no-pictures");
+                                  " replay " + recording.string() + " --out " +
+                                  (recording.parent_path() / "replay").string() + " --no-pictures" + extra);
   ASSERT_EQ(replay.status, 0) << replay.output;
   const std::string n = std::to_string(commits);
   EXPECT_NE(replay.output.find(n + " commit(s) replayed of " + n + " recorded; all checks passed"),
@@ -132,16 +133,30 @@ void expect_replays_with_commits(const fs::path& dir, int commits = 1) {
       << replay.output;
 }
 
-// The records of one kind in a session recording.
-std::vector<nlohmann::json> recording_records(const fs::path& recording, const std::string& kind) {
+// The lines of a JSON Lines file whose `key` is `value`: a session recording's records of one kind
+// ("record"), an event log's events ("event").
+std::vector<nlohmann::json> lines_where(const fs::path& file, const std::string& key,
+                                        const std::string& value) {
   std::vector<nlohmann::json> out;
-  std::ifstream in(recording);
+  std::ifstream in(file);
   for (std::string line; std::getline(in, line);) {
     if (line.empty()) continue;
     nlohmann::json j = nlohmann::json::parse(line);
-    if (j.value("record", "") == kind) out.push_back(std::move(j));
+    if (j.value(key, "") == value) out.push_back(std::move(j));
   }
   return out;
+}
+std::vector<nlohmann::json> recording_records(const fs::path& recording, const std::string& kind) {
+  return lines_where(recording, "record", kind);
+}
+
+// Runs the test's dir/drive.sh (an xdotool script, at most 120 s): its status, and its output followed by
+// dir/review.log (what the review it started printed).
+pushpull::testing::CommandResult run_drive_script(const fs::path& dir) {
+  auto result = run_command("timeout 120 bash " + (dir / "drive.sh").string());
+  std::ifstream log(dir / "review.log");
+  result.output.append(std::istreambuf_iterator<char>(log), std::istreambuf_iterator<char>());
+  return result;
 }
 
 std::string number(double v) {
@@ -264,7 +279,7 @@ TEST(ReviewXr, LostSessionComesBackAndTheReviewGoesOnAndReplays) {
   const auto d = run.of("commit")[0].at("d");
   EXPECT_NEAR(double(d[1]), -0.1, 1e-6);
 
-  expect_replays_with_commits(dir);
+  expect_replays_with_commits(dir / "session.jsonl");
 
   const ReviewRun ended = run_review(dir, script, "--reconnect 0");
   ASSERT_EQ(ended.result.status, 0) << ended.result.output;
@@ -302,7 +317,7 @@ TEST(ReviewXr, AControllerOutOfTrackingHoldsTheDragWhereItWasLastSeen) {
   const auto d = run.of("commit")[0].at("d");
   EXPECT_NEAR(double(d[1]), -0.05, 1e-6) << run.result.output;  // 50 mm, not 250
 
-  expect_replays_with_commits(dir);
+  expect_replays_with_commits(dir / "session.jsonl");
 }
 
 // The reviewer recentres the view mid-drag (the runtime announces a change of the stage space): stage
@@ -321,7 +336,7 @@ TEST(ReviewXr, RecentringMidDragCancelsTheDrag) {
   ASSERT_EQ(run.of("commit").size(), 1u) << run.result.output;  // the second drag only
   EXPECT_NEAR(double(run.of("commit")[0].at("d")[1]), -0.1, 1e-6);
 
-  expect_replays_with_commits(dir);
+  expect_replays_with_commits(dir / "session.jsonl");
 }
 
 // A runtime whose headset joins a moment after start (streaming runtimes: XR_ERROR_FORM_FACTOR_UNAVAILABLE
@@ -467,7 +482,7 @@ TEST(ReviewXr, APressWhileACommitIsSolvingIsHeldBackWithoutStallingTheFrame) {
   ASSERT_EQ(presses.size(), 2u);
   EXPECT_NEAR(double(presses[1].at("time")), double(holds[0].at("time")), 1e-9);
 
-  expect_replays_with_commits(dir, 2);
+  expect_replays_with_commits(recording, 2);
 }
 
 // A trigger only touched (below the press threshold) while the commit solves is not held; a press is, and
@@ -487,7 +502,7 @@ TEST(ReviewXr, APressStillHeldWhenTheReviewEndsIsRecordedAndReplaysWithoutAPress
                                    "PUSHPULL_XR_SIM_PACE=1", bonnet.string());
   ASSERT_EQ(run.result.status, 0) << run.result.output;
   for (const fs::path& file : {recording, dir / "replay" / "replay-session.jsonl"}) {
-    if (file != recording) expect_replays_with_commits(dir, 1);
+    if (file != recording) expect_replays_with_commits(recording, 1);
     const auto holds = recording_records(file, "press held");
     ASSERT_EQ(holds.size(), 1u) << file;
     EXPECT_NEAR(double(holds[0].at("from")), 1.6, 1e-6) << file;  // not at the touch (0.3)
@@ -818,7 +833,7 @@ sleep 2; xwd -root -silent > )SH" << (dir / "desktop.xwd").string()
                                   << R"SH(
 xdotool mousemove --window $wid 200 150; xdotool key Escape; wait $pid
 )SH";
-  const auto driven = run_command("timeout 120 bash " + (dir / "drive.sh").string());
+  const auto driven = run_drive_script(dir);
   ASSERT_EQ(driven.status, 0) << driven.output;
   // The HUD's three or four lines at 3% of 300 px: a panel about 160 x 40 px from the corner.
   const auto [eye_dark, eye_light] = hud_pixels(read_xwd(dir / "eye.xwd"), 140, 30);
@@ -875,36 +890,17 @@ key u undo 2
 xdotool key Escape
 wait $pid
 )SH";
-  const auto driven = run_command("timeout 120 bash " + (dir / "drive.sh").string());
-  std::ifstream log_file(dir / "review.log");
-  const std::string log((std::istreambuf_iterator<char>(log_file)), std::istreambuf_iterator<char>());
-  ASSERT_EQ(driven.status, 0) << driven.output << log;
+  const auto driven = run_drive_script(dir);
+  ASSERT_EQ(driven.status, 0) << driven.output;
 
-  std::vector<nlohmann::json> records;
-  {
-    std::ifstream in(recording);
-    for (std::string line; std::getline(in, line);) {
-      const auto j = nlohmann::json::parse(line);
-      if (j.contains("record")) records.push_back(j);
-    }
-  }
-  auto count = [&](const std::string& kind) {
-    return std::count_if(records.begin(), records.end(),
-                         [&](const auto& r) { return r.at("record") == kind; });
-  };
-  ASSERT_EQ(count("commit"), 2) << log;
-  EXPECT_EQ(count("undo"), 2);
-  EXPECT_EQ(count("redo"), 1);
-  ASSERT_EQ(count("method"), 2);
-  const auto last_method = std::find_if(records.rbegin(), records.rend(),
-                                        [](const auto& r) { return r.at("record") == "method"; });
-  EXPECT_EQ(last_method->at("method"), "arap-sr");
+  auto count = [&](const std::string& kind) { return recording_records(recording, kind).size(); };
+  ASSERT_EQ(count("commit"), 2u) << driven.output;
+  EXPECT_EQ(count("undo"), 2u);
+  EXPECT_EQ(count("redo"), 1u);
+  ASSERT_EQ(count("method"), 2u);
+  EXPECT_EQ(recording_records(recording, "method").back().at("method"), "arap-sr");
 
-  const auto replay = run_command(std::string(PUSHPULL_EXECUTABLE) + " replay " + recording.string() +
-                                  " --out " + (dir / "replay").string() + " --no-pictures");
-  ASSERT_EQ(replay.status, 0) << replay.output;
-  EXPECT_NE(replay.output.find("2 commit(s) replayed of 2 recorded; all checks passed"), std::string::npos)
-      << replay.output;
+  expect_replays_with_commits(recording, 2);
   const auto desktop_model = pushpull::deform::read_mesh(out);
   const auto replayed_model = pushpull::deform::read_mesh(dir / "replay" / "final.off");
   EXPECT_EQ((desktop_model.V - replayed_model.V).cwiseAbs().maxCoeff(), 0.0);  // undone to commit 1 in both
@@ -936,30 +932,14 @@ sleep 0.3; xdotool mouseup 1; await release 2
 xdotool key Escape
 wait $pid
 )SH";
-  const auto driven = run_command("timeout 120 bash " + (dir / "drive.sh").string());
-  std::ifstream log_file(dir / "review.log");
-  const std::string log((std::istreambuf_iterator<char>(log_file)), std::istreambuf_iterator<char>());
-  ASSERT_EQ(driven.status, 0) << driven.output << log;
-  std::vector<nlohmann::json> held;
-  size_t commits = 0;
-  {
-    std::ifstream in(dir / "events.jsonl");
-    for (std::string line; std::getline(in, line);) {
-      const auto j = nlohmann::json::parse(line);
-      if (j.value("event", "") == "press held") held.push_back(j);
-      if (j.value("event", "") == "commit") ++commits;
-    }
-  }
-  ASSERT_EQ(commits, 2u) << log;
-  ASSERT_EQ(held.size(), 1u) << log;
+  const auto driven = run_drive_script(dir);
+  ASSERT_EQ(driven.status, 0) << driven.output;
+  const auto held = lines_where(dir / "events.jsonl", "event", "press held");
+  ASSERT_EQ(lines_where(dir / "events.jsonl", "event", "commit").size(), 2u) << driven.output;
+  ASSERT_EQ(held.size(), 1u) << driven.output;
   EXPECT_GE(int(held[0].at("frames")), 1);
 
-  const auto replay =
-      run_command(std::string(PUSHPULL_EXECUTABLE) + " replay " + recording.string() + " --model " +
-                  bonnet.string() + " --out " + (dir / "replay").string() + " --no-pictures");
-  ASSERT_EQ(replay.status, 0) << replay.output;
-  EXPECT_NE(replay.output.find("2 commit(s) replayed of 2 recorded; all checks passed"), std::string::npos)
-      << replay.output;
+  expect_replays_with_commits(recording, 2, " --model " + bonnet.string());
 }
 
 TEST(ReviewXr, WithoutARuntimeSaysWhichOneItLookedForAndHowToPointAtOne) {
