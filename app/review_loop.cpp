@@ -118,6 +118,7 @@ void run_review(const ReviewCommandOptions& o) {
     session_options.eye_height = uint32_t(o.eye_size[1]);
   }
   if (o.mirror) {
+    session_options.eye_transfer_source = true;  // headset-eye mode copies the left eye into the window
     try {
       session_options.vulkan_instance_extensions = renderer::MirrorWindow::required_instance_extensions();
     } catch (const std::exception& e) {
@@ -141,9 +142,11 @@ void run_review(const ReviewCommandOptions& o) {
   }
   xr::Session& xr = *session;
   if (!o.quiet)
-    std::printf("pushpull review: %s on %s (OpenXR runtime \"%s\"), %ux%u per eye, %s space\n",
+    std::printf("pushpull review: %s on %s (OpenXR runtime \"%s\"), %ux%u per eye in %s, %s space\n",
                 o.model.c_str(), xr.system_name().c_str(), xr.runtime_name().c_str(), xr.eye(0).width(),
-                xr.eye(0).height(), xr.stage_is_local() ? "LOCAL (no STAGE)" : "STAGE");
+                xr.eye(0).height(),
+                xr.eye(0).format() == VK_FORMAT_B8G8R8A8_SRGB ? "B8G8R8A8_SRGB" : "R8G8B8A8_SRGB",
+                xr.stage_is_local() ? "LOCAL (no STAGE)" : "STAGE");
 
   EventLog log(o.events, !o.quiet);
   log.write_start(o, setup, xr.runtime_name());
@@ -290,9 +293,19 @@ void run_review(const ReviewCommandOptions& o) {
 
     bool session_lost = false;                                   // a call failed with XR_ERROR_SESSION_LOST
     std::array<std::optional<HandSample>, 2> last_tracked_hand;  // hold_untracked's, per hand
+    // An error that ended the loop early (a runtime or GPU failure): the committed work is still saved and
+    // the recording ended, then the review fails with it.
+    std::optional<std::string> failure;
     while (!xr.exit_requested() || xr.lost() || session_lost) {
       if (session_lost || xr.lost()) {
-        if (!resume_after_loss()) break;
+        bool back = false;
+        try {
+          back = resume_after_loss();
+        } catch (const std::exception& e) {  // making the session again failed: as if it did not come back
+          std::printf("pushpull review: the session could not be made again (%s); ending the review\n",
+                      e.what());
+        }
+        if (!back) break;
         session_lost = false;
         continue;
       }
@@ -552,7 +565,7 @@ void run_review(const ReviewCommandOptions& o) {
             // Headset-eye mode shows the left eye as drawn (a copy, no second drawing, nothing over it); the
             // other modes draw their own view, with the colour-map legend and the HUD.
             const bool blit = rendered && mirror_view.mode() == MirrorMode::HeadsetEye &&
-                              mirror->accepts_blit() &&
+                              mirror->accepts_blit() && xr.eye(0).transfer_source() &&
                               renderer.can_blit(eye_targets.format, mirror_target->targets.format);
             mirror_draws = draws;
             if (!blit) {
@@ -596,28 +609,52 @@ void run_review(const ReviewCommandOptions& o) {
           (solving ? stats.solving_cpu_ms : stats.idle_cpu_ms).push_back(thread_cpu_ms() - start_cpu_ms);
         }
       } catch (const xr::XrError& e) {
-        if (e.result() != XR_ERROR_SESSION_LOST && e.result() != XR_ERROR_INSTANCE_LOST) throw;
-        session_lost = true;
+        if (e.result() == XR_ERROR_SESSION_LOST || e.result() == XR_ERROR_INSTANCE_LOST) {
+          session_lost = true;
+          continue;
+        }
+        failure = e.what();
+        break;
+      } catch (const std::exception& e) {
+        failure = e.what();
+        break;
       }
     }
+    if (failure) {
+      std::fprintf(stderr, "pushpull review: %s; ending the review (the committed work is kept)\n",
+                   failure->c_str());
+      if (interaction.dragging())
+        if (const auto e = interaction.cancel()) log_event(*e);
+    }
     end_hold();  // a press still held back when the review ended never went through
-    renderer.wait_idle();
+    try {
+      renderer.wait_idle();
+    } catch (const std::exception& e) {  // a lost GPU device: nothing more to wait for
+      if (!failure) failure = e.what();
+    }
     service.wait_idle();
     take_commits();
     const auto history = service.history();
     const deform::HistoryEntry& current = history.at(service.history_position());
-    recorder.write_record("end", t,
-                          {{"commits", service.history_position()}, {"hash", hash_text(current.hash)}});
+    nlohmann::json end_fields{{"commits", service.history_position()}, {"hash", hash_text(current.hash)}};
+    if (failure) end_fields["error"] = *failure;
+    recorder.write_record("end", t, end_fields);
     log.write({{"event", "end"},
                {"revision", service.revision()},
                {"hash", current.hash},
                {"commits", service.history_position()}});
     if (!o.out.empty()) {
       write_review_model(o.out, model, current.state->V);
-      if (!o.quiet)
+      if (!o.quiet || failure)
         std::printf("pushpull review: wrote %s (%zu committed push/pull(s))\n", o.out.c_str(),
                     service.history_position());
     }
+    if (failure)
+      throw CommandError("the review ended on an error: " + *failure +
+                         (!o.out.empty()         ? " (the committed model was written to " + o.out + ")"
+                          : recorder.recording() ? " (`pushpull replay " + recorder.path() +
+                                                       " --out FOLDER` rebuilds the committed model)"
+                                                 : std::string()));
     if (validation && validation->message_count() > 0)
       throw CommandError("Vulkan validation reported " + std::to_string(validation->message_count()) +
                          " message(s) (printed above)");

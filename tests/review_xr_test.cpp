@@ -377,6 +377,91 @@ TEST(ReviewXr, ViewsWithOrientationOnlyAreStillDrawn) {
   EXPECT_GT(model, image.pixels.size() / 4 / 20);  // the bonnet, seen from 1.6 m
 }
 
+// Runtimes list their swapchain formats best first, and some list UNORM before sRGB (xr/sim's unorm-first:
+// B8G8R8A8_UNORM, R8G8B8A8_UNORM, B8G8R8A8_SRGB, R8G8B8A8_SRGB): the eyes take the first sRGB format of the
+// list, and look as they do in R8G8B8A8_SRGB (a UNORM eye would be far darker in the mid-tones).
+TEST(ReviewXr, EyesTakeTheRuntimesFirstSrgbFormatAndLookTheSame) {
+  const fs::path dir = test_dir();
+  const auto usual = left_eye_while_aiming(dir, "");
+  const ReviewRun run = run_review(dir, script_start() + R"({"t":0.3,"event":"capture"}
+{"t":0.6,"event":"exit"}
+)",
+                                   "", "PUSHPULL_XR_SIM_QUIRKS=unorm-first");
+  ASSERT_EQ(run.result.status, 0) << run.result.output;
+  EXPECT_NE(run.result.output.find("256x256 per eye in B8G8R8A8_SRGB"), std::string::npos)
+      << run.result.output;
+  const auto reordered = pushpull::renderer::read_png(dir / "capture" / "frame_000009_left.png");
+  ASSERT_EQ(usual.width, reordered.width);
+  ASSERT_EQ(usual.height, reordered.height);
+  size_t different = 0;
+  for (size_t i = 0; i < usual.pixels.size(); ++i)
+    if (std::abs(int(usual.pixels[i]) - int(reordered.pixels[i])) > 2) ++different;
+  EXPECT_EQ(different, 0u);
+}
+
+// Rules of other runtimes that the spec allows (xr/sim's quirks): eyes recommended at different sizes, the
+// graphics requirements asked for before every session (SteamVR), haptics that fail. Both eyes are made at
+// the larger size, the review goes on without haptics (said once per session), comes back after a lost
+// session and commits.
+TEST(ReviewXr, ARuntimeWithOtherRulesStillReviewsAndReconnects) {
+  const fs::path dir = test_dir();
+  const std::string script = script_start() + R"({"t":0.8,"event":"loss"}
+{"t":1.2,"path":"/user/hand/right/input/trigger/value","value":0.0}
+)" + push_pull_100mm_at(1.5) +
+                             R"({"t":3.0,"event":"exit"}
+)";
+  const ReviewRun run =
+      run_review(dir, script, "", "PUSHPULL_XR_SIM_QUIRKS=eyes-differ,requirements-per-session,haptics-fail");
+  ASSERT_EQ(run.result.status, 0) << run.result.output;
+  EXPECT_NE(run.result.output.find("272x264 per eye"), std::string::npos) << run.result.output;
+  EXPECT_NE(run.result.output.find("the headset is back"), std::string::npos) << run.result.output;
+  ASSERT_EQ(run.of("commit").size(), 1u) << run.result.output;
+  // Said once per session (three pulses each: press, cancel or commit, and the next press or release).
+  const std::string note = "xrApplyHapticFeedback failed";
+  size_t said = 0;
+  for (auto at = run.result.output.find(note); at != std::string::npos;
+       at = run.result.output.find(note, at + 1))
+    ++said;
+  EXPECT_EQ(said, 2u) << run.result.output;
+}
+
+// A runtime call that fails mid-review with something other than a lost session (xrBeginFrame:
+// XR_ERROR_RUNTIME_FAILURE) ends the review with an error that names it, and keeps the work: the push/pull
+// committed before it is written to --out (as a review without the failure writes it), the recording ends
+// with the error, and it replays.
+TEST(ReviewXr, ARuntimeFailureEndsTheReviewAndKeepsTheCommittedWork) {
+  const fs::path dir = test_dir();
+  const std::string script =
+      script_start() + R"({"t":1.4,"path":"/user/hand/right/input/trigger/value","value":1.0}
+{"t":1.5,"path":"/user/hand/right/input/trigger/value","value":0.0}
+)";
+  const ReviewRun usual = run_review(dir, script + R"({"t":2.5,"event":"exit"}
+)",
+                                     "--out " + (dir / "usual.off").string());
+  ASSERT_EQ(usual.result.status, 0) << usual.result.output;
+  const fs::path recording = dir / "session.jsonl";
+  const ReviewRun failed =
+      run_review(dir, script + R"({"t":1.6,"event":"failure"}
+{"t":2.5,"event":"exit"}
+)",
+                 "--out " + (dir / "failed.off").string() + " --record " + recording.string());
+  EXPECT_NE(failed.result.status, 0) << failed.result.output;
+  EXPECT_NE(failed.result.output.find("xrBeginFrame"), std::string::npos) << failed.result.output;
+  EXPECT_NE(failed.result.output.find("XR_ERROR_RUNTIME_FAILURE"), std::string::npos) << failed.result.output;
+  EXPECT_NE(failed.result.output.find("the committed model was written to " + (dir / "failed.off").string()),
+            std::string::npos)
+      << failed.result.output;
+  const auto a = pushpull::deform::read_mesh(dir / "usual.off");
+  const auto b = pushpull::deform::read_mesh(dir / "failed.off");
+  ASSERT_EQ(a.V.rows(), b.V.rows());
+  EXPECT_EQ((a.V - b.V).cwiseAbs().maxCoeff(), 0.0);
+  const auto ends = recording_records(recording, "end");
+  ASSERT_EQ(ends.size(), 1u);
+  EXPECT_EQ(int(ends[0].at("commits")), 1);
+  EXPECT_NE(ends[0].value("error", "").find("XR_ERROR_RUNTIME_FAILURE"), std::string::npos);
+  expect_replays_with_commits(recording);
+}
+
 // The OpenXR core validation layer (between the app and the runtime) and VK_LAYER_KHRONOS_validation (on the
 // runtime's instance, --validation fails the run on any message) see a whole push/pull without complaint.
 TEST(ReviewXr, ValidationLayersReportNothingForAPushPull) {
@@ -674,6 +759,27 @@ TEST(ReviewXrWindow, MirrorWindowPresentsFramesAndLeavesTheCommitUnchanged) {
   const auto a = pushpull::deform::read_mesh(dir / "plain.off");
   const auto b = pushpull::deform::read_mesh(dir / "mirrored.off");
   EXPECT_EQ((a.V - b.V).cwiseAbs().maxCoeff(), 0.0);
+}
+
+// A runtime that refuses transfer-source usage on its swapchains (the spec allows refusing any usage bit):
+// the eyes are made without it, and the mirror's headset-eye mode draws its own view instead of copying the
+// eye.
+TEST(ReviewXrWindow, AMirrorOnARuntimeThatRefusesCopiesDrawsItsOwnView) {
+  if (std::getenv("DISPLAY") == nullptr) GTEST_SKIP() << "no DISPLAY (ctest runs this under xvfb-run)";
+  const fs::path dir = test_dir();
+  const std::string script =
+      script_start() + R"({"t":1.4,"path":"/user/hand/right/input/trigger/value","value":0.0}
+{"t":2.0,"event":"exit"}
+)";
+  const ReviewRun run =
+      run_review(dir, script, "--mirror --mirror-size 320 240", "PUSHPULL_XR_SIM_QUIRKS=no-transfer-src");
+  ASSERT_EQ(run.result.status, 0) << run.result.output;
+  const auto at = run.result.output.find("mirror window presented ");
+  ASSERT_NE(at, std::string::npos) << run.result.output;
+  EXPECT_GT(std::stoi(run.result.output.substr(at + 24)), 30) << run.result.output;
+  EXPECT_NE(run.result.output.find(" frames (0 copied from the left eye)", at), std::string::npos)
+      << run.result.output;
+  EXPECT_EQ(run.of("commit").size(), 1u) << run.result.output;
 }
 
 // An X window dump (xwd -root) as RGB8 rows: ZPixmap, 24 or 32 bits per pixel, true colour (Xvfb's default).

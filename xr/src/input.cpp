@@ -95,6 +95,16 @@ struct Input::Impl {
   XrPath hands[2] = {};
   XrSpace aim_spaces[2] = {};
   HandInput state[2];
+  bool haptics_failed = false, profile_failed = false;  // said once; the review goes on without them
+
+  // A failed optional call (haptics, the profile query) is reported once on stderr and otherwise ignored:
+  // runtimes fail them transiently (XR_ERROR_RUNTIME_FAILURE) and a lost session shows at the next frame.
+  void optional_call_failed(bool& said, const char* what, XrResult r) {
+    if (said) return;
+    said = true;
+    std::fprintf(stderr, "pushpull: note: %s failed (%s); going on without it\n", what,
+                 result_name(instance, r).c_str());
+  }
 
   ~Impl() {
     for (XrSpace s : aim_spaces)
@@ -227,19 +237,23 @@ void Input::haptic_pulse(Hand hand, float amplitude, double duration_s) {
   vibration.amplitude = amplitude;
   vibration.duration = XrDuration(duration_s * 1e9);
   vibration.frequency = XR_FREQUENCY_UNSPECIFIED;
-  PUSHPULL_XR_CHECK(
-      s.instance,
-      xrApplyHapticFeedback(s.session, &info, reinterpret_cast<const XrHapticBaseHeader*>(&vibration)));
+  const XrResult r =
+      xrApplyHapticFeedback(s.session, &info, reinterpret_cast<const XrHapticBaseHeader*>(&vibration));
+  if (XR_FAILED(r)) s.optional_call_failed(s.haptics_failed, "xrApplyHapticFeedback", r);
 }
 
 std::string Input::current_profile(Hand hand) const {
-  const Impl& s = *impl_;
+  Impl& s = *impl_;
   XrInteractionProfileState state{XR_TYPE_INTERACTION_PROFILE_STATE};
-  PUSHPULL_XR_CHECK(s.instance, xrGetCurrentInteractionProfile(s.session, s.hands[int(hand)], &state));
-  if (state.interactionProfile == XR_NULL_PATH) return "";
+  XrResult r = xrGetCurrentInteractionProfile(s.session, s.hands[int(hand)], &state);
+  if (XR_SUCCEEDED(r) && state.interactionProfile == XR_NULL_PATH) return "";
   char text[XR_MAX_PATH_LENGTH] = {};
   uint32_t n = 0;
-  PUSHPULL_XR_CHECK(s.instance, xrPathToString(s.instance, state.interactionProfile, sizeof text, &n, text));
+  if (XR_SUCCEEDED(r)) r = xrPathToString(s.instance, state.interactionProfile, sizeof text, &n, text);
+  if (XR_FAILED(r)) {
+    s.optional_call_failed(s.profile_failed, "xrGetCurrentInteractionProfile", r);
+    return "";
+  }
   return text;
 }
 

@@ -119,16 +119,23 @@ struct Session::Impl {
     system_name = system_properties.systemName;
   }
 
-  void create_vulkan(const SessionOptions& options) {
+  // The spec requires this call before every xrCreateSession (also the one after a lost session: SteamVR
+  // refuses a session whose requirements were not asked for).
+  XrGraphicsRequirementsVulkan2KHR graphics_requirements() {
     auto requirements = instance_function<PFN_xrGetVulkanGraphicsRequirements2KHR>(
         instance, "xrGetVulkanGraphicsRequirements2KHR");
+    XrGraphicsRequirementsVulkan2KHR req{XR_TYPE_GRAPHICS_REQUIREMENTS_VULKAN2_KHR};
+    CHECK(requirements(instance, system, &req));
+    return req;
+  }
+
+  void create_vulkan(const SessionOptions& options) {
     auto create_vk_instance =
         instance_function<PFN_xrCreateVulkanInstanceKHR>(instance, "xrCreateVulkanInstanceKHR");
     auto get_device =
         instance_function<PFN_xrGetVulkanGraphicsDevice2KHR>(instance, "xrGetVulkanGraphicsDevice2KHR");
     auto create_device = instance_function<PFN_xrCreateVulkanDeviceKHR>(instance, "xrCreateVulkanDeviceKHR");
-    XrGraphicsRequirementsVulkan2KHR req{XR_TYPE_GRAPHICS_REQUIREMENTS_VULKAN2_KHR};
-    CHECK(requirements(instance, system, &req));
+    const XrGraphicsRequirementsVulkan2KHR req = graphics_requirements();
     if (XR_VERSION_MAJOR(req.maxApiVersionSupported) < 1 ||
         (XR_VERSION_MAJOR(req.maxApiVersionSupported) == 1 &&
          XR_VERSION_MINOR(req.maxApiVersionSupported) < 3))
@@ -261,33 +268,49 @@ struct Session::Impl {
 
   void create_swapchains(const SessionOptions& options) {
     uint32_t n = 0;
-    CHECK(xrEnumerateViewConfigurationViews(instance, system, XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO, 0,
-                                            &n, nullptr));
+    const XrResult stereo = xrEnumerateViewConfigurationViews(
+        instance, system, XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO, 0, &n, nullptr);
+    if (stereo == XR_ERROR_VIEW_CONFIGURATION_TYPE_UNSUPPORTED || (XR_SUCCEEDED(stereo) && n != 2))
+      throw RuntimeUnavailable("the OpenXR runtime \"" + runtime_name + "\" has no stereo headset view (" +
+                                   (XR_SUCCEEDED(stereo) ? std::to_string(n) + " views in PRIMARY_STEREO"
+                                                         : "no PRIMARY_STEREO view configuration") +
+                                   ")",
+                               XR_ERROR_VIEW_CONFIGURATION_TYPE_UNSUPPORTED);
+    check_xr(stereo, instance, "xrEnumerateViewConfigurationViews(PRIMARY_STEREO)", __FILE__, __LINE__);
     view_configs.assign(n, {XR_TYPE_VIEW_CONFIGURATION_VIEW});
     CHECK(xrEnumerateViewConfigurationViews(instance, system, XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO, n,
                                             &n, view_configs.data()));
-    if (n != 2)
-      throw XrError(
-          "the runtime's PRIMARY_STEREO view configuration has " + std::to_string(n) + " views, not 2",
-          XR_ERROR_VIEW_CONFIGURATION_TYPE_UNSUPPORTED);
     uint32_t format_count = 0;
     CHECK(xrEnumerateSwapchainFormats(session, 0, &format_count, nullptr));
     std::vector<int64_t> formats(format_count);
     CHECK(xrEnumerateSwapchainFormats(session, format_count, &format_count, formats.data()));
+    // The runtime lists its formats best first: the first sRGB 8-bit colour format of the list (the renderer
+    // writes linear colour and lets the format encode it).
     int64_t format = 0;
-    for (int64_t preferred : {int64_t(VK_FORMAT_R8G8B8A8_SRGB), int64_t(VK_FORMAT_B8G8R8A8_SRGB)})
-      if (format == 0 && std::find(formats.begin(), formats.end(), preferred) != formats.end())
-        format = preferred;
+    for (const int64_t offered : formats)
+      if (format == 0 &&
+          (offered == int64_t(VK_FORMAT_R8G8B8A8_SRGB) || offered == int64_t(VK_FORMAT_B8G8R8A8_SRGB)))
+        format = offered;
     if (format == 0)
-      throw XrError("the runtime offers no sRGB colour swapchain format (R8G8B8A8_SRGB or B8G8R8A8_SRGB)",
-                    XR_ERROR_SWAPCHAIN_FORMAT_UNSUPPORTED);
+      throw RuntimeUnavailable(
+          "the OpenXR runtime \"" + runtime_name +
+              "\" offers no sRGB colour swapchain format (R8G8B8A8_SRGB or B8G8R8A8_SRGB)",
+          XR_ERROR_SWAPCHAIN_FORMAT_UNSUPPORTED);
+    // One size for both eyes (the renderer draws both into one set of attachments): the larger recommended
+    // size, within both eyes' maxima.
+    uint32_t w = 0, h = 0, max_w = UINT32_MAX, max_h = UINT32_MAX;
     for (const auto& view : view_configs) {
-      const uint32_t w = std::min(options.eye_width ? options.eye_width : view.recommendedImageRectWidth,
-                                  view.maxImageRectWidth);
-      const uint32_t h = std::min(options.eye_height ? options.eye_height : view.recommendedImageRectHeight,
-                                  view.maxImageRectHeight);
-      eyes.emplace_back(instance, session, format, w, h);
+      w = std::max(w, view.recommendedImageRectWidth);
+      h = std::max(h, view.recommendedImageRectHeight);
+      max_w = std::min(max_w, view.maxImageRectWidth);
+      max_h = std::min(max_h, view.maxImageRectHeight);
     }
+    if (options.eye_width) w = options.eye_width;
+    if (options.eye_height) h = options.eye_height;
+    w = std::max(1u, std::min(w, max_w));
+    h = std::max(1u, std::min(h, max_h));
+    for (size_t eye = 0; eye < view_configs.size(); ++eye)
+      eyes.emplace_back(instance, session, format, w, h, options.eye_transfer_source);
     uint32_t blend_count = 0;
     CHECK(xrEnumerateEnvironmentBlendModes(instance, system, XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO, 0,
                                            &blend_count, nullptr));
@@ -341,6 +364,7 @@ void Session::poll_events() {
         break;
       case XR_TYPE_EVENT_DATA_SESSION_STATE_CHANGED: {
         const auto& changed = reinterpret_cast<const XrEventDataSessionStateChanged&>(event);
+        if (changed.session != s.session) break;  // a session lost and destroyed before recreate_after_loss
         s.state = changed.state;
         switch (changed.state) {
           case XR_SESSION_STATE_READY: {
@@ -500,6 +524,7 @@ bool Session::recreate_after_loss(double timeout_s) {
     throw XrError("the headset came back as another system (" + std::to_string(system) + ", was " +
                       std::to_string(s.system) + "): the Vulkan device belongs to the old one; start again",
                   XR_ERROR_SYSTEM_INVALID);
+  (void)s.graphics_requirements();
   s.create_session();
   s.create_stage_space();
   s.create_swapchains(s.options);

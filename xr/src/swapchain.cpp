@@ -8,6 +8,7 @@ struct Swapchain::Impl {
   std::vector<VkImage> images;
   VkFormat format = VK_FORMAT_UNDEFINED;
   uint32_t width = 0, height = 0;
+  bool transfer_source = false;
   bool acquired = false;
 
   ~Impl() {
@@ -15,14 +16,16 @@ struct Swapchain::Impl {
   }
 };
 
-Swapchain::Swapchain(XrInstance instance, XrSession session, int64_t format, uint32_t width, uint32_t height)
+Swapchain::Swapchain(XrInstance instance, XrSession session, int64_t format, uint32_t width, uint32_t height,
+                     bool transfer_source)
     : impl_(std::make_unique<Impl>()) {
   impl_->instance = instance;
   impl_->format = VkFormat(format);
   impl_->width = width;
   impl_->height = height;
   XrSwapchainCreateInfo info{XR_TYPE_SWAPCHAIN_CREATE_INFO};
-  info.usageFlags = XR_SWAPCHAIN_USAGE_COLOR_ATTACHMENT_BIT | XR_SWAPCHAIN_USAGE_TRANSFER_SRC_BIT;
+  info.usageFlags = XR_SWAPCHAIN_USAGE_COLOR_ATTACHMENT_BIT;
+  if (transfer_source) info.usageFlags |= XR_SWAPCHAIN_USAGE_TRANSFER_SRC_BIT;
   info.format = format;
   info.sampleCount = 1;
   info.width = width;
@@ -30,7 +33,14 @@ Swapchain::Swapchain(XrInstance instance, XrSession session, int64_t format, uin
   info.faceCount = 1;
   info.arraySize = 1;
   info.mipCount = 1;
-  PUSHPULL_XR_CHECK(instance, xrCreateSwapchain(session, &info, &impl_->swapchain));
+  XrResult created = xrCreateSwapchain(session, &info, &impl_->swapchain);
+  if (created == XR_ERROR_FEATURE_UNSUPPORTED && transfer_source) {  // the mirror draws its own view instead
+    info.usageFlags = XR_SWAPCHAIN_USAGE_COLOR_ATTACHMENT_BIT;
+    transfer_source = false;
+    created = xrCreateSwapchain(session, &info, &impl_->swapchain);
+  }
+  check_xr(created, instance, "xrCreateSwapchain(session, &info, &swapchain)", __FILE__, __LINE__);
+  impl_->transfer_source = transfer_source;
   uint32_t count = 0;
   PUSHPULL_XR_CHECK(instance, xrEnumerateSwapchainImages(impl_->swapchain, 0, &count, nullptr));
   std::vector<XrSwapchainImageVulkan2KHR> images(count, {XR_TYPE_SWAPCHAIN_IMAGE_VULKAN2_KHR});
@@ -67,5 +77,8 @@ const std::vector<VkImage>& Swapchain::images() const { return impl_->images; }
 VkFormat Swapchain::format() const { return impl_->format; }
 uint32_t Swapchain::width() const { return impl_->width; }
 uint32_t Swapchain::height() const { return impl_->height; }
+bool Swapchain::transfer_source() const {
+  return impl_->transfer_source;
+}
 
 }  // namespace pushpull::xr

@@ -514,6 +514,7 @@ XrResult XRAPI_CALL apply_haptic(XrSession handle, const XrHapticActionInfo* inf
   Action* a = nullptr;
   if (const XrResult r = haptic_common(handle, info, &s, &a); XR_FAILED(r)) return r;
   if (haptic == nullptr || haptic->type != XR_TYPE_HAPTIC_VIBRATION) return XR_ERROR_VALIDATION_FAILURE;
+  if (s->instance->config.haptics_fail) return XR_ERROR_RUNTIME_FAILURE;
   record_haptic(*s, *a, info->subactionPath, reinterpret_cast<const XrHapticVibration*>(haptic));
   return s->state == XR_SESSION_STATE_FOCUSED ? XR_SUCCESS : XR_SESSION_NOT_FOCUSED;
 }

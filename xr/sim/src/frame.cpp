@@ -77,6 +77,10 @@ XrResult XRAPI_CALL begin_frame(XrSession handle, const XrFrameBeginInfo* info) 
   if (!s->waited_not_begun) return XR_ERROR_CALL_ORDER_INVALID;
   s->waited_not_begun = false;
   s->frame_cv.notify_all();
+  if (s->fail_next_begin) {  // scripted: the runtime fails this frame (the app may go on or give up)
+    s->fail_next_begin = false;
+    return XR_ERROR_RUNTIME_FAILURE;
+  }
   const bool discarded = s->frame_begun;
   s->frame_begun = true;
   if (s->loss_pending) return XR_SESSION_LOSS_PENDING;

@@ -74,8 +74,10 @@ InputScript InputScript::parse(std::istream& in, const std::string& source) {
           kind = ScriptEventKind::capture;
         else if (e == "recenter")
           kind = ScriptEventKind::recenter;
+        else if (e == "failure")
+          kind = ScriptEventKind::failure;
         else
-          fail(source, line, "unknown event \"" + e + "\" (exit, loss, capture, recenter)");
+          fail(source, line, "unknown event \"" + e + "\" (exit, loss, capture, recenter, failure)");
         script.events_.push_back({t, kind});
         continue;
       }

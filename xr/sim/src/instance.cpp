@@ -259,8 +259,9 @@ XrResult XRAPI_CALL enumerate_view_configuration_views(XrInstance handle, XrSyst
     if (views[i].type != XR_TYPE_VIEW_CONFIGURATION_VIEW) return XR_ERROR_VALIDATION_FAILURE;
   const Config& c = instance->config;
   return two_call(capacity, count, 2, [&](uint32_t i) {
-    views[i].recommendedImageRectWidth = c.width;
-    views[i].recommendedImageRectHeight = c.height;
+    const bool wider = c.eyes_differ && i == 1;
+    views[i].recommendedImageRectWidth = c.width + (wider ? 16 : 0);
+    views[i].recommendedImageRectHeight = c.height + (wider ? 8 : 0);
     views[i].maxImageRectWidth = 4096;
     views[i].maxImageRectHeight = 4096;
     views[i].recommendedSwapchainSampleCount = 1;

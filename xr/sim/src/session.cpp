@@ -47,6 +47,9 @@ void run_script_events(Session& s, XrTime now) {
       case ScriptEventKind::capture:
         s.capture_requested = true;
         break;
+      case ScriptEventKind::failure:
+        s.fail_next_begin = true;
+        break;
       case ScriptEventKind::recenter:  // the reviewer recentred the view: STAGE and LOCAL are about to move
         for (const XrReferenceSpaceType type :
              {XR_REFERENCE_SPACE_TYPE_STAGE, XR_REFERENCE_SPACE_TYPE_LOCAL}) {
@@ -108,6 +111,8 @@ XrResult XRAPI_CALL create_session(XrInstance handle, const XrSessionCreateInfo*
   auto session = std::make_unique<Session>();
   session->instance = instance;
   if (const XrResult r = bind_vulkan(*instance, info->next, &session->vk); XR_FAILED(r)) return r;
+  // SteamVR's rule: the requirements call counts for one session.
+  if (instance->config.requirements_per_session) instance->vk_requirements_queried = false;
   const XrTime now = monotonic_now();
   session->clock_origin = now;
   session->period = static_cast<XrDuration>(1e9 / instance->config.rate_hz);

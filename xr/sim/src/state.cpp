@@ -1,5 +1,8 @@
 #include "state.hpp"
 
+#include <set>
+#include <sstream>
+
 #include "dispatch.hpp"
 
 #include <cstdlib>
@@ -44,6 +47,17 @@ Config Config::from_env() {
   c.headset_after_ms = env_uint("PUSHPULL_XR_SIM_HEADSET_AFTER_MS", 0);
   c.rotation_only = env_uint("PUSHPULL_XR_SIM_ROTATION_ONLY", 0) != 0;
   if (env_string("PUSHPULL_XR_SIM_BLEND") == "additive") c.blend_mode = XR_ENVIRONMENT_BLEND_MODE_ADDITIVE;
+  std::set<std::string> quirks;
+  {
+    std::stringstream list(env_string("PUSHPULL_XR_SIM_QUIRKS"));
+    for (std::string item; std::getline(list, item, ',');) quirks.insert(item);
+  }
+  auto quirk = [&](const char* name) { return quirks.count(name) > 0; };
+  c.refuse_transfer_source = quirk("no-transfer-src");
+  c.unorm_first = quirk("unorm-first");
+  c.eyes_differ = quirk("eyes-differ");
+  c.requirements_per_session = quirk("requirements-per-session");
+  c.haptics_fail = quirk("haptics-fail");
   return c;
 }
 

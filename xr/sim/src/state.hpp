@@ -54,7 +54,17 @@ constexpr XrSystemId kSystemId = 1;
 //   PUSHPULL_XR_SIM_HEADSET_AFTER_MS  the headset connects N ms after xrCreateInstance (xrGetSystem says
 //                                     XR_ERROR_FORM_FACTOR_UNAVAILABLE before; default 0)
 //   PUSHPULL_XR_SIM_BLEND             additive: a see-through display (only ADDITIVE blending; default
-//   OPAQUE) PUSHPULL_XR_SIM_ROTATION_ONLY     1: views carry orientation, not position (a 3-DoF headset)
+//                                     OPAQUE)
+//   PUSHPULL_XR_SIM_ROTATION_ONLY     1: views carry orientation, not position (a 3-DoF headset)
+//   PUSHPULL_XR_SIM_QUIRKS            comma-separated behaviours of other runtimes that the spec allows:
+//                                     no-transfer-src (xrCreateSwapchain refuses TRANSFER_SRC usage with
+//                                     XR_ERROR_FEATURE_UNSUPPORTED), unorm-first (UNORM formats listed
+//                                     before sRGB ones, B8G8R8A8 before R8G8B8A8), eyes-differ (the right
+//                                     eye's recommended size is 16 px wider and 8 px taller),
+//                                     requirements-per-session (xrCreateSession needs
+//                                     xrGetVulkanGraphicsRequirements2KHR since the last session, as
+//                                     SteamVR), haptics-fail (xrApplyHapticFeedback says
+//                                     XR_ERROR_RUNTIME_FAILURE)
 struct Config {
   uint32_t width = 1440;
   uint32_t height = 1600;
@@ -74,6 +84,12 @@ struct Config {
   // The one environment blend mode the display offers: OPAQUE (a headset), or ADDITIVE (see-through).
   XrEnvironmentBlendMode blend_mode = XR_ENVIRONMENT_BLEND_MODE_OPAQUE;
   bool rotation_only = false;  // views report orientation, not position (a 3-DoF headset)
+  // PUSHPULL_XR_SIM_QUIRKS (see above).
+  bool refuse_transfer_source = false;
+  bool unorm_first = false;
+  bool eyes_differ = false;
+  bool requirements_per_session = false;
+  bool haptics_fail = false;
   static Config from_env();
 };
 
@@ -181,6 +197,7 @@ struct Session {
   std::condition_variable_any frame_cv;
   std::size_t next_script_event = 0;
   bool capture_requested = false;
+  bool fail_next_begin = false;  // a scripted "failure": the next xrBeginFrame says XR_ERROR_RUNTIME_FAILURE
 
   std::vector<Space*> spaces;
   std::vector<Swapchain*> swapchains;

@@ -42,7 +42,25 @@ XrResult XRAPI_CALL enumerate_formats(XrSession handle, uint32_t capacity, uint3
   Session* s = nullptr;
   if (const XrResult r = get_session(handle, &s); XR_FAILED(r)) return r;
   if (capacity != 0 && formats == nullptr) return XR_ERROR_VALIDATION_FAILURE;
-  const std::vector<VkFormat> f = supported_formats(s->vk.physical_device);
+  std::vector<VkFormat> f = supported_formats(s->vk.physical_device);
+  if (s->instance->config.unorm_first)  // UNORM before sRGB, BGRA before RGBA: the app must pick by its needs
+    std::stable_sort(f.begin(), f.end(), [](VkFormat a, VkFormat b) {
+      auto rank = [](VkFormat x) {
+        switch (x) {
+          case VK_FORMAT_B8G8R8A8_UNORM:
+            return 0;
+          case VK_FORMAT_R8G8B8A8_UNORM:
+            return 1;
+          case VK_FORMAT_B8G8R8A8_SRGB:
+            return 2;
+          case VK_FORMAT_R8G8B8A8_SRGB:
+            return 3;
+          default:
+            return 4;
+        }
+      };
+      return rank(a) < rank(b);
+    });
   return two_call(capacity, count, static_cast<uint32_t>(f.size()), [&](uint32_t i) { formats[i] = f[i]; });
 }
 
@@ -102,6 +120,8 @@ XrResult XRAPI_CALL create_swapchain(XrSession handle, const XrSwapchainCreateIn
   if (is_depth(format) && (info->usageFlags & XR_SWAPCHAIN_USAGE_COLOR_ATTACHMENT_BIT))
     return XR_ERROR_FEATURE_UNSUPPORTED;
   if (!is_depth(format) && (info->usageFlags & XR_SWAPCHAIN_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT))
+    return XR_ERROR_FEATURE_UNSUPPORTED;
+  if (s->instance->config.refuse_transfer_source && (info->usageFlags & XR_SWAPCHAIN_USAGE_TRANSFER_SRC_BIT))
     return XR_ERROR_FEATURE_UNSUPPORTED;
 
   if (info->faceCount == 6 && info->width != info->height) return XR_ERROR_VALIDATION_FAILURE;

@@ -48,9 +48,11 @@ class Input {
   // while the session is running; when it is not focused every input reads as released.
   void sync(XrTime time);
   [[nodiscard]] const HandInput& hand(Hand hand) const;
-  // A short vibration (amplitude 0..1, duration in seconds) on that hand's controller.
+  // A short vibration (amplitude 0..1, duration in seconds) on that hand's controller. Best effort: a failure
+  // is noted once per Input on stderr and otherwise ignored (a lost session shows at the next frame).
   void haptic_pulse(Hand hand, float amplitude, double duration_s);
-  // The interaction profile the runtime chose for the hand ("" when none yet).
+  // The interaction profile the runtime chose for the hand ("" when none yet, or when the query fails: noted
+  // once per Input on stderr).
   [[nodiscard]] std::string current_profile(Hand hand) const;
 
  private:

@@ -50,8 +50,12 @@ struct SessionOptions {
   std::vector<std::string> vulkan_instance_extensions;
   std::vector<std::string> vulkan_device_extensions;
   std::vector<std::string> vulkan_layers;  // instance layers, e.g. VK_LAYER_KHRONOS_validation
-  // Per-eye image size; 0 = the runtime's recommended size.
+  // Per-eye image size; 0 = the runtime's recommended size (the larger of the two eyes', so both eyes share
+  // one size), never more than the smaller of the two eyes' maxima.
   uint32_t eye_width = 0, eye_height = 0;
+  // Eye swapchains with transfer-source usage, so a mirror window can copy an eye (Swapchain::transfer_source
+  // says whether the runtime allowed it). Off: colour attachment only, which every runtime supports.
+  bool eye_transfer_source = false;
   // Extensions the session must enable beyond XR_KHR_vulkan_enable2 (e.g. for tests); unknown ones fail.
   std::vector<std::string> extensions;
   // A runtime whose headset is not connected yet (xrGetSystem: XR_ERROR_FORM_FACTOR_UNAVAILABLE, "temporarily

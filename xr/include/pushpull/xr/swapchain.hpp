@@ -19,9 +19,12 @@ namespace pushpull::xr {
 
 class Swapchain {
  public:
-  // A swapchain of width x height pixels, one layer, one sample, usage colour attachment (+ transfer source
-  // so a mirror can copy it), format a VkFormat the runtime listed.
-  Swapchain(XrInstance instance, XrSession session, int64_t format, uint32_t width, uint32_t height);
+  // A swapchain of width x height pixels, one layer, one sample, usage colour attachment, format a VkFormat
+  // the runtime listed. transfer_source: also transfer source, so a mirror window can copy the eye; a runtime
+  // that refuses that usage (XR_ERROR_FEATURE_UNSUPPORTED, which the spec allows for any usage bit) gets a
+  // colour-attachment-only swapchain instead, and transfer_source() says false.
+  Swapchain(XrInstance instance, XrSession session, int64_t format, uint32_t width, uint32_t height,
+            bool transfer_source = false);
   ~Swapchain();
   Swapchain(Swapchain&&) noexcept;
   Swapchain& operator=(Swapchain&&) noexcept;
@@ -36,6 +39,8 @@ class Swapchain {
   [[nodiscard]] VkFormat format() const;
   [[nodiscard]] uint32_t width() const;
   [[nodiscard]] uint32_t height() const;
+  // Whether the images have transfer-source usage (a mirror may copy them).
+  [[nodiscard]] bool transfer_source() const;
 
  private:
   struct Impl;
