@@ -23,6 +23,8 @@
 #include <cstdio>
 #include <optional>
 
+#include <nlohmann/json.hpp>
+
 namespace pushpull::app {
 namespace {
 
@@ -131,155 +133,174 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
     Eigen::Vector3d plane_normal = Eigen::Vector3d::UnitZ();
     std::string title;
     int frames = 0;
+    // An error that ended the loop early (a lost GPU device, a window system failure): the committed work is
+    // still saved and the recording ended, then the review fails with it.
+    std::optional<std::string> failure;
     while (!window.should_close() && (o.frames <= 0 || frames < o.frames)) {
-      window.poll_events();
-      t = double(std::llround(double(loop_frames++) * 1e9 / kRecordingRate)) * 1e-9;  // as xr/sim's script_time
-      bool quit = false, undo = false, redo = false, colour = false, method = false;
-      for (int key : window.take_key_presses()) {
-        quit = quit || key == 256 /* GLFW_KEY_ESCAPE */;
-        undo = undo || key == 'U';
-        redo = redo || key == 'R';
-        colour = colour || key == 'C';
-        method = method || key == 'M';
-      }
-      if (quit) break;
-      const auto frame = window.acquire();
-      const VkExtent2D extent = window.extent();
-      const float aspect = float(std::max(1u, extent.width)) / float(std::max(1u, extent.height));
-      const renderer::MirrorWindow::Pointer p = window.pointer();
-      orbit_with_pointer(orbit, p, last, p.right && last.right);
-      const renderer::View view = renderer::frame_bounds(bounds, orbit, aspect);
-      const auto [origin, direction] = cursor_ray(view, p);
-      // The mouse as a controller: outside a drag the cursor ray; during a drag the ray of the press moved by
-      // p1 - p0 (the headset gesture's d is the hand's travel). It goes through the float aim pose the recording
-      // keeps, and through the same gesture as a headset hand, so a replay of the recording on the simulated
-      // runtime reproduces p0, d and every commit bit for bit (the press below, the drag after it).
-      //
-      // As in the headset loop: a press hits the committed surface, never one a pending commit, undo or redo
-      // replaces; while one is solving the press is held back (the trigger reads as released, and the window
-      // keeps drawing) and goes through, where the cursor then is, once the service is idle. The recording
-      // shows the trigger pressed from that frame, where a replay finds the service idle too.
-      if (!p.left) held_frames = 0;
-      bool press = false;  // the trigger goes down this frame
-      if (p.left && (!last.left || held_frames > 0) && !interaction.dragging()) {
-        if (!service.idle()) {
-          ++held_frames;
-        } else {
-          if (held_frames > 0) log.write({{"event", "press held"}, {"frames", held_frames}});
-          held_frames = 0;
-          interaction.sync_committed(*service.latest());
-          press = true;
+      try {
+        window.poll_events();
+        t = double(std::llround(double(loop_frames++) * 1e9 / kRecordingRate)) *
+            1e-9;  // as xr/sim's script_time
+        bool quit = false, undo = false, redo = false, colour = false, method = false;
+        for (int key : window.take_key_presses()) {
+          quit = quit || key == 256 /* GLFW_KEY_ESCAPE */;
+          undo = undo || key == 'U';
+          redo = redo || key == 'R';
+          colour = colour || key == 'C';
+          method = method || key == 'M';
         }
-      }
-      if (press) {
-        if (const auto hit = interaction.hit(origin, direction)) {
-          p0_stage = setup.placement.to_stage_point(hit->point);
-          const Eigen::Matrix3d A = setup.placement.T_stage_model.topLeftCorner<3, 3>();
-          normal_stage = (A * interaction.face_normal(hit->face)).normalized();
-          plane_normal = (p0_stage - origin).normalized();  // the view plane through p0
-          press_origin = origin;
-          press_direction = direction;
+        if (quit) break;
+        const auto frame = window.acquire();
+        const VkExtent2D extent = window.extent();
+        const float aspect = float(std::max(1u, extent.width)) / float(std::max(1u, extent.height));
+        const renderer::MirrorWindow::Pointer p = window.pointer();
+        orbit_with_pointer(orbit, p, last, p.right && last.right);
+        const renderer::View view = renderer::frame_bounds(bounds, orbit, aspect);
+        const auto [origin, direction] = cursor_ray(view, p);
+        // The mouse as a controller: outside a drag the cursor ray; during a drag the ray of the press moved
+        // by p1 - p0 (the headset gesture's d is the hand's travel). It goes through the float aim pose the
+        // recording keeps, and through the same gesture as a headset hand, so a replay of the recording on
+        // the simulated runtime reproduces p0, d and every commit bit for bit (the press below, the drag
+        // after it).
+        //
+        // As in the headset loop: a press hits the committed surface, never one a pending commit, undo or
+        // redo replaces; while one is solving the press is held back (the trigger reads as released, and the
+        // window keeps drawing) and goes through, where the cursor then is, once the service is idle. The
+        // recording shows the trigger pressed from that frame, where a replay finds the service idle too.
+        if (!p.left) held_frames = 0;
+        bool press = false;  // the trigger goes down this frame
+        if (p.left && (!last.left || held_frames > 0) && !interaction.dragging()) {
+          if (!service.idle()) {
+            ++held_frames;
+          } else {
+            if (held_frames > 0) log.write({{"event", "press held"}, {"frames", held_frames}});
+            held_frames = 0;
+            interaction.sync_committed(*service.latest());
+            press = true;
+          }
         }
-      }
-      if (interaction.dragging() && p.left) {
-        Eigen::Vector3d p1 = p0_stage;
-        if (p.shift) {
-          p1 = closest_on_line(p0_stage, normal_stage, origin, direction);
-        } else if (std::abs(plane_normal.dot(direction)) > 1e-9) {
-          p1 = origin + (plane_normal.dot(p0_stage - origin) / plane_normal.dot(direction)) * direction;
+        if (press) {
+          if (const auto hit = interaction.hit(origin, direction)) {
+            p0_stage = setup.placement.to_stage_point(hit->point);
+            const Eigen::Matrix3d A = setup.placement.T_stage_model.topLeftCorner<3, 3>();
+            normal_stage = (A * interaction.face_normal(hit->face)).normalized();
+            plane_normal = (p0_stage - origin).normalized();  // the view plane through p0
+            press_origin = origin;
+            press_direction = direction;
+          }
         }
-        hand_origin = press_origin + (p1 - p0_stage);
-        hand_direction = press_direction;
-      } else if (!interaction.dragging()) {
-        hand_origin = origin, hand_direction = direction;
-      }
-      // Released this frame: the hand stays where the drag left it (the gesture's release reads d there).
-      // Recorded as a headset frame would be: the camera as the head, the pointer as the right controller (its
-      // trigger the left button, its A and B buttons undo and redo), C as the left menu button.
-      std::array<xr::HandInput, 2> hands_in;
-      hands_in[1].T_stage_aim = pointer_pose(hand_origin, hand_direction);
-      hands_in[1].trigger = p.left && held_frames == 0 ? 1.0f : 0.0f;
-      hands_in[1].undo_pressed = undo && !interaction.dragging();
-      hands_in[1].redo_pressed = redo && !interaction.dragging();
-      hands_in[0].menu_pressed = colour;
-      recorder.write_frame_input(t, camera_pose(view), hands_in, kDesktopProfile);
-      for (const InteractionEvent& e : interaction.update({hand_sample(hands_in[0]), hand_sample(hands_in[1])}))
-        record_interaction(e);
-      if (interaction.dragging()) recorder.write_drag(t, interaction.current_d());
-      dragging = interaction.dragging();
-      if (!dragging) {  // in the headset loop's order: after the gesture
-        if (hands_in[1].undo_pressed) {
-          service.undo();
-          log.write({{"event", "undo"}});
-          recorder.write_record("undo", t);
+        if (interaction.dragging() && p.left) {
+          Eigen::Vector3d p1 = p0_stage;
+          if (p.shift) {
+            p1 = closest_on_line(p0_stage, normal_stage, origin, direction);
+          } else if (std::abs(plane_normal.dot(direction)) > 1e-9) {
+            p1 = origin + (plane_normal.dot(p0_stage - origin) / plane_normal.dot(direction)) * direction;
+          }
+          hand_origin = press_origin + (p1 - p0_stage);
+          hand_direction = press_direction;
+        } else if (!interaction.dragging()) {
+          hand_origin = origin, hand_direction = direction;
         }
-        if (hands_in[1].redo_pressed) {
-          service.redo();
-          log.write({{"event", "redo"}});
-          recorder.write_record("redo", t);
+        // Released this frame: the hand stays where the drag left it (the gesture's release reads d there).
+        // Recorded as a headset frame would be: the camera as the head, the pointer as the right controller
+        // (its trigger the left button, its A and B buttons undo and redo), C as the left menu button.
+        std::array<xr::HandInput, 2> hands_in;
+        hands_in[1].T_stage_aim = pointer_pose(hand_origin, hand_direction);
+        hands_in[1].trigger = p.left && held_frames == 0 ? 1.0f : 0.0f;
+        hands_in[1].undo_pressed = undo && !interaction.dragging();
+        hands_in[1].redo_pressed = redo && !interaction.dragging();
+        hands_in[0].menu_pressed = colour;
+        recorder.write_frame_input(t, camera_pose(view), hands_in, kDesktopProfile);
+        for (const InteractionEvent& e :
+             interaction.update({hand_sample(hands_in[0]), hand_sample(hands_in[1])}))
+          record_interaction(e);
+        if (interaction.dragging()) recorder.write_drag(t, interaction.current_d());
+        dragging = interaction.dragging();
+        if (!dragging) {  // in the headset loop's order: after the gesture
+          if (hands_in[1].undo_pressed) {
+            service.undo();
+            log.write({{"event", "undo"}});
+            recorder.write_record("undo", t);
+          }
+          if (hands_in[1].redo_pressed) {
+            service.redo();
+            log.write({{"event", "redo"}});
+            recorder.write_record("redo", t);
+          }
         }
-      }
-      if (colour) scene.set_colour(next_colour(scene.colour()));
-      scene.set_highlight(interaction.hover_handle(1));
-      if (method && !dragging && !o.fixed_method) {
-        interaction.set_method(next_method(interaction.method()));
-        recorder.write_method(t, interaction.method());
-      }
-      last = p;
-      take_commits();
+        if (colour) scene.set_colour(next_colour(scene.colour()));
+        scene.set_highlight(interaction.hover_handle(1));
+        if (method && !dragging && !o.fixed_method) {
+          interaction.set_method(next_method(interaction.method()));
+          recorder.write_method(t, interaction.method());
+        }
+        last = p;
+        take_commits();
 
-      const std::shared_ptr<const deform::Snapshot> snapshot = service.latest();
-      interaction.sync_committed(*snapshot);
-      scene.update(snapshot);
-      // The readout by the cursor (where the press is, or where it would grab), the same size on screen at any
-      // camera distance: a line about 3.5% of the view's height.
-      std::vector<renderer::Draw> draws = scene.draws();
-      {
-        const auto& hover = interaction.hovers()[1];
-        const Eigen::Vector3d camera = to_eigen(glm::vec3(glm::inverse(view.view)[3]));
-        std::optional<Eigen::Vector3d> anchor;
-        if (interaction.dragging())
-          anchor = setup.placement.to_stage_point(setup.placement.to_model_point(p0_stage) + interaction.current_d());
-        else if (hover)
-          anchor = setup.placement.to_stage_point(hover->point);
-        if (anchor) {
-          const double distance = (camera - *anchor).norm();
-          // projection[1][1] = -1 / tan(fov_y / 2) (Vulkan's clip y points down).
-          const double tan_half_fov = 1.0 / std::max(1e-6, std::abs(double(view.projection[1][1])));
-          const double line = 0.035 * 2.0 * distance * tan_half_fov;
-          cursor_label.set_text(readout_lines(interaction, *snapshot, life, held_frames > 0));
-          cursor_label.place(*anchor + Eigen::Vector3d(0.0, 0.5 * line, 0.0), camera, line / 0.02);
-          if (const auto d = cursor_label.draw()) draws.push_back(*d);
+        const std::shared_ptr<const deform::Snapshot> snapshot = service.latest();
+        interaction.sync_committed(*snapshot);
+        scene.update(snapshot);
+        // The readout by the cursor (where the press is, or where it would grab), the same size on screen at
+        // any camera distance: a line about 3.5% of the view's height.
+        std::vector<renderer::Draw> draws = scene.draws();
+        {
+          const auto& hover = interaction.hovers()[1];
+          const Eigen::Vector3d camera = to_eigen(glm::vec3(glm::inverse(view.view)[3]));
+          std::optional<Eigen::Vector3d> anchor;
+          if (interaction.dragging())
+            anchor = setup.placement.to_stage_point(setup.placement.to_model_point(p0_stage) +
+                                                    interaction.current_d());
+          else if (hover)
+            anchor = setup.placement.to_stage_point(hover->point);
+          if (anchor) {
+            const double distance = (camera - *anchor).norm();
+            // projection[1][1] = -1 / tan(fov_y / 2) (Vulkan's clip y points down).
+            const double tan_half_fov = 1.0 / std::max(1e-6, std::abs(double(view.projection[1][1])));
+            const double line = 0.035 * 2.0 * distance * tan_half_fov;
+            cursor_label.set_text(readout_lines(interaction, *snapshot, life, held_frames > 0));
+            cursor_label.place(*anchor + Eigen::Vector3d(0.0, 0.5 * line, 0.0), camera, line / 0.02);
+            if (const auto d = cursor_label.draw()) draws.push_back(*d);
+          }
+          hud.set_text(window_hud_lines(
+              interaction, *snapshot, life, colour_name(scene.colour()), "",
+              {"left drag: push/pull (Shift: along the normal)  right drag: turn  wheel: zoom",
+               "U undo  R redo  C colour  M method  Esc end"}));
+          hud.place_top_left(view, 0.03);
+          if (const auto d = hud.draw()) draws.push_back(*d);
         }
-        hud.set_text(window_hud_lines(
-            interaction, *snapshot, life, colour_name(scene.colour()), "",
-            {"left drag: push/pull (Shift: along the normal)  right drag: turn  wheel: zoom",
-             "U undo  R redo  C colour  M method  Esc end"}));
-        hud.place_top_left(view, 0.03);
-        if (const auto d = hud.draw()) draws.push_back(*d);
+        if (frame) {
+          scene.set_legend_window(extent.width, extent.height);
+          renderer.render(std::span(&view, 1), draws, scene.settings(/*legend=*/true), frame->targets,
+                          frame->sync);
+          window.present(*frame);
+          ++frames;
+        }
+        char text[256];
+        std::snprintf(text, sizeof text, "pushpull review (desktop) | %s%s | |d| %.1f mm | %d it %s | %s",
+                      std::string(deform::method_name(interaction.method())).c_str(),
+                      dragging ? " (dragging)" : "", life.to_mm(snapshot->d.norm()), snapshot->iteration,
+                      snapshot->converged ? "converged" : "not converged", colour_name(scene.colour()));
+        if (title != text) window.set_title(title = text);
+      } catch (const std::exception& e) {
+        failure = e.what();
+        std::fprintf(stderr, "pushpull review: %s; ending the review (the committed work is kept)\n",
+                     e.what());
+        break;
       }
-      if (frame) {
-        scene.set_legend_window(extent.width, extent.height);
-        renderer.render(std::span(&view, 1), draws, scene.settings(/*legend=*/true), frame->targets,
-                        frame->sync);
-        window.present(*frame);
-        ++frames;
-      }
-      char text[256];
-      std::snprintf(text, sizeof text, "pushpull review (desktop) | %s%s | |d| %.1f mm | %d it %s | %s",
-                    std::string(deform::method_name(interaction.method())).c_str(), dragging ? " (dragging)" : "",
-                    life.to_mm(snapshot->d.norm()), snapshot->iteration,
-                    snapshot->converged ? "converged" : "not converged", colour_name(scene.colour()));
-      if (title != text) window.set_title(title = text);
     }
     if (const auto e = interaction.cancel()) record_interaction(*e);
-    renderer.wait_idle();
+    try {
+      renderer.wait_idle();
+    } catch (const std::exception& e) {  // a lost GPU device: nothing more to wait for
+      if (!failure) failure = e.what();
+    }
     service.wait_idle();
     take_commits();
     const auto history = service.history();
     const deform::HistoryEntry& current = history.at(service.history_position());
-    recorder.write_record("end", t,
-                          {{"commits", service.history_position()}, {"hash", hash_text(current.hash)}});
+    nlohmann::json end_fields{{"commits", service.history_position()}, {"hash", hash_text(current.hash)}};
+    if (failure) end_fields["error"] = *failure;
+    recorder.write_record("end", t, end_fields);
     log.write({{"event", "end"}, {"revision", service.revision()}, {"hash", current.hash},
                {"commits", service.history_position()}});
     if (!o.out.empty()) {
@@ -288,6 +309,12 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
                   service.history_position());
     }
     std::printf("pushpull review: desktop window presented %d frames\n", frames);
+    if (failure)
+      throw CommandError("the review ended on an error: " + *failure +
+                         (!o.out.empty()         ? " (the committed model was written to " + o.out + ")"
+                          : recorder.recording() ? " (`pushpull replay " + recorder.path() +
+                                                       " --out FOLDER` rebuilds the committed model)"
+                                                 : std::string()));
   }
   if (o.validation && context.validation_message_count() > 0)
     throw CommandError("Vulkan validation reported " + std::to_string(context.validation_message_count()) +

@@ -9,16 +9,24 @@
 // Warm starts (a drag's next request from the previous result) are checked on the 10K height field and the
 // car's 2 m region, with and without the previous solve's contraction rate as hint.
 //
-// Usage: stopping_bench [--quick] [--method NAME]...   (--quick: the 2.5K height field only; --method: only
-// these methods' rows, repeatable)
+// Random pulls (--random-pulls N): N pulls on each of the shared models nobody tuned for (the low-poly milk
+// truck, the Draco truck body, the cactus, the hemisphere, fandisk, the real car): a handle of 8% of the
+// region's radius around the centre of a random triangle, a region of 30-50% of the model's diagonal, d of
+// 5-10% of the region's radius along the triangle's normal tilted at random (fixed seed), asan and arap-sr
+// (or the --method ones); prints each run and how many stopped optimistic (> 2x) or beyond 2e-2 |d|.
+//
+// Usage: stopping_bench [--quick] [--random-pulls N] [--method NAME]...   (--quick: the 2.5K height field
+// only; --random-pulls: only the random pulls; --method: only these methods' rows, repeatable)
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <exception>
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -143,14 +151,97 @@ int run_warm(const Problem& p, References& references) {
   return failures;
 }
 
+#ifdef PUSHPULL_BENCH_WITH_ASSETS
+// See the header comment. Returns the number of dishonest runs (converged, true error > 2x the estimate).
+int run_random_pulls(int per_model, const std::vector<pd::Method>& methods) {
+  struct Model {
+    const char* file;
+    double region;  // fraction of the bounding-box diagonal
+  };
+  const Model models[] = {{"gltf/CesiumMilkTruck/glTF-Binary/CesiumMilkTruck.glb", 0.3},
+                          {"gltf/car_drc/car.drc", 0.3},
+                          {"meshes/cactus/cactus.off", 0.4},
+                          {"meshes/hemisphere.off", 0.5},
+                          {"meshes/fandisk.off", 0.3},
+                          {"gltf/AsamVehicle/vehicle_example.gltf", 0.15}};
+  std::mt19937 rng(20261202);
+  int runs = 0, optimistic = 0, beyond = 0;
+  long iterations = 0;
+  std::printf("\nrandom pulls: %d per model; ratio = true / estimate\n", per_model);
+  std::printf("%-22s %5s %6s %-8s | %5s %9s %9s %6s\n", "model", "pull", "region", "method", "iters",
+              "estimate", "true", "ratio");
+  for (const Model& m : models) {
+    const std::filesystem::path path = std::filesystem::path(PUSHPULL_SHARED_DATA) / m.file;
+    if (!std::filesystem::exists(path)) continue;
+    const pd::Mesh mesh = pushpull::assets::load_model(path).deform_mesh;
+    const double diagonal = (mesh.V.colwise().maxCoeff() - mesh.V.colwise().minCoeff()).norm();
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    for (int pull = 0; pull < per_model;) {
+      const int f = std::uniform_int_distribution<int>(0, static_cast<int>(mesh.F.rows()) - 1)(rng);
+      const Eigen::Vector3d a = mesh.V.row(mesh.F(f, 0)), b = mesh.V.row(mesh.F(f, 1)),
+                            c = mesh.V.row(mesh.F(f, 2));
+      const Eigen::Vector3d normal = (b - a).cross(c - a);
+      if (!(normal.norm() > 1e-12 * diagonal * diagonal)) continue;
+      const double radius = m.region * diagonal;
+      const pd::SurfacePoint hit{f, (a + b + c) / 3.0};
+      Problem p;
+      p.mesh = mesh;
+      p.roi = pd::build_roi(mesh, pd::surface_handle(mesh, hit, 0.08 * radius), {}, radius);
+      const Eigen::Vector3d tilt(unit(rng), unit(rng), unit(rng));
+      p.d = (normal.normalized() + 0.5 * tilt).normalized() * 0.1 * radius * (0.75 + 0.25 * unit(rng));
+      if (p.roi.size() < 30) continue;  // a lamp or a bolt: nothing to measure
+      ++pull;
+      References references;
+      for (const pd::Method method : methods) {
+        pd::DeformOptions options;
+        options.method = method;
+        pd::DeformResult r;
+        try {
+          r = pd::deform(p.mesh, p.roi, p.d, options);
+        } catch (const std::exception& error) {
+          std::printf("%-22s %5d %6zu %-8s | refused: %.60s\n", path.filename().c_str(), pull, p.roi.size(),
+                      std::string(pd::method_name(method)).c_str(), error.what());
+          continue;
+        }
+        const pd::DeformResult& reference = reference_of(p, method, references);
+        if (!reference.converged) continue;  // no truth to compare with
+        const double truth = true_error(r.V, reference.V, p.d);
+        const double estimate = r.error_estimate.value_or(NAN);
+        const bool dishonest = r.converged && truth > 2.0 * estimate;
+        ++runs;
+        iterations += r.iterations;
+        optimistic += dishonest ? 1 : 0;
+        beyond += r.converged && truth > 2.0 * options.tolerance ? 1 : 0;
+        std::printf("%-22s %5d %6zu %-8s | %5d%s %9.1e %9.1e %6.2f%s\n", path.filename().c_str(), pull,
+                    p.roi.size(), std::string(pd::method_name(method)).c_str(), r.iterations,
+                    r.converged ? " " : "*", estimate, truth, truth / estimate,
+                    dishonest ? "   <-- optimistic > 2x" : "");
+        std::fflush(stdout);
+      }
+    }
+  }
+  std::printf(
+      "random pulls: %d runs, %ld iterations in all; %d stopped optimistic > 2x, %d beyond 2e-2 |d|\n", runs,
+      iterations, optimistic, beyond);
+  return optimistic;
+}
+#endif
+
 }  // namespace
 
 int main(int argc, char** argv) {
   bool quick = false;
+  int random_pulls = 0;
   std::vector<pd::Method> methods;
   for (int a = 1; a < argc; ++a) {
     if (std::strcmp(argv[a], "--quick") == 0) {
       quick = true;
+    } else if (std::strcmp(argv[a], "--random-pulls") == 0 && a + 1 < argc) {
+      random_pulls = std::atoi(argv[++a]);
+      if (random_pulls <= 0) {
+        std::fprintf(stderr, "stopping_bench: --random-pulls needs a positive count\n");
+        return 2;
+      }
     } else if (std::strcmp(argv[a], "--method") == 0 && a + 1 < argc) {
       try {
         methods.push_back(pd::parse_method(argv[++a]));
@@ -159,11 +250,23 @@ int main(int argc, char** argv) {
         return 2;
       }
     } else {
-      std::fprintf(stderr, "usage: stopping_bench [--quick] [--method NAME]...\n");
+      std::fprintf(stderr, "usage: stopping_bench [--quick] [--random-pulls N] [--method NAME]...\n");
       return 2;
     }
   }
   if (!methods.empty()) g_methods = methods;
+  if (random_pulls > 0) {
+#ifdef PUSHPULL_BENCH_WITH_ASSETS
+    const int dishonest = run_random_pulls(
+        random_pulls,
+        methods.empty() ? std::vector<pd::Method>{pd::Method::Asan, pd::Method::ArapSR} : methods);
+    std::printf("\n%d run(s) failed the honesty check\n", dishonest);
+    return 0;
+#else
+    std::fprintf(stderr, "stopping_bench: --random-pulls needs the assets library (models)\n");
+    return 2;
+#endif
+  }
   std::printf(
       "stopping_bench: estimated vs true distance to the minimiser, relative to |d| (default rule: "
       "estimate <= 1e-2)\nratio = true / estimate (<= 2 required); * = not converged\n");

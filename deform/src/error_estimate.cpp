@@ -65,11 +65,11 @@ void ContractionEstimate::add(const Eigen::Ref<const Eigen::VectorXd>& x,
 
 std::optional<double> ContractionEstimate::rate() const {
   if (expanding_) return std::nullopt;
-  const bool own =
-      pairs_ >= window_ && (policy_ != Policy::Cautious || estimates_ >= static_cast<long>(recent_.size()));
-  if (!own) {
+  const bool any = pairs_ >= window_;  // at least one estimate
+  const long needed = policy_ == Policy::Cautious ? static_cast<long>(recent_.size()) : window_;
+  if (!any || estimates_ < needed) {  // too few of its own: the floor alone (a warm start's), or none
     if (policy_ == Policy::Cautious || !floor_) return std::nullopt;
-    return floor_;
+    return any ? std::max(rate_, *floor_) : *floor_;
   }
   return floor_ ? std::max(rate_, *floor_) : rate_;
 }
