@@ -167,6 +167,7 @@ void run_replay(const ReplayOptions& o) {
   review.record = (out / "replay-session.jsonl").string();
   review.settle_drawn_frames = true;
   review.press_holds = rec.press_holds;  // the same presses held back over the same frames
+  review.recorded_anchor.emplace(rec.anchor);  // the model where the recorded review put it
   review.quiet = true;  // the replay prints its own line per commit
   // No display paces a replay: its loop runs flat out on the virtual clock, and a niced solver would crawl behind
   // it (the loop waits for the solver wherever results matter anyway).

@@ -239,6 +239,7 @@ void run_review(const ReviewCommandOptions& o) {
     FrameStats stats;
     bool sizes_changed = false;
     GrabPlacement grab(placement);
+    bool anchor_done = false;  // the model was anchored to the reviewer's head (or will not be)
     ReviewMenu menu;
     WorldLabel hand_label(renderer, 0.02f, 600), menu_label(renderer, 0.03f, 1500);
     WorldLabel mirror_hud(renderer, 0.02f, 1000);  // the mirror's own views only (a copied eye has none)
@@ -353,6 +354,25 @@ void run_review(const ReviewCommandOptions& o) {
           }
           recorder.write_frame_input(t, head, {input->hand(xr::Hand::Left), input->hand(xr::Hand::Right)},
                                      input->current_profile(xr::Hand::Right));
+          // The model in front of the reviewer, wherever they stand (head_anchor.hpp): once per review, at
+          // the first located head (live), or at the recorded frame (replay).
+          if (!anchor_done) {
+            std::optional<HeadAnchor> anchor;
+            if (!o.recorded_anchor) {
+              if (head) anchor = anchor_at_head(t, head_position, head_forward);
+            } else if (!o.recorded_anchor->has_value()) {
+              anchor_done = true;
+            } else if ((*o.recorded_anchor)->time <= t + 0.5 / double(recording_rate_hz)) {
+              anchor = **o.recorded_anchor;
+            }
+            if (anchor) {
+              anchor_done = true;
+              const StagePlacement at_head = anchored(placement, *anchor);
+              grab = GrabPlacement(at_head);
+              place_model(at_head);
+              recorder.write_record("anchor", t, {{"x", anchor->x}, {"z", anchor->z}, {"yaw", anchor->yaw}});
+            }
+          }
         }
         // The stage space moves (the reviewer recentred the view): hand positions jump, and a drag spanning
         // the jump would push it into the model; it is cancelled, the model stays as before it.

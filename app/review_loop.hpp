@@ -6,6 +6,7 @@
 #pragma once
 
 #include "commit_watch.hpp"
+#include "head_anchor.hpp"
 #include "life_size.hpp"
 #include "press_hold.hpp"
 
@@ -65,6 +66,10 @@ struct ReviewCommandOptions {
   // service there) and any other press at once (waiting too), as the recorded loop did. Unset (live): a press
   // is held back until the service is idle, and no frame waits.
   std::optional<std::vector<PressHold>> press_holds;
+  // Headset loop: where the model is anchored to the reviewer (head_anchor.hpp). Live (unset): at the first
+  // frame the head is located. Set (replay): the recorded anchor at its frame, or none when the recording has
+  // none (an older format, a desktop session, a head never located): the model stays where the header put it.
+  std::optional<std::optional<HeadAnchor>> recorded_anchor;
   // Headset loop: whether to draw the eyes of the frame at recording time t (s); empty: every frame. Frames
   // not drawn end without layers. `pushpull replay` draws only the frames the simulated runtime captures: the
   // loop computes the same either way, and a software rasterizer spends its time on the frames that are kept.

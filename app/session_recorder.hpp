@@ -1,7 +1,7 @@
 // The review's session recording (`pushpull review --record FILE`): JSON Lines, written as the session goes
 // and flushed after every line, so a crash keeps everything up to the crash.
 //
-//   {"record":"header","format":"pushpull-session-2","model":..,"model_sha256":..,"T_stage_model":[16],..}
+//   {"record":"header","format":"pushpull-session-3","model":..,"model_sha256":..,"T_stage_model":[16],..}
 //   {"t":0.0,"path":"/user/head","pose":{"p":[x,y,z],"q":[x,y,z,w]}}              input, xr/sim script format
 //   {"t":0.0,"path":"/user/hand/right/input/trigger/value","value":0.0}
 //   {"record":"press","time":0.5,"hand":"right","face":12,"p0":[..],"handle_radius":..,"roi_radius":..}
@@ -10,8 +10,11 @@
 //   {"record":"undo","time":..} {"record":"redo","time":..} {"record":"profile","time":..,"profile":".."}
 //   {"record":"press held","time":1.2,"from":1.13,"admitted":true}   a press held back while solving
 //                                                                     (press_hold.hpp), ended at "time"
-// Format 2 adds "press held" (headset recordings; the desktop shows a hold as its trigger staying released);
-// `pushpull replay` reads 1 and 2 alike (a recording without holds is replayed as format 1 was).
+//   {"record":"anchor","time":0.0,"x":..,"z":..,"yaw":..}   the model moved in front of the reviewer's head
+//                                                            (head_anchor.hpp; T_stage_model is before it)
+// Format 2 adds "press held" (headset recordings; the desktop shows a hold as its trigger staying released),
+// format 3 "anchor" (headset recordings); `pushpull replay` reads 1 to 3 alike (a recording without holds is
+// replayed as format 1 was, one without an anchor keeps the header's placement).
 //   {"record":"end","time":..,"commits":n,"hash":".."}
 //
 // Input lines carry "t" and an OpenXR path. t counts the loop's frames: frame n at n / rate (the "clock"

@@ -2,6 +2,8 @@
 
 #include "commands.hpp"
 
+#include <cmath>
+
 #include "pushpull/deform/method.hpp"
 
 #include <fstream>
@@ -127,6 +129,15 @@ SessionRecording read_session_recording(const std::string& path) {
         if (!r.press_holds.empty() && j["from"].get<double>() < r.press_holds.back().until)
           corrupted(path, number, "a press held record begins before the previous one ended");
         r.press_holds.push_back({j["from"].get<double>(), j["time"].get<double>(), j["admitted"].get<bool>()});
+      } else if (kind == "anchor") {
+        const auto finite = [&](const char* key) {
+          return j.contains(key) && j[key].is_number() && std::isfinite(j[key].get<double>());
+        };
+        if (!finite("time") || !finite("x") || !finite("z") || !finite("yaw"))
+          corrupted(path, number, "an anchor record needs finite \"time\", \"x\", \"z\" and \"yaw\"");
+        if (r.anchor) corrupted(path, number, "a second anchor record (a review anchors the model once)");
+        r.anchor = HeadAnchor{j["time"].get<double>(), j["x"].get<double>(), j["z"].get<double>(),
+                              j["yaw"].get<double>()};
       } else if (kind == "clock") {
         r.rate_hz = j.value("rate_hz", 0.0);
       } else if (kind == "profile" && r.profile.empty()) {

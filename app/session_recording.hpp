@@ -9,6 +9,7 @@
 // Thread-safety: plain values.
 #pragma once
 
+#include "head_anchor.hpp"
 #include "press_hold.hpp"
 
 #include <nlohmann/json.hpp>
@@ -33,6 +34,7 @@ struct SessionRecording {
   std::vector<RecordedCommit> commits;       // the commit records, in commit order
   std::vector<std::pair<double, std::string>> method_changes;  // "method" records: (time s, method name), in order
   std::vector<PressHold> press_holds;        // "press held" records, in order
+  std::optional<HeadAnchor> anchor;          // the "anchor" record, if any (at most one)
   std::string script;                        // the complete lines before any cut, '\n'-terminated (for xr/sim)
   double last_input_time = 0.0;              // largest "t" of an input line (seconds)
   double rate_hz = 0.0;                      // display rate of the recorded session (0: unknown)

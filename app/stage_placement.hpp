@@ -5,6 +5,8 @@
 // and its front axis to stage +Z (towards the reviewer), the lowest point on the floor (y = 0: the wheels of
 // a car), centred left-right in front of the reviewer, its nearest point `distance_m` in front of them.
 //
+// The headset loop then moves this placement in front of the reviewer's head (head_anchor.hpp).
+//
 // Thread-safety: plain values and pure functions.
 #pragma once
 

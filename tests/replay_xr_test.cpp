@@ -299,6 +299,31 @@ TEST(ReplayXr, AMalformedPressHeldRecordIsNamedByItsLine) {
       << r.output;
 }
 
+// The anchor record (the model moved in front of the reviewer's head) must be one, with finite numbers.
+TEST(ReplayXr, AMalformedOrSecondAnchorRecordIsNamedByItsLine) {
+  const fs::path dir = test_dir();
+  const fs::path session = record_session(dir);
+  const auto recorded = text_lines(session);
+  ASSERT_GT(recorded.size(), 20u);
+  ASSERT_EQ(
+      std::count_if(recorded.begin(), recorded.end(),
+                    [](const std::string& l) { return l.find(R"("record":"anchor")") != std::string::npos; }),
+      1);
+  for (const std::string& bad : {std::string(R"({"record":"anchor","time":0.1,"x":0,"z":0,"yaw":"left"})"),
+                                 std::string(R"({"record":"anchor","time":0.1,"x":0,"z":0,"yaw":0})")}) {
+    auto lines = recorded;
+    const std::size_t at = lines.size() - 1;  // before the end record, after the recorded anchor
+    lines.insert(lines.begin() + std::ptrdiff_t(at), bad);
+    write_lines(session, lines);
+    const auto r = replay(session, dir / "out", "--no-pictures");
+    EXPECT_NE(r.status, 0) << r.output;
+    EXPECT_NE(r.output.find(session.string() + ":" + std::to_string(at + 1) + ": corrupted line: a"),
+              std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("anchor record"), std::string::npos) << r.output;
+  }
+}
+
 // The bundled session (examples/sessions): the paper's three push/pulls on the bundled car replay with the
 // recorded hashes (a change to the solver that moves them means recording it again: see its README).
 TEST(ReplayXr, BundledPaperSessionReplaysWithTheRecordedHashes) {

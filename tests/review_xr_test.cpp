@@ -10,6 +10,7 @@
 #include "pushpull/renderer/image_io.hpp"
 
 #include <gtest/gtest.h>
+#include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -377,6 +378,65 @@ TEST(ReviewXr, ViewsWithOrientationOnlyAreStillDrawn) {
   EXPECT_GT(model, image.pixels.size() / 4 / 20);  // the bonnet, seen from 1.6 m
 }
 
+// A reviewer who does not stand at the stage origin facing -Z (on a real runtime the origin is the middle of
+// the play area, and the reviewer stands anywhere, facing any way) still has the model in front of them: it
+// is anchored to the head at the first frame. Here the whole scene of the first test is turned 90 degrees
+// left and moved to (0.8, 0, 1.5): the head, and the controller aiming and pulling; the push/pull commits the
+// same p0, d and shape as at the origin, and the recording (with its anchor) replays.
+TEST(ReviewXr, TheModelStandsInFrontOfAReviewerAwayFromTheStageOrigin) {
+  const fs::path dir = test_dir();
+  const Eigen::Quaternionf turn(Eigen::AngleAxisf(float(M_PI / 2), Eigen::Vector3f::UnitY()));
+  const Eigen::Vector3f shift(0.8f, 0.0f, 1.5f);
+  auto pose = [&](double t, const std::string& path, Eigen::Vector3f p, Eigen::Quaternionf q, bool moved) {
+    if (moved) {
+      p = turn * p + shift;
+      q = turn * q;
+    }
+    char line[256];
+    std::snprintf(line, sizeof line,
+                  R"({"t":%g,"path":"%s","pose":{"p":[%.9g,%.9g,%.9g],"q":[%.9g,%.9g,%.9g,%.9g]}})", t,
+                  path.c_str(), p.x(), p.y(), p.z(), q.x(), q.y(), q.z(), q.w());
+    return std::string(line) + "\n";
+  };
+  auto script = [&](bool moved) {
+    const Eigen::Quaternionf head(0.94552f, -0.32557f, 0.0f, 0.0f),
+        down(0.70710678f, -0.70710678f, 0.0f, 0.0f);
+    const std::string aim = "/user/hand/right/input/aim/pose",
+                      trigger = "/user/hand/right/input/trigger/value";
+    return pose(0.0, "/user/head", {0.0f, 1.0f, 0.0f}, head, moved) +
+           pose(0.0, aim, {0.0123f, 0.5f, -0.65f}, down, moved) + R"({"t":0.0,"path":")" + trigger +
+           R"(","value":0.0}
+)" + pose(0.5, aim, {0.0123f, 0.5f, -0.65f}, down, moved) +
+           R"({"t":0.5,"path":")" + trigger + R"(","value":1.0}
+)" + pose(1.0, aim, {0.0123f, 0.5f, -0.55f}, down, moved) +
+           R"({"t":1.5,"path":")" + trigger + R"(","value":0.0}
+{"t":2.5,"event":"exit"}
+)";
+  };
+  const ReviewRun origin = run_review(dir, script(false), "--out " + (dir / "origin.off").string());
+  ASSERT_EQ(origin.result.status, 0) << origin.result.output;
+  const fs::path recording = dir / "session.jsonl";
+  const ReviewRun moved = run_review(
+      dir, script(true), "--out " + (dir / "moved.off").string() + " --record " + recording.string());
+  ASSERT_EQ(moved.result.status, 0) << moved.result.output;
+  ASSERT_EQ(origin.of("commit").size(), 1u) << origin.result.output;
+  ASSERT_EQ(moved.of("commit").size(), 1u) << moved.result.output;
+  for (const char* key : {"p0", "d"}) {
+    const std::vector<double> a = origin.of("commit")[0].at(key), b = moved.of("commit")[0].at(key);
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(a[i], b[i], 1e-5) << key << " " << i;
+  }
+  const auto a = pushpull::deform::read_mesh(dir / "origin.off");
+  const auto b = pushpull::deform::read_mesh(dir / "moved.off");
+  ASSERT_EQ(a.V.rows(), b.V.rows());
+  EXPECT_LT((a.V - b.V).cwiseAbs().maxCoeff(), 1e-4);
+  const auto anchors = recording_records(recording, "anchor");
+  ASSERT_EQ(anchors.size(), 1u);
+  EXPECT_NEAR(double(anchors[0].at("x")), 0.8, 1e-4);
+  EXPECT_NEAR(double(anchors[0].at("z")), 1.5, 1e-4);
+  EXPECT_NEAR(double(anchors[0].at("yaw")), M_PI / 2, 1e-4);
+  expect_replays_with_commits(recording);
+}
+
 // Runtimes list their swapchain formats best first, and some list UNORM before sRGB (xr/sim's unorm-first:
 // B8G8R8A8_UNORM, R8G8B8A8_UNORM, B8G8R8A8_SRGB, R8G8B8A8_SRGB): the eyes take the first sRGB format of the
 // list, and look as they do in R8G8B8A8_SRGB (a UNORM eye would be far darker in the mid-tones).
@@ -611,7 +671,7 @@ TEST(ReviewXr, GripMovesTheModelAndLaterPushPullsFollowIt) {
     return R"({"t":)" + number(t) + R"(,"path":")" + path + R"(","value":)" + number(v) + "}\n";
   };
   const std::string script =
-      R"({"t":0.0,"path":"/user/head","pose":{"p":[0,1.0,0.5],"q":[-0.32557,0,0,0.94552]}}
+      R"({"t":0.0,"path":"/user/head","pose":{"p":[0,1.0,0],"q":[-0.32557,0,0,0.94552]}}
 )" + pose(0.0, -0.65) +
       value(0.0, trigger, 0.0) + value(0.0, grip, 0.0) + value(0.3, grip, 1.0) + pose(0.3, -0.65) +
       pose(0.8, -0.15) + value(0.9, grip, 1.0) + value(1.0, grip, 0.0) + value(1.4, trigger, 0.0) +

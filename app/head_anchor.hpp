@@ -1,0 +1,35 @@
+// The model stands in front of the reviewer, wherever they stand on the stage.
+//
+// place_on_stage (stage_placement.hpp) places the model for a reviewer at the stage origin looking down -Z.
+// On a real runtime the STAGE origin is the middle of the play area and the reviewer may stand anywhere in
+// it, facing any way. So the headset loop anchors the placement to the head at the first frame it is located:
+// the placement is turned about the vertical by the head's yaw and moved to the head's floor position. A head
+// within 1 cm of the origin and 0.01 rad of facing -Z keeps the placement as it is (so a reviewer who starts
+// where the origin is sees exactly the placement place_on_stage made).
+//
+// Units: metres and radians, stage frame (+Y up). Thread-safety: plain values and pure functions.
+#pragma once
+
+#include "stage_placement.hpp"
+
+#include <Eigen/Core>
+
+namespace pushpull::app {
+
+struct HeadAnchor {
+  double time = 0.0;        // the recording time of the frame it was taken at (s)
+  double x = 0.0, z = 0.0;  // the head's floor position (stage metres)
+  double yaw = 0.0;         // the head's heading about +Y (radians; 0: looking down -Z, +pi/2: down -X)
+};
+
+// The anchor of a head at `position` looking along `forward` (stage; forward need not be unit): the heading
+// of forward's horizontal part, 0 when the head looks within about 6 degrees of straight up or down; zero (no
+// move) within 1 cm and 0.01 rad of the origin's pose.
+[[nodiscard]] HeadAnchor anchor_at_head(double time, const Eigen::Vector3d& position,
+                                        const Eigen::Vector3d& forward);
+
+// T_stage_model moved to the anchor: turned about +Y by yaw, then moved by (x, 0, z). A zero anchor returns
+// `at_origin` unchanged (bit for bit).
+[[nodiscard]] StagePlacement anchored(const StagePlacement& at_origin, const HeadAnchor& anchor);
+
+}  // namespace pushpull::app
