@@ -582,19 +582,22 @@ void run_review(const ReviewCommandOptions& o) {
           if (mirror_target) {
             const VkExtent2D e = mirror_target->targets.extent;
             mirror_camera = mirror_view.update(*last_eyes, dt, float(e.width) / float(e.height));
-            // Headset-eye mode shows the left eye as drawn (a copy, no second drawing, nothing over it); the
-            // other modes draw their own view, with the colour-map legend and the HUD.
+            // Headset-eye mode shows the left eye as drawn (a copy, no second drawing of the scene; its
+            // legend is the eye's) with the HUD over it; the other modes draw their own view, with the
+            // colour-map legend and the HUD.
             const bool blit = rendered && mirror_view.mode() == MirrorMode::HeadsetEye &&
                               mirror->accepts_blit() && xr.eye(0).transfer_source() &&
                               renderer.can_blit(eye_targets.format, mirror_target->targets.format);
-            mirror_draws = draws;
-            if (!blit) {
-              mirror_hud.set_text(window_hud_lines(interaction, *snapshot, life, colour_name(scene.colour()),
-                                                   mirror_mode_name(mirror_view.mode()),
-                                                   {"V view  C colour  M method  Esc end"}));
-              mirror_hud.place_top_left(mirror_camera, 0.03);
-              if (const auto d = mirror_hud.draw()) mirror_draws.push_back(*d);
-            }
+            // Its own view draws the scene and the HUD; a copied eye gets only the HUD drawn over it.
+            if (blit)
+              mirror_draws.clear();
+            else
+              mirror_draws = draws;
+            mirror_hud.set_text(window_hud_lines(interaction, *snapshot, life, colour_name(scene.colour()),
+                                                 mirror_mode_name(mirror_view.mode()),
+                                                 {"V view  C colour  M method  Esc end"}));
+            mirror_hud.place_top_left(mirror_camera, 0.03);
+            if (const auto d = mirror_hud.draw()) mirror_draws.push_back(*d);
             renderer::RenderPass pass{std::span(&mirror_camera, 1), mirror_draws,
                                       scene.settings(/*legend=*/true), &mirror_target->targets,
                                       mirror_target->sync};

@@ -43,6 +43,7 @@ struct PipelineDesc {
   VkPrimitiveTopology topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
   bool depth = true;
   bool blend = false;
+  bool depth_attachment = true;  // false: the pass has no depth attachment (drawing over a copied image)
 };
 
 UniquePipeline create_pipeline(const Context& context, VkPipelineLayout layout, VkFormat colour_format,
@@ -129,7 +130,7 @@ UniquePipeline create_pipeline(const Context& context, VkPipelineLayout layout, 
   rendering.sType = VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO;
   rendering.colorAttachmentCount = 1;
   rendering.pColorAttachmentFormats = &colour_format;
-  rendering.depthAttachmentFormat = kDepthFormat;
+  rendering.depthAttachmentFormat = desc.depth_attachment ? kDepthFormat : VK_FORMAT_UNDEFINED;
 
   VkGraphicsPipelineCreateInfo info{};
 
@@ -208,7 +209,7 @@ PipelineLayouts create_pipeline_layouts(const Context& context) {
 }
 
 UniquePipeline create_mesh_pipeline(const Context& context, VkPipelineLayout layout, VkFormat colour_format,
-                                    VkSampleCountFlagBits samples, bool depth_test) {
+                                    VkSampleCountFlagBits samples, bool depth_test, bool depth_attachment) {
   const std::array<VkVertexInputBindingDescription, kBindingCount> bindings{
       VkVertexInputBindingDescription{kPositions, 3 * sizeof(float), VK_VERTEX_INPUT_RATE_VERTEX},
       VkVertexInputBindingDescription{kNormals, 3 * sizeof(float), VK_VERTEX_INPUT_RATE_VERTEX},
@@ -226,7 +227,8 @@ UniquePipeline create_mesh_pipeline(const Context& context, VkPipelineLayout lay
   desc.fragment_code = mesh_frag_spv;
   desc.bindings = bindings;
   desc.attributes = attributes;
-  desc.depth = depth_test;
+  desc.depth = depth_test && depth_attachment;
+  desc.depth_attachment = depth_attachment;
   return create_pipeline(context, layout, colour_format, samples, desc);
 }
 

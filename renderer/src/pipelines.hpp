@@ -55,9 +55,11 @@ struct PipelineLayouts {
 };
 PipelineLayouts create_pipeline_layouts(const Context& context);
 
-// depth_test false: drawn over everything (overlay geometry).
+// depth_test false: drawn over everything (overlay geometry). depth_attachment false: for passes without a
+// depth attachment (drawing over an image copied into the target); no depth test then.
 UniquePipeline create_mesh_pipeline(const Context& context, VkPipelineLayout layout, VkFormat colour_format,
-                                    VkSampleCountFlagBits samples, bool depth_test = true);
+                                    VkSampleCountFlagBits samples, bool depth_test = true,
+                                    bool depth_attachment = true);
 UniquePipeline create_overlay_pipeline(const Context& context, VkPipelineLayout layout,
                                        VkFormat colour_format, VkSampleCountFlagBits samples);
 

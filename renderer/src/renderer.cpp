@@ -59,6 +59,7 @@ struct PipelinePair {
   UniquePipeline mesh;
   UniquePipeline mesh_on_top;
   UniquePipeline overlay;
+  UniquePipeline over_copy;  // one sample, no depth attachment: draws over a copied image (made when needed)
 };
 
 // A pass's uniform data: its views, the studio lighting, the colour-map settings.
@@ -246,9 +247,19 @@ struct Renderer::Impl {
     vkUpdateDescriptorSets(context.device(), static_cast<uint32_t>(writes.size()), writes.data(), 0, nullptr);
   }
 
-  // Copies `from` (COLOR_ATTACHMENT_OPTIMAL before and after) into `to`, scaled to cover it, centred.
+  // Copies `from` (COLOR_ATTACHMENT_OPTIMAL before and after) into `to`, scaled to cover it, centred; leaves
+  // `to` in its final layout, or in COLOR_ATTACHMENT_OPTIMAL ready to be drawn over when `drawn_over`.
   void record_blit(VkCommandBuffer cmd, const ColorTarget& from, VkExtent2D from_extent,
-                   const ColorTarget& to, VkExtent2D to_extent);
+                   const ColorTarget& to, VkExtent2D to_extent, bool drawn_over);
+  // Draws `draws` over the contents of `target` (COLOR_ATTACHMENT_OPTIMAL), one sample, no depth, in draw
+  // order; leaves it in its final layout.
+  void record_over_copy(VkCommandBuffer cmd, PipelinePair& pipes, VkFormat format, const ColorTarget& target,
+                        VkExtent2D extent, std::span<const Draw> draws, VkDescriptorSet frame_set);
+  // Binds and draws meshes in the given order with the pipeline `pipeline_of` picks (set 0 = frame_set
+  // bound).
+  template <class PipelineOf>
+  void record_draws(VkCommandBuffer cmd, std::span<const Draw* const> ordered, uint32_t view_index,
+                    PipelineOf pipeline_of);
   void record_view(VkCommandBuffer cmd, const PipelinePair& pipes, const ColorTarget& target,
                    VkExtent2D extent, uint32_t view_index, std::span<const Draw> draws,
                    const FrameSettings& settings, VkDescriptorSet frame_set, const Attachments& attachments);
@@ -410,6 +421,73 @@ void Renderer::set_legend(std::optional<TextureRGBA8> legend, glm::vec4 rect) {
   vkUpdateDescriptorSets(r.context.device(), 1, &write, 0, nullptr);
 }
 
+template <class PipelineOf>
+void Renderer::Impl::record_draws(VkCommandBuffer cmd, std::span<const Draw* const> ordered,
+                                  uint32_t view_index, PipelineOf pipeline_of) {
+  VkDescriptorSet bound_material = VK_NULL_HANDLE;
+  VkPipeline bound_pipeline = VK_NULL_HANDLE;
+  for (const Draw* draw_ptr : ordered) {
+    const Draw& draw = *draw_ptr;
+    if (draw.mesh >= meshes.size()) throw std::invalid_argument("render: unknown mesh id in a Draw");
+    const VkPipeline pipeline = pipeline_of(draw);
+    if (pipeline != bound_pipeline) {
+      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
+      bound_pipeline = pipeline;
+    }
+    const GpuMesh& mesh = meshes[draw.mesh];
+    DrawPushGpu push{draw.T_world_mesh, view_index, draw.colour_mapped ? 1u : 0u};
+    vkCmdPushConstants(cmd, layouts.mesh.get(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                       sizeof(push), &push);
+    mesh.bind(cmd);
+    for (const auto& sub : mesh.submeshes) {
+      const VkDescriptorSet set =
+          materials[sub.material < 0 ? default_material : static_cast<uint32_t>(sub.material)].set;
+      if (set != bound_material) {
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layouts.mesh.get(), 1, 1, &set, 0,
+                                nullptr);
+        bound_material = set;
+      }
+      vkCmdDrawIndexed(cmd, sub.index_count, 1, sub.first_index, 0, 0);
+    }
+  }
+}
+
+void Renderer::Impl::record_over_copy(VkCommandBuffer cmd, PipelinePair& pipes, VkFormat format,
+                                      const ColorTarget& target, VkExtent2D extent,
+                                      std::span<const Draw> draws, VkDescriptorSet frame_set) {
+  if (!pipes.over_copy)
+    pipes.over_copy = create_mesh_pipeline(context, layouts.mesh.get(), format, VK_SAMPLE_COUNT_1_BIT,
+                                           /*depth_test=*/false, /*depth_attachment=*/false);
+  VkRenderingAttachmentInfo colour{};
+  colour.sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO;
+  colour.imageView = target.view;
+  colour.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+  colour.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;  // the copied image stays under the draws
+  colour.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  VkRenderingInfo rendering{};
+  rendering.sType = VK_STRUCTURE_TYPE_RENDERING_INFO;
+  rendering.renderArea = {{0, 0}, extent};
+  rendering.layerCount = 1;
+  rendering.colorAttachmentCount = 1;
+  rendering.pColorAttachments = &colour;
+  vkCmdBeginRendering(cmd, &rendering);
+  const VkViewport viewport{0.0f, 0.0f, static_cast<float>(extent.width), static_cast<float>(extent.height),
+                            0.0f, 1.0f};
+  const VkRect2D scissor{{0, 0}, extent};
+  vkCmdSetViewport(cmd, 0, 1, &viewport);
+  vkCmdSetScissor(cmd, 0, 1, &scissor);
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layouts.mesh.get(), 0, 1, &frame_set, 0,
+                          nullptr);
+  std::vector<const Draw*> ordered;
+  for (const Draw& draw : draws) ordered.push_back(&draw);
+  record_draws(cmd, ordered, 0, [&](const Draw&) { return pipes.over_copy.get(); });
+  vkCmdEndRendering(cmd);
+  image_barrier(cmd, target.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                target.final_layout, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE,
+                target.layer, 1);
+}
+
 void Renderer::Impl::record_view(VkCommandBuffer cmd, const PipelinePair& pipes, const ColorTarget& target,
                                  VkExtent2D extent, uint32_t view_index, std::span<const Draw> draws,
                                  const FrameSettings& settings, VkDescriptorSet frame_set,
@@ -485,38 +563,14 @@ void Renderer::Impl::record_view(VkCommandBuffer cmd, const PipelinePair& pipes,
 
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layouts.mesh.get(), 0, 1, &frame_set, 0,
                           nullptr);
-  VkDescriptorSet bound_material = VK_NULL_HANDLE;
-  VkPipeline bound_pipeline = VK_NULL_HANDLE;
   // Depth-tested draws first, then the on-top ones.
   std::vector<const Draw*> ordered;
   for (const Draw& draw : draws)
     if (!draw.on_top) ordered.push_back(&draw);
   for (const Draw& draw : draws)
     if (draw.on_top) ordered.push_back(&draw);
-  for (const Draw* draw_ptr : ordered) {
-    const Draw& draw = *draw_ptr;
-    if (draw.mesh >= meshes.size()) throw std::invalid_argument("render: unknown mesh id in a Draw");
-    const VkPipeline pipeline = draw.on_top ? pipes.mesh_on_top.get() : pipes.mesh.get();
-    if (pipeline != bound_pipeline) {
-      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
-      bound_pipeline = pipeline;
-    }
-    const GpuMesh& mesh = meshes[draw.mesh];
-    DrawPushGpu push{draw.T_world_mesh, view_index, draw.colour_mapped ? 1u : 0u};
-    vkCmdPushConstants(cmd, layouts.mesh.get(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
-                       sizeof(push), &push);
-    mesh.bind(cmd);
-    for (const auto& sub : mesh.submeshes) {
-      const VkDescriptorSet set =
-          materials[sub.material < 0 ? default_material : static_cast<uint32_t>(sub.material)].set;
-      if (set != bound_material) {
-        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layouts.mesh.get(), 1, 1, &set, 0,
-                                nullptr);
-        bound_material = set;
-      }
-      vkCmdDrawIndexed(cmd, sub.index_count, 1, sub.first_index, 0, 0);
-    }
-  }
+  record_draws(cmd, ordered, view_index,
+               [&](const Draw& draw) { return draw.on_top ? pipes.mesh_on_top.get() : pipes.mesh.get(); });
   if (legend_set != VK_NULL_HANDLE && settings.show_legend) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes.overlay.get());
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layouts.overlay2d.get(), 0, 1, &legend_set,
@@ -574,6 +628,8 @@ void Renderer::render_frame(std::span<const RenderPass> passes) {
       if (pass.targets->views.size() != 1 || pass.blit_from_extent.width == 0 ||
           pass.blit_from_extent.height == 0)
         throw std::invalid_argument("render_frame: a blit pass needs one target and a non-empty source");
+      if (!pass.draws.empty() && pass.views.size() != 1)
+        throw std::invalid_argument("render_frame: draws over a copied image need one view");
       continue;
     }
     if (pass.views.empty() || pass.views.size() > 2 || pass.targets->views.size() != pass.views.size())
@@ -600,8 +656,9 @@ void Renderer::render_frame(std::span<const RenderPass> passes) {
     PassResources& res = slot.passes[p];
     const Attachments* attachments = nullptr;
     PipelinePair* pipes = nullptr;
-    if (pass.blit_from == nullptr) {
-      attachments = &r.ensure_attachments(targets.extent, targets.format);
+    const bool drawn_over = pass.blit_from != nullptr && !pass.draws.empty();
+    if (pass.blit_from == nullptr) attachments = &r.ensure_attachments(targets.extent, targets.format);
+    if (pass.blit_from == nullptr || drawn_over) {
       pipes = &r.pipelines_for(targets.format);
       const FrameDataGpu data = frame_data(pass.views, settings);
       std::memcpy(res.frame_data.mapped, &data, sizeof(data));
@@ -621,7 +678,11 @@ void Renderer::render_frame(std::span<const RenderPass> passes) {
       }
     }
     if (pass.blit_from != nullptr) {
-      r.record_blit(cmd, *pass.blit_from, pass.blit_from_extent, targets.views[0], targets.extent);
+      r.record_blit(cmd, *pass.blit_from, pass.blit_from_extent, targets.views[0], targets.extent,
+                    drawn_over);
+      if (drawn_over)
+        r.record_over_copy(cmd, *pipes, targets.format, targets.views[0], targets.extent, pass.draws,
+                           res.frame_set);
     } else {
       for (uint32_t v = 0; v < pass.views.size(); ++v)
         r.record_view(cmd, *pipes, targets.views[v], targets.extent, v, pass.draws, settings, res.frame_set,
@@ -664,7 +725,7 @@ bool Renderer::can_blit(VkFormat from, VkFormat to) const {
 }
 
 void Renderer::Impl::record_blit(VkCommandBuffer cmd, const ColorTarget& from, VkExtent2D from_extent,
-                                 const ColorTarget& to, VkExtent2D to_extent) {
+                                 const ColorTarget& to, VkExtent2D to_extent, bool drawn_over) {
   // The source as drawn by an earlier pass of this frame; the target's old contents are discarded.
   image_barrier(cmd, from.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                 VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
@@ -692,9 +753,16 @@ void Renderer::Impl::record_blit(VkCommandBuffer cmd, const ColorTarget& from, V
                 VK_ACCESS_2_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
                 VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, from.layer,
                 1);
-  image_barrier(cmd, to.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                to.final_layout, VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE, to.layer, 1);
+  if (drawn_over)
+    image_barrier(cmd, to.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                  VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_BLIT_BIT,
+                  VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                  VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, to.layer,
+                  1);
+  else
+    image_barrier(cmd, to.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                  to.final_layout, VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                  VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE, to.layer, 1);
 }
 
 void Renderer::wait_idle() {

@@ -91,10 +91,11 @@ struct RenderPass {
   FrameSettings settings;
   const RenderTargets* targets = nullptr;
   FrameSync sync;
-  // Instead of drawing: copy this image (a colour target drawn by an earlier pass of the same frame, left in
-  // COLOR_ATTACHMENT_OPTIMAL, which it is again afterwards) into the one target, scaled to cover it and
-  // centred (a mirror window showing an eye as it is). views and draws are ignored; the source needs
-  // TRANSFER_SRC usage and the target TRANSFER_DST (can_blit() says whether the formats allow it).
+  // Instead of drawing the scene: copy this image (a colour target drawn by an earlier pass of the same
+  // frame, left in COLOR_ATTACHMENT_OPTIMAL, which it is again afterwards) into the one target, scaled to
+  // cover it and centred (a mirror window showing an eye as it is); then `draws`, if any, over the copy with
+  // views[0] (exactly one view then), in order, one sample, without depth test or legend (a HUD). The source
+  // needs TRANSFER_SRC usage and the target TRANSFER_DST (can_blit() says whether the formats allow it).
   const ColorTarget* blit_from = nullptr;
   VkExtent2D blit_from_extent{};
 };
