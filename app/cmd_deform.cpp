@@ -154,7 +154,9 @@ deform::Method parse_method_or_throw(const std::string& name, const char* option
 
 // --handle-at P --handle-radius R: the surface point closest to P, then every vertex within R of it along
 // the surface (on that point's component only), the rule the headset uses for a ray hit.
-std::vector<int> pick_handle(const DeformCommandOptions& o, const deform::Mesh& mesh) {
+// o is in file units (convert_to_file_units); `scale` (metres per file unit) puts the message back in the
+// life-size metres the user typed.
+std::vector<int> pick_handle(const DeformCommandOptions& o, const deform::Mesh& mesh, double scale) {
   if (!o.handle_file.empty()) return read_index_file(o.handle_file, mesh.vertex_count());
   const Eigen::Vector3d point = vector3(o.handle_at, "--handle-at");
   deform::SurfacePoint hit;
@@ -165,10 +167,19 @@ std::vector<int> pick_handle(const DeformCommandOptions& o, const deform::Mesh& 
   }
   const double gap = (hit.point - point).norm();
   if (gap > o.handle_radius) {
-    throw CommandError(o.mesh + ": --handle-at (" + std::to_string(point.x()) + ", " + std::to_string(point.y()) +
-                       ", " + std::to_string(point.z()) + ") is " + std::to_string(gap) +
-                       " from the surface, farther than --handle-radius " + std::to_string(o.handle_radius) +
-                       "; pick a point on the surface");
+    auto metres = [&](const Eigen::Vector3d& p) {
+      char text[128];
+      // Micrometres (no -5.7e-08), and no negative zero.
+      const Eigen::Vector3d m = ((p * scale * 1e6).array().round() / 1e6 + 0.0).matrix();
+      std::snprintf(text, sizeof text, "%.4g %.4g %.4g", m.x(), m.y(), m.z());
+      return std::string(text);
+    };
+    char numbers[128];
+    std::snprintf(numbers, sizeof numbers, "%.4g m from the surface, farther than --handle-radius %.4g m",
+                  gap * scale, o.handle_radius * scale);
+    throw CommandError(o.mesh + ": --handle-at " + metres(point) + " is " + numbers +
+                       "; the nearest surface point is --handle-at " + metres(hit.point) +
+                       (scale != 1.0 ? " (life-size metres)" : ""));
   }
   return deform::surface_handle(mesh, hit, o.handle_radius);
 }
@@ -262,7 +273,7 @@ void run_deform(DeformCommandOptions o) {
   const LifeSize life(o.life_size, bounds_of(mesh->V), o.mesh);
   convert_to_file_units(o, life);
   const Eigen::Vector3d d = vector3(o.displacement, "--displacement");
-  const std::vector<int> handle = pick_handle(o, *mesh);
+  const std::vector<int> handle = pick_handle(o, *mesh, life.scale());
   const std::vector<int> fixed =
       o.fixed_file.empty() ? std::vector<int>{} : read_index_file(o.fixed_file, mesh->vertex_count());
 

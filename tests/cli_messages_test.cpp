@@ -63,6 +63,27 @@ TEST_F(CliMessages, HandleNearTheFixedBorderIsWarnedOnce) {
   EXPECT_EQ(in_json, 1u) << metrics["warnings"].dump(2);
 }
 
+// A --handle-at point off the surface is refused in the life-size metres the user typed, with the nearest
+// surface point to type instead (the hemisphere's top is at z = 1 in the file; --length 4 doubles it).
+TEST_F(CliMessages, AHandlePointOffTheSurfaceNamesTheNearestOneInLifeSizeMetres) {
+  const std::string rest =
+      " --handle-at 0 0 3 --handle-radius 0.1 --roi-radius 1 --displacement 0 0 0.1 --out " + path("o.off") +
+      " --metrics " + path("m.json");
+  const CommandResult file_units = run_pushpull("deform " + kHemisphere.string() + rest);
+  EXPECT_NE(file_units.status, 0);
+  EXPECT_NE(
+      file_units.output.find("--handle-at 0 0 3 is 2 m from the surface, farther than --handle-radius 0.1 m; "
+                             "the nearest surface point is --handle-at 0 0 1"),
+      std::string::npos)
+      << file_units.output;
+  const CommandResult life_size = run_pushpull("deform " + kHemisphere.string() + " --length 4" + rest);
+  EXPECT_NE(life_size.status, 0);
+  EXPECT_NE(life_size.output.find("the nearest surface point is --handle-at 0 0 2.01 (life-size metres)"),
+            std::string::npos)
+      << life_size.output;
+  EXPECT_FALSE(fs::exists(path("o.off")));
+}
+
 TEST_F(CliMessages, StoppingRulesAndTheirDefaultsAreNamed) {
   const CommandResult help = run_pushpull("deform --help");
   ASSERT_EQ(help.status, 0) << help.output;
