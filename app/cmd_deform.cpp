@@ -171,11 +171,11 @@ std::vector<int> pick_handle(const DeformCommandOptions& o, const deform::Mesh& 
       char text[128];
       // Micrometres (no -5.7e-08), and no negative zero.
       const Eigen::Vector3d m = ((p * scale * 1e6).array().round() / 1e6 + 0.0).matrix();
-      std::snprintf(text, sizeof text, "%.4g %.4g %.4g", m.x(), m.y(), m.z());
+      std::snprintf(text, sizeof text, "%.6g %.6g %.6g", m.x(), m.y(), m.z());
       return std::string(text);
     };
     char numbers[128];
-    std::snprintf(numbers, sizeof numbers, "%.4g m from the surface, farther than --handle-radius %.4g m",
+    std::snprintf(numbers, sizeof numbers, "%.6g m from the surface, farther than --handle-radius %.6g m",
                   gap * scale, o.handle_radius * scale);
     throw CommandError(o.mesh + ": --handle-at " + metres(point) + " is " + numbers +
                        "; the nearest surface point is --handle-at " + metres(hit.point) +

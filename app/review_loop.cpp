@@ -302,9 +302,8 @@ void run_review(const ReviewCommandOptions& o) {
         bool back = false;
         try {
           back = resume_after_loss();
-        } catch (const std::exception& e) {  // making the session again failed: as if it did not come back
-          std::printf("pushpull review: the session could not be made again (%s); ending the review\n",
-                      e.what());
+        } catch (const std::exception& e) {  // making the session again failed: the review ends on it
+          failure = std::string("the session could not be made again after it was lost: ") + e.what();
         }
         if (!back) break;
         session_lost = false;
@@ -355,11 +354,19 @@ void run_review(const ReviewCommandOptions& o) {
           recorder.write_frame_input(t, head, {input->hand(xr::Hand::Left), input->hand(xr::Hand::Right)},
                                      input->current_profile(xr::Hand::Right));
           // The model in front of the reviewer, wherever they stand (head_anchor.hpp): once per review, at
-          // the first located head (live), or at the recorded frame (replay).
+          // the first frame whose head position is located (live; a headset tracked in orientation only never
+          // is), or at the recorded frame (replay).
           if (!anchor_done) {
             std::optional<HeadAnchor> anchor;
             if (!o.recorded_anchor) {
-              if (head) anchor = anchor_at_head(t, head_position, head_forward);
+              if (head && frame.position_valid) {
+                // The heading between the eyes (displays may be canted outwards, each eye by a few degrees).
+                const XrQuaternionf& l = frame.eyes[0].T_stage_eye.orientation;
+                const XrQuaternionf& r = frame.eyes[1].T_stage_eye.orientation;
+                const Eigen::Quaterniond between =
+                    Eigen::Quaterniond(l.w, l.x, l.y, l.z).slerp(0.5, Eigen::Quaterniond(r.w, r.x, r.y, r.z));
+                anchor = anchor_at_head(t, head_position, between * Eigen::Vector3d(0.0, 0.0, -1.0));
+              }
             } else if (!o.recorded_anchor->has_value()) {
               anchor_done = true;
             } else if ((*o.recorded_anchor)->time <= t + 0.5 / double(recording_rate_hz)) {
@@ -367,6 +374,9 @@ void run_review(const ReviewCommandOptions& o) {
             }
             if (anchor) {
               anchor_done = true;
+              // A gesture begun before the head was located aimed at the model where it stood then.
+              if (interaction.dragging())
+                if (const auto e = interaction.cancel()) log_event(*e);
               const StagePlacement at_head = anchored(placement, *anchor);
               grab = GrabPlacement(at_head);
               place_model(at_head);
@@ -582,9 +592,9 @@ void run_review(const ReviewCommandOptions& o) {
           if (mirror_target) {
             const VkExtent2D e = mirror_target->targets.extent;
             mirror_camera = mirror_view.update(*last_eyes, dt, float(e.width) / float(e.height));
-            // Headset-eye mode shows the left eye as drawn (a copy, no second drawing of the scene; its
-            // legend is the eye's) with the HUD over it; the other modes draw their own view, with the
-            // colour-map legend and the HUD.
+            // Headset-eye mode shows the left eye as drawn (a copy, no second drawing of the scene) with the
+            // HUD and the colour-map legend over it; the other modes draw their own view, with the legend and
+            // the HUD.
             const bool blit = rendered && mirror_view.mode() == MirrorMode::HeadsetEye &&
                               mirror->accepts_blit() && xr.eye(0).transfer_source() &&
                               renderer.can_blit(eye_targets.format, mirror_target->targets.format);
@@ -605,9 +615,8 @@ void run_review(const ReviewCommandOptions& o) {
               pass.blit_from = &eye_targets.views[0];
               pass.blit_from_extent = eye_targets.extent;
               ++mirror_blits;
-            } else {
-              scene.set_legend_window(e.width, e.height);
             }
+            scene.set_legend_window(e.width, e.height);
             passes.push_back(pass);
           }
         }
@@ -643,29 +652,39 @@ void run_review(const ReviewCommandOptions& o) {
         break;
       }
     }
+    // The end, also after a failure. Each step that writes the recording or the log, or waits for the GPU, is
+    // guarded: a full disk or a lost device must not cost the --out write; the first error is the one
+    // reported.
+    auto guarded = [&](auto&& step) {
+      try {
+        step();
+      } catch (const std::exception& e) {
+        if (!failure) failure = e.what();
+      }
+    };
     if (failure) {
       std::fprintf(stderr, "pushpull review: %s; ending the review (the committed work is kept)\n",
                    failure->c_str());
-      if (interaction.dragging())
-        if (const auto e = interaction.cancel()) log_event(*e);
+      guarded([&] {
+        if (interaction.dragging())
+          if (const auto e = interaction.cancel()) log_event(*e);
+      });
     }
-    end_hold();  // a press still held back when the review ended never went through
-    try {
-      renderer.wait_idle();
-    } catch (const std::exception& e) {  // a lost GPU device: nothing more to wait for
-      if (!failure) failure = e.what();
-    }
+    guarded(end_hold);  // a press still held back when the review ended never went through
+    guarded([&] { renderer.wait_idle(); });
     service.wait_idle();
-    take_commits();
+    guarded(take_commits);
     const auto history = service.history();
     const deform::HistoryEntry& current = history.at(service.history_position());
-    nlohmann::json end_fields{{"commits", service.history_position()}, {"hash", hash_text(current.hash)}};
-    if (failure) end_fields["error"] = *failure;
-    recorder.write_record("end", t, end_fields);
-    log.write({{"event", "end"},
-               {"revision", service.revision()},
-               {"hash", current.hash},
-               {"commits", service.history_position()}});
+    guarded([&] {
+      nlohmann::json end_fields{{"commits", service.history_position()}, {"hash", hash_text(current.hash)}};
+      if (failure) end_fields["error"] = *failure;
+      recorder.write_record("end", t, end_fields);
+      log.write({{"event", "end"},
+                 {"revision", service.revision()},
+                 {"hash", current.hash},
+                 {"commits", service.history_position()}});
+    });
     if (!o.out.empty()) {
       write_review_model(o.out, model, current.state->V);
       if (!o.quiet || failure)
@@ -673,11 +692,7 @@ void run_review(const ReviewCommandOptions& o) {
                     service.history_position());
     }
     if (failure)
-      throw CommandError("the review ended on an error: " + *failure +
-                         (!o.out.empty()         ? " (the committed model was written to " + o.out + ")"
-                          : recorder.recording() ? " (`pushpull replay " + recorder.path() +
-                                                       " --out FOLDER` rebuilds the committed model)"
-                                                 : std::string()));
+      throw CommandError("the review ended on an error: " + *failure + kept_work_note(o.out, recorder));
     if (validation && validation->message_count() > 0)
       throw CommandError("Vulkan validation reported " + std::to_string(validation->message_count()) +
                          " message(s) (printed above)");

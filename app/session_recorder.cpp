@@ -274,4 +274,11 @@ void SessionRecorder::write_record(const std::string& kind, double t, json field
   write_line(fields);
 }
 
+std::string kept_work_note(const std::string& out, const SessionRecorder& recorder) {
+  if (!out.empty()) return " (the committed model was written to " + out + ")";
+  if (recorder.recording())
+    return " (`pushpull replay " + recorder.path() + " --out FOLDER` rebuilds the committed model)";
+  return "";
+}
+
 }  // namespace pushpull::app

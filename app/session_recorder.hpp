@@ -64,6 +64,11 @@ struct RecordingContext {
 // with -2, -3, ... when that file exists.
 [[nodiscard]] std::string default_recording_path();
 
+class SessionRecorder;
+// For the message of a review that ended on an error: where its committed work is (" (the committed model was
+// written to OUT)" with --out, else how the recording rebuilds it, else "").
+[[nodiscard]] std::string kept_work_note(const std::string& out, const SessionRecorder& recorder);
+
 class SessionRecorder {
  public:
   // Creates the file (and its folder); an empty path records nothing. When the file cannot be created: throws

@@ -78,7 +78,7 @@ TEST_F(CliMessages, AHandlePointOffTheSurfaceNamesTheNearestOneInLifeSizeMetres)
       << file_units.output;
   const CommandResult life_size = run_pushpull("deform " + kHemisphere.string() + " --length 4" + rest);
   EXPECT_NE(life_size.status, 0);
-  EXPECT_NE(life_size.output.find("the nearest surface point is --handle-at 0 0 2.01 (life-size metres)"),
+  EXPECT_NE(life_size.output.find("the nearest surface point is --handle-at 0 0 2.00968 (life-size metres)"),
             std::string::npos)
       << life_size.output;
   EXPECT_FALSE(fs::exists(path("o.off")));

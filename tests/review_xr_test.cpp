@@ -476,7 +476,7 @@ TEST(ReviewXr, ARuntimeWithOtherRulesStillReviewsAndReconnects) {
   EXPECT_NE(run.result.output.find("272x264 per eye"), std::string::npos) << run.result.output;
   EXPECT_NE(run.result.output.find("the headset is back"), std::string::npos) << run.result.output;
   ASSERT_EQ(run.of("commit").size(), 1u) << run.result.output;
-  // Said once per session (three pulses each: press, cancel or commit, and the next press or release).
+  // Said once per session (the first pulse of each: the press before the loss, the press after it).
   const std::string note = "xrApplyHapticFeedback failed";
   size_t said = 0;
   for (auto at = run.result.output.find(note); at != std::string::npos;
@@ -963,8 +963,22 @@ std::pair<int, int> hud_pixels(const ScreenShot& screen, int w, int h) {
   return {dark, light};
 }
 
+// Pixels of the box [x0, x1) x [y0, y1) of a screen dump in strong colour (the colour-map legend's bar; the
+// studio background and the HUD are grey).
+int coloured_pixels(const ScreenShot& screen, int x0, int y0, int x1, int y1) {
+  int n = 0;
+  for (int y = y0; y < std::min(y1, screen.height); ++y)
+    for (int x = x0; x < std::min(x1, screen.width); ++x) {
+      const uint8_t* p = &screen.rgb[3 * (size_t(y) * size_t(screen.width) + size_t(x))];
+      if (std::max({p[0], p[1], p[2]}) - std::min({p[0], p[1], p[2]}) > 120) ++n;
+    }
+  return n;
+}
+
 // The supervisor's mirror window shows a HUD (method, |d|, iterations, state, colour map, view, keys) in its
-// top-left corner, in its own views and over the copied eye, and so does the desktop window.
+// top-left corner, in its own views and over the copied eye, and so does the desktop window; the colour-map
+// legend is in its bottom-left corner in every view (its bar: the box 10..55 x 210..290 px of the 400 x 300
+// window, left of the bonnet).
 TEST(ReviewXrWindow, MirrorAndDesktopWindowsShowTheHudInTheirTopLeftCorner) {
   if (std::getenv("DISPLAY") == nullptr) GTEST_SKIP() << "no DISPLAY (ctest runs this under xvfb-run)";
   ASSERT_EQ(run_command("command -v xwd").status, 0) << "xwd is missing (scripts/setup installs x11-apps)";
@@ -1009,6 +1023,11 @@ xdotool mousemove --window $wid 200 150; xdotool key Escape; wait $pid
               eye_dark, eye_light, orbit_dark, orbit_light, desktop_dark, desktop_light);
   EXPECT_GT(eye_dark, 140 * 30 / 2);  // drawn over the copied eye
   EXPECT_GT(eye_light, 100);
+  const int eye_legend = coloured_pixels(read_xwd(dir / "eye.xwd"), 10, 210, 55, 290);
+  const int orbit_legend = coloured_pixels(read_xwd(dir / "orbit.xwd"), 10, 210, 55, 290);
+  std::printf("legend box (45 x 80 px): coloured pixels: eye copy %d, orbit %d\n", eye_legend, orbit_legend);
+  EXPECT_GT(eye_legend, 300);
+  EXPECT_GT(orbit_legend, 300);
   EXPECT_GT(orbit_dark, 140 * 30 / 2);
   EXPECT_GT(orbit_light, 100);
   EXPECT_GT(desktop_dark, 140 * 30 / 2);

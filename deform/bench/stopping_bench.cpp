@@ -187,8 +187,10 @@ int run_random_pulls(int per_model, const std::vector<pd::Method>& methods) {
       Problem p;
       p.mesh = mesh;
       p.roi = pd::build_roi(mesh, pd::surface_handle(mesh, hit, 0.08 * radius), {}, radius);
-      const Eigen::Vector3d tilt(unit(rng), unit(rng), unit(rng));
-      p.d = (normal.normalized() + 0.5 * tilt).normalized() * 0.1 * radius * (0.75 + 0.25 * unit(rng));
+      Eigen::Vector3d tilt;  // drawn in a fixed order (function arguments have none)
+      for (int i = 0; i < 3; ++i) tilt[i] = unit(rng);
+      const double length = 0.1 * radius * (0.75 + 0.25 * unit(rng));
+      p.d = (normal.normalized() + 0.5 * tilt).normalized() * length;
       if (p.roi.size() < 30) continue;  // a lamp or a bolt: nothing to measure
       ++pull;
       References references;

@@ -125,20 +125,22 @@ TEST(WarmStartHint, TheFloorBoundsTheRateFromBelowAndIsKnownAtOnce) {
 }
 
 TEST(ContractionRate, CountsOnceAFullWindowOfEstimatesHasBeenMade) {
-  // Window 3: the first estimate comes with the third secant pair (the fourth add), the rate only with the
-  // third estimate (the sixth add); a floor answers before, raised by the estimates made so far.
-  detail::ContractionEstimate plain(3, 4), floored(3, 4);
+  // Window 4 on G(x) = diag(0.5, 0.4, 0.3, 0.2) x: the first estimate comes with the fourth secant pair (the
+  // fifth add), the rate only with the fourth estimate (the eighth add); a floor answers before, raised by
+  // the estimates made so far. Four secant pairs span the space, so the largest Ritz value is G's 0.5.
+  detail::ContractionEstimate plain(4, 4), floored(4, 4);
   floored.set_floor(0.2);
+  const Eigen::Vector4d contraction(0.5, 0.4, 0.3, 0.2);
   Eigen::VectorXd x(4);
   x << 1.0, -2.0, 0.5, 3.0;
-  for (int add = 1; add <= 6; ++add) {
-    const Eigen::VectorXd g = 0.5 * x;
+  for (int add = 1; add <= 8; ++add) {
+    const Eigen::VectorXd g = contraction.cwiseProduct(x);
     plain.add(x, g);
     floored.add(x, g);
-    x = g + Eigen::VectorXd::Constant(4, 1e-3 * add);
-    EXPECT_EQ(plain.rate().has_value(), add >= 6) << add;
+    x = g;
+    EXPECT_EQ(plain.rate().has_value(), add >= 8) << add;
     ASSERT_TRUE(floored.rate().has_value()) << add;
-    EXPECT_NEAR(*floored.rate(), add >= 4 ? 0.5 : 0.2, 1e-6) << add;
+    EXPECT_NEAR(*floored.rate(), add >= 5 ? 0.5 : 0.2, 1e-6) << add;
   }
 }
 

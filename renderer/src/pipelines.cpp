@@ -233,8 +233,10 @@ UniquePipeline create_mesh_pipeline(const Context& context, VkPipelineLayout lay
 }
 
 UniquePipeline create_overlay_pipeline(const Context& context, VkPipelineLayout layout,
-                                       VkFormat colour_format, VkSampleCountFlagBits samples) {
+                                       VkFormat colour_format, VkSampleCountFlagBits samples,
+                                       bool depth_attachment) {
   PipelineDesc desc;
+  desc.depth_attachment = depth_attachment;
   desc.vertex_code = overlay2d_vert_spv;
   desc.fragment_code = overlay2d_frag_spv;
   desc.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_STRIP;

@@ -61,6 +61,7 @@ UniquePipeline create_mesh_pipeline(const Context& context, VkPipelineLayout lay
                                     VkSampleCountFlagBits samples, bool depth_test = true,
                                     bool depth_attachment = true);
 UniquePipeline create_overlay_pipeline(const Context& context, VkPipelineLayout layout,
-                                       VkFormat colour_format, VkSampleCountFlagBits samples);
+                                       VkFormat colour_format, VkSampleCountFlagBits samples,
+                                       bool depth_attachment = true);
 
 }  // namespace pushpull::renderer::detail

@@ -59,7 +59,9 @@ struct PipelinePair {
   UniquePipeline mesh;
   UniquePipeline mesh_on_top;
   UniquePipeline overlay;
-  UniquePipeline over_copy;  // one sample, no depth attachment: draws over a copied image (made when needed)
+  // One sample, no depth attachment: meshes and the legend over a copied image (made when first needed).
+  UniquePipeline over_copy;
+  UniquePipeline overlay_over_copy;
 };
 
 // A pass's uniform data: its views, the studio lighting, the colour-map settings.
@@ -252,9 +254,12 @@ struct Renderer::Impl {
   void record_blit(VkCommandBuffer cmd, const ColorTarget& from, VkExtent2D from_extent,
                    const ColorTarget& to, VkExtent2D to_extent, bool drawn_over);
   // Draws `draws` over the contents of `target` (COLOR_ATTACHMENT_OPTIMAL), one sample, no depth, in draw
-  // order; leaves it in its final layout.
+  // order, then the legend when the settings show it; leaves the target in its final layout.
   void record_over_copy(VkCommandBuffer cmd, PipelinePair& pipes, VkFormat format, const ColorTarget& target,
-                        VkExtent2D extent, std::span<const Draw> draws, VkDescriptorSet frame_set);
+                        VkExtent2D extent, std::span<const Draw> draws, const FrameSettings& settings,
+                        VkDescriptorSet frame_set);
+  // The colour-map legend (set_legend) with the given overlay pipeline, inside a begun rendering.
+  void record_legend(VkCommandBuffer cmd, VkPipeline pipeline);
   // Binds and draws meshes in the given order with the pipeline `pipeline_of` picks (set 0 = frame_set
   // bound).
   template <class PipelineOf>
@@ -452,12 +457,26 @@ void Renderer::Impl::record_draws(VkCommandBuffer cmd, std::span<const Draw* con
   }
 }
 
+void Renderer::Impl::record_legend(VkCommandBuffer cmd, VkPipeline pipeline) {
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layouts.overlay2d.get(), 0, 1, &legend_set, 0,
+                          nullptr);
+  vkCmdPushConstants(cmd, layouts.overlay2d.get(), VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(glm::vec4),
+                     &legend_rect);
+  vkCmdDraw(cmd, 4, 1, 0, 0);
+}
+
 void Renderer::Impl::record_over_copy(VkCommandBuffer cmd, PipelinePair& pipes, VkFormat format,
                                       const ColorTarget& target, VkExtent2D extent,
-                                      std::span<const Draw> draws, VkDescriptorSet frame_set) {
+                                      std::span<const Draw> draws, const FrameSettings& settings,
+                                      VkDescriptorSet frame_set) {
   if (!pipes.over_copy)
     pipes.over_copy = create_mesh_pipeline(context, layouts.mesh.get(), format, VK_SAMPLE_COUNT_1_BIT,
                                            /*depth_test=*/false, /*depth_attachment=*/false);
+  const bool legend = legend_set != VK_NULL_HANDLE && settings.show_legend;
+  if (legend && !pipes.overlay_over_copy)
+    pipes.overlay_over_copy = create_overlay_pipeline(context, layouts.overlay2d.get(), format,
+                                                      VK_SAMPLE_COUNT_1_BIT, /*depth_attachment=*/false);
   VkRenderingAttachmentInfo colour{};
   colour.sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO;
   colour.imageView = target.view;
@@ -481,6 +500,7 @@ void Renderer::Impl::record_over_copy(VkCommandBuffer cmd, PipelinePair& pipes, 
   std::vector<const Draw*> ordered;
   for (const Draw& draw : draws) ordered.push_back(&draw);
   record_draws(cmd, ordered, 0, [&](const Draw&) { return pipes.over_copy.get(); });
+  if (legend) record_legend(cmd, pipes.overlay_over_copy.get());
   vkCmdEndRendering(cmd);
   image_barrier(cmd, target.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                 target.final_layout, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
@@ -571,14 +591,7 @@ void Renderer::Impl::record_view(VkCommandBuffer cmd, const PipelinePair& pipes,
     if (draw.on_top) ordered.push_back(&draw);
   record_draws(cmd, ordered, view_index,
                [&](const Draw& draw) { return draw.on_top ? pipes.mesh_on_top.get() : pipes.mesh.get(); });
-  if (legend_set != VK_NULL_HANDLE && settings.show_legend) {
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes.overlay.get());
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layouts.overlay2d.get(), 0, 1, &legend_set,
-                            0, nullptr);
-    vkCmdPushConstants(cmd, layouts.overlay2d.get(), VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(glm::vec4),
-                       &legend_rect);
-    vkCmdDraw(cmd, 4, 1, 0, 0);
-  }
+  if (legend_set != VK_NULL_HANDLE && settings.show_legend) record_legend(cmd, pipes.overlay.get());
   vkCmdEndRendering(cmd);
 
   VkImageLayout layout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
@@ -682,7 +695,7 @@ void Renderer::render_frame(std::span<const RenderPass> passes) {
                     drawn_over);
       if (drawn_over)
         r.record_over_copy(cmd, *pipes, targets.format, targets.views[0], targets.extent, pass.draws,
-                           res.frame_set);
+                           settings, res.frame_set);
     } else {
       for (uint32_t v = 0; v < pass.views.size(); ++v)
         r.record_view(cmd, *pipes, targets.views[v], targets.extent, v, pass.draws, settings, res.frame_set,

@@ -468,6 +468,7 @@ FrameViews Session::begin_frame() {
     frame.eyes[size_t(i)] = {pose, views[size_t(i)].fov};
   }
   frame.should_render = true;
+  frame.position_valid = position;
   return frame;
 }
 

@@ -33,13 +33,19 @@ Swapchain::Swapchain(XrInstance instance, XrSession session, int64_t format, uin
   info.faceCount = 1;
   info.arraySize = 1;
   info.mipCount = 1;
-  XrResult created = xrCreateSwapchain(session, &info, &impl_->swapchain);
-  if (created == XR_ERROR_FEATURE_UNSUPPORTED && transfer_source) {  // the mirror draws its own view instead
-    info.usageFlags = XR_SWAPCHAIN_USAGE_COLOR_ATTACHMENT_BIT;
+  // Into a local handle: a failed call leaves its output undefined, and ~Impl destroys what it holds.
+  XrSwapchain swapchain = XR_NULL_HANDLE;
+  XrResult created = xrCreateSwapchain(session, &info, &swapchain);
+  // Refused usage: XR_ERROR_FEATURE_UNSUPPORTED per the spec (some runtimes say XR_ERROR_VALIDATION_FAILURE).
+  if ((created == XR_ERROR_FEATURE_UNSUPPORTED || created == XR_ERROR_VALIDATION_FAILURE) &&
+      transfer_source) {
+    info.usageFlags = XR_SWAPCHAIN_USAGE_COLOR_ATTACHMENT_BIT;  // the mirror draws its own view instead
     transfer_source = false;
-    created = xrCreateSwapchain(session, &info, &impl_->swapchain);
+    swapchain = XR_NULL_HANDLE;
+    created = xrCreateSwapchain(session, &info, &swapchain);
   }
   check_xr(created, instance, "xrCreateSwapchain(session, &info, &swapchain)", __FILE__, __LINE__);
+  impl_->swapchain = swapchain;
   impl_->transfer_source = transfer_source;
   uint32_t count = 0;
   PUSHPULL_XR_CHECK(instance, xrEnumerateSwapchainImages(impl_->swapchain, 0, &count, nullptr));

@@ -94,8 +94,9 @@ struct RenderPass {
   // Instead of drawing the scene: copy this image (a colour target drawn by an earlier pass of the same
   // frame, left in COLOR_ATTACHMENT_OPTIMAL, which it is again afterwards) into the one target, scaled to
   // cover it and centred (a mirror window showing an eye as it is); then `draws`, if any, over the copy with
-  // views[0] (exactly one view then), in order, one sample, without depth test or legend (a HUD). The source
-  // needs TRANSFER_SRC usage and the target TRANSFER_DST (can_blit() says whether the formats allow it).
+  // views[0] (exactly one view then), in order, one sample, without depth test (a HUD), and the legend when
+  // the settings show it. The source needs TRANSFER_SRC usage and the target TRANSFER_DST (can_blit() says
+  // whether the formats allow it).
   const ColorTarget* blit_from = nullptr;
   VkExtent2D blit_from_extent{};
 };

@@ -82,6 +82,7 @@ struct FrameViews {
   XrTime predicted_display_time = 0;
   XrDuration predicted_display_period = 0;
   bool should_render = false;  // the runtime shows the frame and the views were located
+  bool position_valid = false;  // with should_render: the eyes' positions too (else the last located ones)
   std::array<EyeView, 2> eyes{};
 };
 
