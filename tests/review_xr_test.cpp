@@ -435,6 +435,21 @@ TEST(ReviewXr, TheModelStandsInFrontOfAReviewerAwayFromTheStageOrigin) {
   EXPECT_NEAR(double(anchors[0].at("z")), 1.5, 1e-4);
   EXPECT_NEAR(double(anchors[0].at("yaw")), M_PI / 2, 1e-4);
   expect_replays_with_commits(recording);
+
+  // Tracking that locates the head's position only after its orientation (10 frames): the anchor waits for
+  // the position (it is not taken at the guessed standing position) and the same push/pull commits.
+  const fs::path late_recording = dir / "late.jsonl";
+  const ReviewRun late = run_review(dir, script(true), "--record " + late_recording.string(),
+                                    "PUSHPULL_XR_SIM_QUIRKS=position-late");
+  ASSERT_EQ(late.result.status, 0) << late.result.output;
+  ASSERT_EQ(late.of("commit").size(), 1u) << late.result.output;
+  const std::vector<double> late_d = late.of("commit")[0].at("d"), d = origin.of("commit")[0].at("d");
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(late_d[i], d[i], 1e-5) << i;
+  const auto late_anchors = recording_records(late_recording, "anchor");
+  ASSERT_EQ(late_anchors.size(), 1u);
+  EXPECT_GT(double(late_anchors[0].at("time")), 0.3);  // frame 11 or later at 30 Hz
+  EXPECT_NEAR(double(late_anchors[0].at("x")), 0.8, 1e-4);
+  EXPECT_NEAR(double(late_anchors[0].at("z")), 1.5, 1e-4);
 }
 
 // Runtimes list their swapchain formats best first, and some list UNORM before sRGB (xr/sim's unorm-first:

@@ -194,7 +194,8 @@ XrResult XRAPI_CALL locate_views(XrSession handle, const XrViewLocateInfo* info,
     if (views[i].type != XR_TYPE_VIEW) return XR_ERROR_VALIDATION_FAILURE;
   const auto base_pose = space_in_stage(*s, *base, info->displayTime);
   state->viewStateFlags = base_pose ? kAllValid : 0;
-  if (s->instance->config.rotation_only)
+  // position-late: tracking finds the room a moment after the headset's orientation (10 frames).
+  if (s->instance->config.rotation_only || (s->instance->config.position_late && s->frames_waited <= 10))
     state->viewStateFlags &=
         ~XrViewStateFlags(XR_VIEW_STATE_POSITION_VALID_BIT | XR_VIEW_STATE_POSITION_TRACKED_BIT);
   const XrPosef head = head_pose(*s, info->displayTime);

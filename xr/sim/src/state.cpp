@@ -58,6 +58,7 @@ Config Config::from_env() {
   c.eyes_differ = quirk("eyes-differ");
   c.requirements_per_session = quirk("requirements-per-session");
   c.haptics_fail = quirk("haptics-fail");
+  c.position_late = quirk("position-late");
   return c;
 }
 

@@ -64,7 +64,9 @@ constexpr XrSystemId kSystemId = 1;
 //                                     requirements-per-session (xrCreateSession needs
 //                                     xrGetVulkanGraphicsRequirements2KHR since the last session, as
 //                                     SteamVR), haptics-fail (xrApplyHapticFeedback says
-//                                     XR_ERROR_RUNTIME_FAILURE)
+//                                     XR_ERROR_RUNTIME_FAILURE), position-late (the views' positions are
+//                                     not valid for the first 10 frames, their orientation is: tracking
+//                                     that finds the room after start-up)
 struct Config {
   uint32_t width = 1440;
   uint32_t height = 1600;
@@ -90,6 +92,7 @@ struct Config {
   bool eyes_differ = false;
   bool requirements_per_session = false;
   bool haptics_fail = false;
+  bool position_late = false;
   static Config from_env();
 };
 
