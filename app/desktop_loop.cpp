@@ -3,6 +3,7 @@
 #include "commands.hpp"
 #include "hand_sample.hpp"
 #include "orbit_control.hpp"
+#include "review_end.hpp"
 #include "review_interaction.hpp"
 #include "review_scene.hpp"
 #include "session_recorder.hpp"
@@ -288,40 +289,15 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
         break;
       }
     }
-    // The end, also after a failure: the steps that write the recording or the log, or wait for the GPU, are
-    // guarded so that nothing costs the --out write; the first error is the one reported.
-    auto guarded = [&](auto&& step) {
-      try {
-        step();
-      } catch (const std::exception& e) {
-        if (!failure) failure = e.what();
-      }
-    };
-    guarded([&] {
+    // The end, also after a failure (review_end.hpp).
+    guarded(failure, [&] {
       if (const auto e = interaction.cancel()) record_interaction(*e);
     });
-    guarded([&] { renderer.wait_idle(); });
+    guarded(failure, [&] { renderer.wait_idle(); });
     service.wait_idle();
-    guarded(take_commits);
-    const auto history = service.history();
-    const deform::HistoryEntry& current = history.at(service.history_position());
-    guarded([&] {
-      nlohmann::json end_fields{{"commits", service.history_position()}, {"hash", hash_text(current.hash)}};
-      if (failure) end_fields["error"] = *failure;
-      recorder.write_record("end", t, end_fields);
-      log.write({{"event", "end"},
-                 {"revision", service.revision()},
-                 {"hash", current.hash},
-                 {"commits", service.history_position()}});
-    });
-    if (!o.out.empty()) {
-      write_review_model(o.out, setup.model, current.state->V);
-      std::printf("pushpull review: wrote %s (%zu committed push/pull(s))\n", o.out.c_str(),
-                  service.history_position());
-    }
+    guarded(failure, take_commits);
     std::printf("pushpull review: desktop window presented %d frames\n", frames);
-    if (failure)
-      throw CommandError("the review ended on an error: " + *failure + kept_work_note(o.out, recorder));
+    finish_review(failure, recorder, log, t, service, o.out, setup.model, /*print_out=*/true);
   }
   if (o.validation && context.validation_message_count() > 0)
     throw CommandError("Vulkan validation reported " + std::to_string(context.validation_message_count()) +

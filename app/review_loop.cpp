@@ -6,6 +6,7 @@
 #include "hand_sample.hpp"
 #include "mirror_view.hpp"
 #include "orbit_control.hpp"
+#include "review_end.hpp"
 #include "review_interaction.hpp"
 #include "review_menu.hpp"
 #include "review_scene.hpp"
@@ -652,47 +653,20 @@ void run_review(const ReviewCommandOptions& o) {
         break;
       }
     }
-    // The end, also after a failure. Each step that writes the recording or the log, or waits for the GPU, is
-    // guarded: a full disk or a lost device must not cost the --out write; the first error is the one
-    // reported.
-    auto guarded = [&](auto&& step) {
-      try {
-        step();
-      } catch (const std::exception& e) {
-        if (!failure) failure = e.what();
-      }
-    };
+    // The end, also after a failure (review_end.hpp).
     if (failure) {
       std::fprintf(stderr, "pushpull review: %s; ending the review (the committed work is kept)\n",
                    failure->c_str());
-      guarded([&] {
+      guarded(failure, [&] {
         if (interaction.dragging())
           if (const auto e = interaction.cancel()) log_event(*e);
       });
     }
-    guarded(end_hold);  // a press still held back when the review ended never went through
-    guarded([&] { renderer.wait_idle(); });
+    guarded(failure, end_hold);  // a press still held back when the review ended never went through
+    guarded(failure, [&] { renderer.wait_idle(); });
     service.wait_idle();
-    guarded(take_commits);
-    const auto history = service.history();
-    const deform::HistoryEntry& current = history.at(service.history_position());
-    guarded([&] {
-      nlohmann::json end_fields{{"commits", service.history_position()}, {"hash", hash_text(current.hash)}};
-      if (failure) end_fields["error"] = *failure;
-      recorder.write_record("end", t, end_fields);
-      log.write({{"event", "end"},
-                 {"revision", service.revision()},
-                 {"hash", current.hash},
-                 {"commits", service.history_position()}});
-    });
-    if (!o.out.empty()) {
-      write_review_model(o.out, model, current.state->V);
-      if (!o.quiet || failure)
-        std::printf("pushpull review: wrote %s (%zu committed push/pull(s))\n", o.out.c_str(),
-                    service.history_position());
-    }
-    if (failure)
-      throw CommandError("the review ended on an error: " + *failure + kept_work_note(o.out, recorder));
+    guarded(failure, take_commits);
+    finish_review(failure, recorder, log, t, service, o.out, model, !o.quiet);
     if (validation && validation->message_count() > 0)
       throw CommandError("Vulkan validation reported " + std::to_string(validation->message_count()) +
                          " message(s) (printed above)");

@@ -1,0 +1,33 @@
+#include "review_end.hpp"
+
+#include "commands.hpp"
+
+#include <cstdio>
+
+namespace pushpull::app {
+
+void finish_review(std::optional<std::string>& failure, SessionRecorder& recorder, EventLog& log, double t,
+                   const deform::Service& service, const std::string& out, const assets::Model& model,
+                   bool print_out) {
+  const auto history = service.history();
+  const deform::HistoryEntry& current = history.at(service.history_position());
+  guarded(failure, [&] {
+    nlohmann::json end_fields{{"commits", service.history_position()}, {"hash", hash_text(current.hash)}};
+    if (failure) end_fields["error"] = *failure;
+    recorder.write_record("end", t, end_fields);
+    log.write({{"event", "end"},
+               {"revision", service.revision()},
+               {"hash", current.hash},
+               {"commits", service.history_position()}});
+  });
+  if (!out.empty()) {
+    write_review_model(out, model, current.state->V);
+    if (print_out || failure)
+      std::printf("pushpull review: wrote %s (%zu committed push/pull(s))\n", out.c_str(),
+                  service.history_position());
+  }
+  if (failure)
+    throw CommandError("the review ended on an error: " + *failure + kept_work_note(out, recorder));
+}
+
+}  // namespace pushpull::app
