@@ -33,4 +33,20 @@ StagePlacement anchored(const StagePlacement& at_origin, const HeadAnchor& ancho
   return placement_from(T * at_origin.T_stage_model);
 }
 
+std::optional<HeadAnchor> AnchorSchedule::take(double t, double half_frame,
+                                               const std::optional<Eigen::Vector3d>& head_position,
+                                               const Eigen::Vector3d& head_forward) {
+  if (done_) return std::nullopt;
+  std::optional<HeadAnchor> anchor;
+  if (!recorded_) {
+    if (head_position) anchor = anchor_at_head(t, *head_position, head_forward);
+  } else if (!recorded_->has_value()) {
+    done_ = true;
+  } else if ((*recorded_)->time <= t + half_frame) {
+    anchor = **recorded_;
+  }
+  if (anchor) done_ = true;
+  return anchor;
+}
+
 }  // namespace pushpull::app

@@ -14,6 +14,9 @@
 
 #include <Eigen/Core>
 
+#include <optional>
+#include <utility>
+
 namespace pushpull::app {
 
 struct HeadAnchor {
@@ -31,5 +34,27 @@ struct HeadAnchor {
 // T_stage_model moved to the anchor: turned about +Y by yaw, then moved by (x, 0, z). A zero anchor returns
 // `at_origin` unchanged (bit for bit).
 [[nodiscard]] StagePlacement anchored(const StagePlacement& at_origin, const HeadAnchor& anchor);
+
+// When the headset loop anchors, once per review: live, at the first frame whose head position is located (a
+// headset tracked in orientation only never anchors); in a replay, at the recorded anchor's frame, or never
+// when the recording has none.
+class AnchorSchedule {
+ public:
+  // recorded: unset = live; set = replay, with the recorded anchor or none.
+  explicit AnchorSchedule(std::optional<std::optional<HeadAnchor>> recorded)
+      : recorded_(std::move(recorded)) {}
+
+  // The frame at recording time t (s; half_frame: half its period). Live: head_position (stage) and
+  // head_forward (the heading between the eyes) when the head's position is located this frame, else empty.
+  // Returns the anchor to apply in this frame, at most once.
+  [[nodiscard]] std::optional<HeadAnchor> take(double t, double half_frame,
+                                               const std::optional<Eigen::Vector3d>& head_position,
+                                               const Eigen::Vector3d& head_forward);
+  [[nodiscard]] bool done() const { return done_; }
+
+ private:
+  std::optional<std::optional<HeadAnchor>> recorded_;
+  bool done_ = false;
+};
 
 }  // namespace pushpull::app

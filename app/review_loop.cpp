@@ -2,6 +2,7 @@
 
 #include "commands.hpp"
 #include "desktop_loop.hpp"
+#include "frame_stats.hpp"
 #include "grab_placement.hpp"
 #include "hand_sample.hpp"
 #include "mirror_view.hpp"
@@ -49,54 +50,6 @@ double heading(const HandSample& s) {
       std::hypot(f.x(), f.z()) > 0.3 ? f : (f.y() < 0.0 ? s.up_stage : Eigen::Vector3d(-s.up_stage));
   return std::atan2(-h.x(), -h.z());
 }
-
-// CPU time of the calling thread (ms): work done, without time spent preempted, blocked or sleeping.
-double thread_cpu_ms() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return 1e3 * double(ts.tv_sec) + 1e-6 * double(ts.tv_nsec);
-}
-
-// Frame work (from xrWaitFrame's return to xrEndFrame's return), split by whether the solver was busy.
-struct FrameStats {
-  // The first frames build pipelines and upload the model: not what a frame costs.
-  static constexpr size_t kWarmUpFrames = 30;
-  size_t frames = 0;
-  std::vector<double> idle_ms, solving_ms;
-  std::vector<double> idle_cpu_ms, solving_cpu_ms;  // the frame thread's own CPU time over the same span
-  size_t region_vertices = 0;                       // the largest region solved meanwhile
-  double snapshot_ms = 0.0;                         // total time spent turning new snapshots into vertex data
-  size_t snapshots = 0;
-  static double mean(const std::vector<double>& v) {
-    return v.empty() ? 0.0 : std::accumulate(v.begin(), v.end(), 0.0) / double(v.size());
-  }
-  static double percentile(std::vector<double> v, double q) {
-    if (v.empty()) return 0.0;
-    std::sort(v.begin(), v.end());
-    return v[std::min(v.size() - 1, size_t(q * double(v.size())))];
-  }
-  void print() const {
-    auto ratio = [](double a, double b) { return b > 0.0 ? a / b : 0.0; };
-    std::printf(
-        "frame time (xrBeginFrame .. xrEndFrame, CPU; the first %zu frames left out as warm-up): "
-        "idle %.2f ms mean, %.2f median, %.2f p95 (%zu frames); "
-        "solver running %.2f ms mean, %.2f median, %.2f p95 (%zu frames); "
-        "ratio %.3f of the means, %.3f of the medians\n",
-        kWarmUpFrames, mean(idle_ms), percentile(idle_ms, 0.5), percentile(idle_ms, 0.95), idle_ms.size(),
-        mean(solving_ms), percentile(solving_ms, 0.5), percentile(solving_ms, 0.95), solving_ms.size(),
-        ratio(mean(solving_ms), mean(idle_ms)), ratio(percentile(solving_ms, 0.5), percentile(idle_ms, 0.5)));
-    std::printf(
-        "frame thread CPU time (the same span, without time spent preempted or waiting): idle %.2f ms "
-        "median, %.2f p95; solver running %.2f ms median, %.2f p95; ratio %.3f of the medians\n",
-        percentile(idle_cpu_ms, 0.5), percentile(idle_cpu_ms, 0.95), percentile(solving_cpu_ms, 0.5),
-        percentile(solving_cpu_ms, 0.95),
-        ratio(percentile(solving_cpu_ms, 0.5), percentile(idle_cpu_ms, 0.5)));
-    std::printf(
-        "largest region solved: %zu vertices; %zu new snapshots drawn, %.2f ms CPU each to turn into "
-        "vertex data (positions, normals, colour-map scalars) on the scene's converter thread\n",
-        region_vertices, snapshots, snapshots ? snapshot_ms / double(snapshots) : 0.0);
-  }
-};
 
 }  // namespace
 
@@ -240,7 +193,7 @@ void run_review(const ReviewCommandOptions& o) {
     FrameStats stats;
     bool sizes_changed = false;
     GrabPlacement grab(placement);
-    bool anchor_done = false;  // the model was anchored to the reviewer's head (or will not be)
+    AnchorSchedule anchor_schedule(o.recorded_anchor);  // when the model moves in front of the reviewer
     ReviewMenu menu;
     WorldLabel hand_label(renderer, 0.02f, 600), menu_label(renderer, 0.03f, 1500);
     WorldLabel mirror_hud(renderer, 0.02f, 1000);  // the mirror's own views only (a copied eye has none)
@@ -357,24 +310,20 @@ void run_review(const ReviewCommandOptions& o) {
           // The model in front of the reviewer, wherever they stand (head_anchor.hpp): once per review, at
           // the first frame whose head position is located (live; a headset tracked in orientation only never
           // is), or at the recorded frame (replay).
-          if (!anchor_done) {
-            std::optional<HeadAnchor> anchor;
-            if (!o.recorded_anchor) {
-              if (head && frame.position_valid) {
-                // The heading between the eyes (displays may be canted outwards, each eye by a few degrees).
-                const XrQuaternionf& l = frame.eyes[0].T_stage_eye.orientation;
-                const XrQuaternionf& r = frame.eyes[1].T_stage_eye.orientation;
-                const Eigen::Quaterniond between =
-                    Eigen::Quaterniond(l.w, l.x, l.y, l.z).slerp(0.5, Eigen::Quaterniond(r.w, r.x, r.y, r.z));
-                anchor = anchor_at_head(t, head_position, between * Eigen::Vector3d(0.0, 0.0, -1.0));
-              }
-            } else if (!o.recorded_anchor->has_value()) {
-              anchor_done = true;
-            } else if ((*o.recorded_anchor)->time <= t + 0.5 / double(recording_rate_hz)) {
-              anchor = **o.recorded_anchor;
+          if (!anchor_schedule.done()) {
+            std::optional<Eigen::Vector3d> located;
+            Eigen::Vector3d between_eyes = head_forward;
+            if (head && frame.position_valid) {
+              located = head_position;
+              // The heading between the eyes (displays may be canted outwards, each eye by a few degrees).
+              const XrQuaternionf& l = frame.eyes[0].T_stage_eye.orientation;
+              const XrQuaternionf& r = frame.eyes[1].T_stage_eye.orientation;
+              between_eyes =
+                  Eigen::Quaterniond(l.w, l.x, l.y, l.z).slerp(0.5, Eigen::Quaterniond(r.w, r.x, r.y, r.z)) *
+                  Eigen::Vector3d(0.0, 0.0, -1.0);
             }
-            if (anchor) {
-              anchor_done = true;
+            if (const auto anchor =
+                    anchor_schedule.take(t, 0.5 / double(recording_rate_hz), located, between_eyes)) {
               // A gesture begun before the head was located aimed at the model where it stood then.
               if (interaction.dragging())
                 if (const auto e = interaction.cancel()) log_event(*e);

@@ -57,4 +57,34 @@ TEST(HeadAnchor, AHeadLookingStraightDownOrNotFiniteKeepsItsHeading) {
   EXPECT_EQ(bad.yaw, 0.0);
 }
 
+TEST(AnchorSchedule, LiveAnchorsOnceAtTheFirstLocatedHead) {
+  pushpull::app::AnchorSchedule live(std::nullopt);
+  const Eigen::Vector3d forward(-1.0, 0.0, 0.0);
+  EXPECT_FALSE(live.take(0.0, 0.01, std::nullopt, forward).has_value());  // orientation only
+  EXPECT_FALSE(live.done());
+  const auto a = live.take(0.1, 0.01, Eigen::Vector3d(1.0, 1.6, 2.0), forward);
+  ASSERT_TRUE(a.has_value());
+  EXPECT_DOUBLE_EQ(a->time, 0.1);
+  EXPECT_DOUBLE_EQ(a->x, 1.0);
+  EXPECT_NEAR(a->yaw, M_PI / 2, 1e-12);
+  EXPECT_TRUE(live.done());
+  EXPECT_FALSE(live.take(0.2, 0.01, Eigen::Vector3d(3.0, 1.6, 2.0), forward).has_value());  // once
+}
+
+TEST(AnchorSchedule, AReplayAnchorsAtTheRecordedFrameWhateverTheHead) {
+  const HeadAnchor recorded{0.5, 0.8, 1.5, 1.0};
+  pushpull::app::AnchorSchedule replay{std::optional<HeadAnchor>(recorded)};
+  const Eigen::Vector3d forward(0.0, 0.0, -1.0), head(9.0, 1.6, 9.0);
+  EXPECT_FALSE(replay.take(0.4, 0.01, head, forward).has_value());
+  const auto a = replay.take(0.495, 0.01, std::nullopt, forward);  // within half a frame
+  ASSERT_TRUE(a.has_value());
+  EXPECT_EQ(a->x, 0.8);
+  EXPECT_EQ(a->yaw, 1.0);
+  EXPECT_FALSE(replay.take(0.6, 0.01, head, forward).has_value());
+  // A recording without an anchor never anchors.
+  pushpull::app::AnchorSchedule none{std::optional<HeadAnchor>()};
+  EXPECT_FALSE(none.take(0.0, 0.01, head, forward).has_value());
+  EXPECT_TRUE(none.done());
+}
+
 }  // namespace
