@@ -14,14 +14,19 @@ void add_review_command(CLI::App& root) {
       "review",
       "Review a model in an OpenXR headset at life size: "
       "aim at the surface, hold the trigger, drag, release.\n"
-      "The model stands on the stage floor in front of you; the deformation runs off the frame loop.\n"
+      "The model stands on the floor in front of where you stand when the session starts; the deformation "
+      "runs "
+      "off the frame loop.\n"
       "Controls: trigger = push/pull; "
       "undo = X/A (touch), A (index), left menu (simple, vive, motion); redo =\n"
       "Y/B (touch), B (index), right menu (simple, vive, motion); "
-      "menu / thumbstick click = next colour map;\n"
+      "menu (touch) / thumbstick or trackpad click = the method and colour-map panel;\n"
       "grip = grab and move the model "
       "(both grips: scale; undo while gripping: back to the start placement);\n"
       "right thumbstick between drags: handle radius (up/down) and region (left/right).\n"
+      "It ends with Esc in the mirror or desktop window, the runtime's exit, or Ctrl-C (the committed work "
+      "is "
+      "written to --out; a second Ctrl-C quits at once).\n"
       "Without a headset: "
       "XR_RUNTIME_JSON=build/xr/sim/pushpull_xr_sim.json runs it on the simulated runtime.");
   cmd->add_option("model", o->model, "Model file: .gltf .glb .drc .off .obj .ply")->required();
@@ -48,7 +53,7 @@ void add_review_command(CLI::App& root) {
   cmd->add_option("--samples", o->samples, "MSAA samples")
       ->check(CLI::IsMember({1, 2, 4, 8}))
       ->capture_default_str();
-  cmd->add_option("--color", o->colour, "Colour map at start (the menu button switches)")
+  cmd->add_option("--color", o->colour, "Colour map at start (the headset's panel and the C key switch it)")
       ->check(CLI::IsMember({"material", "displacement", "curvature-sign"}))
       ->capture_default_str();
   cmd->add_option("--out", o->out, "Write the committed model on exit (.glb, .off, .obj, .ply)");
@@ -62,8 +67,10 @@ void add_review_command(CLI::App& root) {
       "as JSON Lines for `pushpull replay` (default: out/recordings/review-<UTC time>.jsonl)");
   cmd->add_flag(
       "--mirror", o->mirror,
-      "Open the supervisor's mirror window (keys: V view headset eye / smoothed first person, C colour "
-      "map, M method of the next drag, Esc end the session; the title shows method, |d|, iterations)");
+      "Open the supervisor's mirror window (keys: V view: headset eye / smoothed first person / free orbit, "
+      "C "
+      "colour map, M method of the next drag, Esc end the session; a HUD and the title show method, |d|, "
+      "iterations and the solver's state)");
   cmd->add_option("--mirror-size", o->mirror_size, "Mirror (or desktop) window size W H")
       ->expected(2)
       ->check(CLI::Range(16, 16384));

@@ -2,6 +2,7 @@
 
 #include "commands.hpp"
 #include "hand_sample.hpp"
+#include "interrupt_requests.hpp"
 #include "orbit_control.hpp"
 #include "review_end.hpp"
 #include "review_interaction.hpp"
@@ -137,7 +138,14 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
     // An error that ended the loop early (a lost GPU device, a window system failure): the committed work is
     // still saved and the recording ended, then the review fails with it.
     std::optional<std::string> failure;
+    // Ctrl-C or SIGTERM: the review ends as with Esc (the committed work is written); a second one ends it at
+    // once.
+    const InterruptRequests interrupts;
     while (!window.should_close() && (o.frames <= 0 || frames < o.frames)) {
+      if (interrupts.requested()) {
+        std::printf("pushpull review: interrupted; ending the review (again to quit at once)\n");
+        break;
+      }
       try {
         window.poll_events();
         t = double(std::llround(double(loop_frames++) * 1e9 / kRecordingRate)) *

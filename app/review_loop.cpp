@@ -5,6 +5,7 @@
 #include "frame_stats.hpp"
 #include "grab_placement.hpp"
 #include "hand_sample.hpp"
+#include "interrupt_requests.hpp"
 #include "mirror_view.hpp"
 #include "orbit_control.hpp"
 #include "review_end.hpp"
@@ -251,7 +252,18 @@ void run_review(const ReviewCommandOptions& o) {
     // An error that ended the loop early (a runtime or GPU failure): the committed work is still saved and
     // the recording ended, then the review fails with it.
     std::optional<std::string> failure;
+    // Ctrl-C or SIGTERM: the review ends as with Esc (the committed work is written); a second one ends it at
+    // once.
+    const InterruptRequests interrupts;
+    bool interrupt_seen = false;
     while (!xr.exit_requested() || xr.lost() || session_lost) {
+      if (interrupts.requested() && !interrupt_seen) {
+        interrupt_seen = true;
+        std::printf("pushpull review: interrupted; ending the review (again to quit at once)\n");
+        std::fflush(stdout);
+        guarded(failure, [&] { xr.request_exit(); });
+        if (session_lost || xr.lost() || failure) break;  // nothing to end gracefully
+      }
       if (session_lost || xr.lost()) {
         bool back = false;
         try {

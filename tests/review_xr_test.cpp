@@ -500,6 +500,35 @@ TEST(ReviewXr, ARuntimeWithOtherRulesStillReviewsAndReconnects) {
   EXPECT_EQ(said, 2u) << run.result.output;
 }
 
+// Ctrl-C in the terminal ends the review as Esc does: the push/pull committed before it is written to --out
+// and the recording gets its end record (the script has no exit: the review would run on).
+TEST(ReviewXr, CtrlCEndsTheReviewAndKeepsTheCommittedWork) {
+  const fs::path dir = test_dir();
+  std::ofstream(dir / "input.jsonl") << script_start()
+                                     << R"({"t":1.4,"path":"/user/hand/right/input/trigger/value","value":0.0}
+)";
+  const fs::path recording = dir / "session.jsonl";
+  // One SIGINT to the review alone (timeout(1) would signal its whole process group, twice for the child).
+  std::ofstream(dir / "interrupt.sh")
+      << pushpull::testing::xr_sim_environment()
+      << " PUSHPULL_XR_SIM_INPUT=" << (dir / "input.jsonl").string()
+      << " PUSHPULL_XR_SIM_WIDTH=64 PUSHPULL_XR_SIM_HEIGHT=64 PUSHPULL_XR_SIM_RATE=30 PUSHPULL_XR_SIM_PACE=1"
+         " PUSHPULL_XR_SIM_PROFILE=/interaction_profiles/oculus/touch_controller "
+      << PUSHPULL_EXECUTABLE << " review " << kHood << kPlacement << " --out " << (dir / "out.off").string()
+      << " --record " << recording.string() << " &\npid=$!\nsleep 5\nkill -INT $pid\nwait $pid\n";
+  const auto run = run_command("bash " + (dir / "interrupt.sh").string());
+  EXPECT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("interrupted; ending the review"), std::string::npos) << run.output;
+  ASSERT_TRUE(fs::exists(dir / "out.off")) << run.output;
+  const auto rest = pushpull::deform::read_mesh(kHood);
+  const auto reviewed = pushpull::deform::read_mesh(dir / "out.off");
+  ASSERT_EQ(rest.V.rows(), reviewed.V.rows());
+  EXPECT_GT((reviewed.V - rest.V).cwiseAbs().maxCoeff(), 0.05);  // the bonnet pulled about 100 mm
+  const auto ends = recording_records(recording, "end");
+  ASSERT_EQ(ends.size(), 1u);
+  EXPECT_EQ(int(ends[0].at("commits")), 1);
+}
+
 // A runtime call that fails mid-review with something other than a lost session (xrBeginFrame:
 // XR_ERROR_RUNTIME_FAILURE) ends the review with an error that names it, and keeps the work: the push/pull
 // committed before it is written to --out (as a review without the failure writes it), the recording ends
