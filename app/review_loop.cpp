@@ -217,6 +217,9 @@ void run_review(const ReviewCommandOptions& o) {
       recorder.write_interaction(t, e, interaction.handle_radius(), interaction.roi_radius());
     };
 
+    // Ctrl-C or SIGTERM: the review ends as with Esc (the committed work is written); a second one ends it at
+    // once.
+    const InterruptRequests interrupts;
     // The session was lost (headset unplugged, runtime restarted): the drag in progress is cancelled (the
     // model stays as it was before it); the committed work stays, and with --reconnect the review goes on
     // when the headset is back. Returns whether it is back.
@@ -234,8 +237,10 @@ void run_review(const ReviewCommandOptions& o) {
       renderer.wait_idle();  // the eye images go with the session
       eyes.reset();
       input.reset();
-      if (!xr.recreate_after_loss(o.reconnect_s)) {
-        std::printf("pushpull review: the headset did not come back; ending the review\n");
+      if (!xr.recreate_after_loss(o.reconnect_s, [&] { return interrupts.requested(); })) {
+        std::printf("pushpull review: %s; ending the review\n",
+                    interrupts.requested() ? "interrupted while waiting for the headset"
+                                           : "the headset did not come back");
         return false;
       }
       eyes.emplace(vk.device, xr.eye(0), xr.eye(1));
@@ -252,9 +257,6 @@ void run_review(const ReviewCommandOptions& o) {
     // An error that ended the loop early (a runtime or GPU failure): the committed work is still saved and
     // the recording ended, then the review fails with it.
     std::optional<std::string> failure;
-    // Ctrl-C or SIGTERM: the review ends as with Esc (the committed work is written); a second one ends it at
-    // once.
-    const InterruptRequests interrupts;
     bool interrupt_seen = false;
     while (!xr.exit_requested() || xr.lost() || session_lost) {
       if (interrupts.requested() && !interrupt_seen) {

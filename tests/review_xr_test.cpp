@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -502,21 +503,29 @@ TEST(ReviewXr, ARuntimeWithOtherRulesStillReviewsAndReconnects) {
 
 // Ctrl-C in the terminal ends the review as Esc does: the push/pull committed before it is written to --out
 // and the recording gets its end record (the script has no exit: the review would run on).
+// The review started by dir/interrupt.sh (paced, 64 px eyes), sent one SIGINT 5 s in (to the review alone:
+// timeout(1) would signal its whole process group, twice for the child); dir/input.jsonl is the script.
+pushpull::testing::CommandResult review_interrupted_after_5s(const fs::path& dir,
+                                                             const std::string& arguments,
+                                                             const std::string& extra_env = "") {
+  std::ofstream(dir / "interrupt.sh")
+      << pushpull::testing::xr_sim_environment()
+      << " PUSHPULL_XR_SIM_INPUT=" << (dir / "input.jsonl").string()
+      << " PUSHPULL_XR_SIM_WIDTH=64 PUSHPULL_XR_SIM_HEIGHT=64 PUSHPULL_XR_SIM_RATE=30 PUSHPULL_XR_SIM_PACE=1"
+         " PUSHPULL_XR_SIM_PROFILE=/interaction_profiles/oculus/touch_controller "
+      << extra_env << " " << PUSHPULL_EXECUTABLE << " review " << kHood << kPlacement << " " << arguments
+      << " &\npid=$!\nsleep 5\nkill -INT $pid\nwait $pid\n";
+  return run_command("bash " + (dir / "interrupt.sh").string());
+}
+
 TEST(ReviewXr, CtrlCEndsTheReviewAndKeepsTheCommittedWork) {
   const fs::path dir = test_dir();
   std::ofstream(dir / "input.jsonl") << script_start()
                                      << R"({"t":1.4,"path":"/user/hand/right/input/trigger/value","value":0.0}
 )";
   const fs::path recording = dir / "session.jsonl";
-  // One SIGINT to the review alone (timeout(1) would signal its whole process group, twice for the child).
-  std::ofstream(dir / "interrupt.sh")
-      << pushpull::testing::xr_sim_environment()
-      << " PUSHPULL_XR_SIM_INPUT=" << (dir / "input.jsonl").string()
-      << " PUSHPULL_XR_SIM_WIDTH=64 PUSHPULL_XR_SIM_HEIGHT=64 PUSHPULL_XR_SIM_RATE=30 PUSHPULL_XR_SIM_PACE=1"
-         " PUSHPULL_XR_SIM_PROFILE=/interaction_profiles/oculus/touch_controller "
-      << PUSHPULL_EXECUTABLE << " review " << kHood << kPlacement << " --out " << (dir / "out.off").string()
-      << " --record " << recording.string() << " &\npid=$!\nsleep 5\nkill -INT $pid\nwait $pid\n";
-  const auto run = run_command("bash " + (dir / "interrupt.sh").string());
+  const auto run = review_interrupted_after_5s(
+      dir, "--out " + (dir / "out.off").string() + " --record " + recording.string());
   EXPECT_EQ(run.status, 0) << run.output;
   EXPECT_NE(run.output.find("interrupted; ending the review"), std::string::npos) << run.output;
   ASSERT_TRUE(fs::exists(dir / "out.off")) << run.output;
@@ -527,6 +536,30 @@ TEST(ReviewXr, CtrlCEndsTheReviewAndKeepsTheCommittedWork) {
   const auto ends = recording_records(recording, "end");
   ASSERT_EQ(ends.size(), 1u);
   EXPECT_EQ(int(ends[0].at("commits")), 1);
+}
+
+// Ctrl-C while the review waits for a lost headset to come back (xr/sim's stays-lost: it never does) ends the
+// wait at once, not after --reconnect's 30 s, and keeps the push/pull committed before the loss.
+TEST(ReviewXr, CtrlCWhileWaitingForALostHeadsetEndsTheReviewAtOnce) {
+  const fs::path dir = test_dir();
+  std::ofstream(dir / "input.jsonl") << script_start()
+                                     << R"({"t":1.4,"path":"/user/hand/right/input/trigger/value","value":0.0}
+{"t":2.0,"event":"loss"}
+)";
+  const auto start = std::chrono::steady_clock::now();
+  const auto run = review_interrupted_after_5s(dir, "--out " + (dir / "out.off").string(),
+                                               "PUSHPULL_XR_SIM_QUIRKS=stays-lost");
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("waiting up to 30 s for the headset"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("interrupted while waiting for the headset; ending the review"),
+            std::string::npos)
+      << run.output;
+  EXPECT_LT(seconds, 20.0) << run.output;  // not the 30 s of --reconnect
+  const auto rest = pushpull::deform::read_mesh(kHood);
+  const auto reviewed = pushpull::deform::read_mesh(dir / "out.off");
+  ASSERT_EQ(rest.V.rows(), reviewed.V.rows());
+  EXPECT_GT((reviewed.V - rest.V).cwiseAbs().maxCoeff(), 0.05);
 }
 
 // A runtime call that fails mid-review with something other than a lost session (xrBeginFrame:

@@ -36,7 +36,9 @@ Fn instance_function(XrInstance instance, const char* name) {
 // xrGetSystem for a head-mounted display, asked again every 100 ms while the headset is not connected
 // (XR_ERROR_FORM_FACTOR_UNAVAILABLE, "temporarily unavailable") for up to wait_s seconds; returns the last
 // result.
-XrResult get_hmd_system(XrInstance instance, XrSystemId& system, double wait_s) {
+// give_up (may be empty): asked between polls; true ends the wait as if it had timed out.
+XrResult get_hmd_system(XrInstance instance, XrSystemId& system, double wait_s,
+                        const std::function<bool()>& give_up = {}) {
   const auto deadline =
       std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                                              std::chrono::duration<double>(std::max(wait_s, 0.0)));
@@ -45,6 +47,7 @@ XrResult get_hmd_system(XrInstance instance, XrSystemId& system, double wait_s) 
   for (;;) {
     const XrResult r = xrGetSystem(instance, &info, &system);
     if (r != XR_ERROR_FORM_FACTOR_UNAVAILABLE || std::chrono::steady_clock::now() >= deadline) return r;
+    if (give_up && give_up()) return r;
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
   }
 }
@@ -503,7 +506,7 @@ void Session::end_frame(const FrameViews& frame, bool rendered) {
   CHECK_UNLESS_LOST(xrEndFrame(s.session, &end));
 }
 
-bool Session::recreate_after_loss(double timeout_s) {
+bool Session::recreate_after_loss(double timeout_s, const std::function<bool()>& give_up) {
   Impl& s = *impl_;
   if (s.instance_lost) return false;
   // The lost session's handles go first (the spec: destroy it, then poll xrGetSystem until the headset is
@@ -514,7 +517,7 @@ bool Session::recreate_after_loss(double timeout_s) {
   s.stage = XR_NULL_HANDLE;
   s.session = XR_NULL_HANDLE;
   XrSystemId system = XR_NULL_SYSTEM_ID;
-  const XrResult r = get_hmd_system(s.instance, system, timeout_s);
+  const XrResult r = get_hmd_system(s.instance, system, timeout_s, give_up);
   if (r == XR_ERROR_INSTANCE_LOST) {
     s.instance_lost = true;
     return false;

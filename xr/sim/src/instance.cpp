@@ -167,7 +167,8 @@ XrResult XRAPI_CALL get_system(XrInstance handle, const XrSystemGetInfo* info, X
     return XR_ERROR_VALIDATION_FAILURE;
   if (info->formFactor == XR_FORM_FACTOR_HANDHELD_DISPLAY) return XR_ERROR_FORM_FACTOR_UNSUPPORTED;
   if (info->formFactor != XR_FORM_FACTOR_HEAD_MOUNTED_DISPLAY) return XR_ERROR_VALIDATION_FAILURE;
-  if (monotonic_now() - instance->created < XrTime(instance->config.headset_after_ms) * 1000000)
+  if (monotonic_now() - instance->created < XrTime(instance->config.headset_after_ms) * 1000000 ||
+      instance->headset_gone)
     return XR_ERROR_FORM_FACTOR_UNAVAILABLE;
   instance->system_queried = true;
   *system = kSystemId;

@@ -41,6 +41,7 @@ void run_script_events(Session& s, XrTime now) {
       case ScriptEventKind::loss:
         if (!s.loss_pending) {
           s.loss_pending = true;
+          if (s.instance->config.stays_lost) s.instance->headset_gone = true;
           s.set_state(XR_SESSION_STATE_LOSS_PENDING, now);
         }
         break;

@@ -59,6 +59,7 @@ Config Config::from_env() {
   c.requirements_per_session = quirk("requirements-per-session");
   c.haptics_fail = quirk("haptics-fail");
   c.position_late = quirk("position-late");
+  c.stays_lost = quirk("stays-lost");
   return c;
 }
 

@@ -66,7 +66,9 @@ constexpr XrSystemId kSystemId = 1;
 //                                     SteamVR), haptics-fail (xrApplyHapticFeedback says
 //                                     XR_ERROR_RUNTIME_FAILURE), position-late (the views' positions are
 //                                     not valid for the first 10 frames, their orientation is: tracking
-//                                     that finds the room after start-up)
+//                                     that finds the room after start-up), stays-lost (after a scripted
+//                                     "loss" the headset never comes back: xrGetSystem says
+//                                     XR_ERROR_FORM_FACTOR_UNAVAILABLE)
 struct Config {
   uint32_t width = 1440;
   uint32_t height = 1600;
@@ -93,6 +95,7 @@ struct Config {
   bool requirements_per_session = false;
   bool haptics_fail = false;
   bool position_late = false;
+  bool stays_lost = false;
   static Config from_env();
 };
 
@@ -129,6 +132,7 @@ struct Instance {
   std::set<std::string> extensions;
   std::string application_name;
   bool system_queried = false;
+  bool headset_gone = false;  // stays-lost: a scripted loss happened
   bool vk_requirements_queried = false;
   VkInstance vk_instance_created = VK_NULL_HANDLE;  // the last VkInstance made by xrCreateVulkanInstanceKHR
   std::deque<XrEventDataBuffer> events;

@@ -110,9 +110,9 @@ class Session {
   // session, polls xrGetSystem until the headset is back (XR_ERROR_FORM_FACTOR_UNAVAILABLE meanwhile) or
   // timeout_s passed, then creates the session, the stage space and the eye swapchains again on the same
   // instance and Vulkan device (eye(i) are new swapchains; an Input made for the old session must be made
-  // again). Returns false when it cannot (instance lost, timeout); throws XrError when the headset came back
-  // as another system.
-  bool recreate_after_loss(double timeout_s);
+  // again). Returns false when it cannot (instance lost, timeout, or give_up() said so: asked every 0.1 s
+  // while waiting, e.g. a Ctrl-C); throws XrError when the headset came back as another system.
+  bool recreate_after_loss(double timeout_s, const std::function<bool()>& give_up = {});
   // Asks the runtime to end the session (xrRequestExitSession); the loop goes on until exit_requested().
   void request_exit();
 
