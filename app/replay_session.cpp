@@ -166,6 +166,7 @@ void run_replay(const ReplayOptions& o) {
   review.eye_size = o.eye_size;
   review.record = (out / "replay-session.jsonl").string();
   review.settle_drawn_frames = true;
+  review.end_on_interrupt = false;
   review.press_holds = rec.press_holds;  // the same presses held back over the same frames
   review.recorded_anchor.emplace(rec.anchor);  // the model where the recorded review put it
   review.quiet = true;  // the replay prints its own line per commit

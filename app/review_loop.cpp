@@ -219,7 +219,9 @@ void run_review(const ReviewCommandOptions& o) {
 
     // Ctrl-C or SIGTERM: the review ends as with Esc (the committed work is written); a second one ends it at
     // once.
-    const InterruptRequests interrupts;
+    std::optional<InterruptRequests> interrupts;
+    if (o.end_on_interrupt) interrupts.emplace();
+    auto interrupted = [&] { return interrupts && interrupts->requested(); };
     // The session was lost (headset unplugged, runtime restarted): the drag in progress is cancelled (the
     // model stays as it was before it); the committed work stays, and with --reconnect the review goes on
     // when the headset is back. Returns whether it is back.
@@ -237,10 +239,10 @@ void run_review(const ReviewCommandOptions& o) {
       renderer.wait_idle();  // the eye images go with the session
       eyes.reset();
       input.reset();
-      if (!xr.recreate_after_loss(o.reconnect_s, [&] { return interrupts.requested(); })) {
-        std::printf("pushpull review: %s; ending the review\n",
-                    interrupts.requested() ? "interrupted while waiting for the headset"
-                                           : "the headset did not come back");
+      if (interrupted() || !xr.recreate_after_loss(o.reconnect_s, interrupted)) {
+        std::printf(
+            "pushpull review: %s; ending the review\n",
+            interrupted() ? "interrupted while waiting for the headset" : "the headset did not come back");
         return false;
       }
       eyes.emplace(vk.device, xr.eye(0), xr.eye(1));
@@ -257,15 +259,18 @@ void run_review(const ReviewCommandOptions& o) {
     // An error that ended the loop early (a runtime or GPU failure): the committed work is still saved and
     // the recording ended, then the review fails with it.
     std::optional<std::string> failure;
-    bool interrupt_seen = false;
+    std::optional<Clock::time_point> interrupted_at;  // when the loop saw an interrupt
     while (!xr.exit_requested() || xr.lost() || session_lost) {
-      if (interrupts.requested() && !interrupt_seen) {
-        interrupt_seen = true;
+      if (interrupted() && !interrupted_at) {
+        interrupted_at = Clock::now();
         std::printf("pushpull review: interrupted; ending the review (again to quit at once)\n");
         std::fflush(stdout);
         guarded(failure, [&] { xr.request_exit(); });
         if (session_lost || xr.lost() || failure) break;  // nothing to end gracefully
       }
+      // A runtime that does not end the session within 3 s of the request: the review ends without it (the
+      // session is destroyed in any state), rather than the second Ctrl-C losing the work.
+      if (interrupted_at && Clock::now() - *interrupted_at > std::chrono::seconds(3)) break;
       if (session_lost || xr.lost()) {
         bool back = false;
         try {
@@ -616,15 +621,15 @@ void run_review(const ReviewCommandOptions& o) {
         break;
       }
     }
-    // The end, also after a failure (review_end.hpp).
-    if (failure) {
+    // The end, also after a failure (review_end.hpp). A drag still in progress is cancelled (as the desktop
+    // loop does): the model stays as it was before it.
+    if (failure)
       std::fprintf(stderr, "pushpull review: %s; ending the review (the committed work is kept)\n",
                    failure->c_str());
-      guarded(failure, [&] {
-        if (interaction.dragging())
-          if (const auto e = interaction.cancel()) log_event(*e);
-      });
-    }
+    guarded(failure, [&] {
+      if (interaction.dragging())
+        if (const auto e = interaction.cancel()) log_event(*e);
+    });
     guarded(failure, end_hold);  // a press still held back when the review ended never went through
     guarded(failure, [&] { renderer.wait_idle(); });
     service.wait_idle();

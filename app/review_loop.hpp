@@ -77,6 +77,9 @@ struct ReviewCommandOptions {
   // With draw_frame: a drawn frame first waits for the deformation service to finish (replay: captured eyes
   // show the settled result, the same on every run). Commits do not depend on it.
   bool settle_drawn_frames = false;
+  // Live: Ctrl-C or SIGTERM end the review as Esc does (interrupt_requests.hpp). A replay leaves them the
+  // default action (it would otherwise report the commits the interrupted loop never reached as mismatches).
+  bool end_on_interrupt = true;
 };
 
 // Throws CommandError (no runtime or headset: one line saying which runtime was looked for and how to point

@@ -518,7 +518,9 @@ pushpull::testing::CommandResult review_interrupted_after(const fs::path& dir, c
       << extra_env << " " << PUSHPULL_EXECUTABLE << " review " << kHood << kPlacement << " --record "
       << recording << " " << arguments << " &\npid=$!\n"
       << "for i in $(seq 600); do grep -q '\"record\":\"" << after << "\"' " << recording
-      << " 2>/dev/null && break; sleep 0.1; done\nsleep 0.5\nkill -INT $pid\nwait $pid\n";
+      << " 2>/dev/null && break; sleep 0.1; done\nsleep 0.5\nkill -INT $pid\n"
+      << "for i in $(seq 600); do kill -0 $pid 2>/dev/null || break; sleep 0.1; done\n"  // at most 60 s
+      << "kill -KILL $pid 2>/dev/null\nwait $pid\n";
   return run_command("bash " + (dir / "interrupt.sh").string());
 }
 
@@ -563,6 +565,24 @@ TEST(ReviewXr, CtrlCWhileWaitingForALostHeadsetEndsTheReviewAtOnce) {
   const auto reviewed = pushpull::deform::read_mesh(dir / "out.off");
   ASSERT_EQ(rest.V.rows(), reviewed.V.rows());
   EXPECT_GT((reviewed.V - rest.V).cwiseAbs().maxCoeff(), 0.05);
+}
+
+// A runtime that does not end the session when asked to (xr/sim's ignores-exit): after Ctrl-C the review ends
+// on its own within 3 s, with the committed work in --out, rather than running on until a second Ctrl-C kills
+// it.
+TEST(ReviewXr, CtrlCEndsTheReviewEvenWhenTheRuntimeIgnoresTheExitRequest) {
+  const fs::path dir = test_dir();
+  std::ofstream(dir / "input.jsonl") << script_start()
+                                     << R"({"t":1.4,"path":"/user/hand/right/input/trigger/value","value":0.0}
+)";
+  const auto start = std::chrono::steady_clock::now();
+  const auto run = review_interrupted_after(dir, "commit", "--out " + (dir / "out.off").string(),
+                                            "PUSHPULL_XR_SIM_QUIRKS=ignores-exit");
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_EQ(run.status, 0) << run.output;
+  EXPECT_LT(seconds, 30.0) << run.output;
+  EXPECT_TRUE(fs::exists(dir / "out.off")) << run.output;
+  EXPECT_EQ(recording_records(dir / "session.jsonl", "end").size(), 1u);
 }
 
 // A runtime call that fails mid-review with something other than a lost session (xrBeginFrame:

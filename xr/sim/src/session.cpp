@@ -195,7 +195,7 @@ XrResult XRAPI_CALL request_exit_session(XrSession handle) {
   if (const XrResult r = get_session(handle, &s); XR_FAILED(r)) return r;
   if (s->loss_pending) return XR_ERROR_SESSION_LOST;
   if (!s->running) return XR_ERROR_SESSION_NOT_RUNNING;
-  begin_exit(*s, s->input_time());
+  if (!s->instance->config.ignores_exit) begin_exit(*s, s->input_time());
   return XR_SUCCESS;
 }
 

@@ -60,6 +60,7 @@ Config Config::from_env() {
   c.haptics_fail = quirk("haptics-fail");
   c.position_late = quirk("position-late");
   c.stays_lost = quirk("stays-lost");
+  c.ignores_exit = quirk("ignores-exit");
   return c;
 }
 

@@ -68,7 +68,8 @@ constexpr XrSystemId kSystemId = 1;
 //                                     not valid for the first 10 frames, their orientation is: tracking
 //                                     that finds the room after start-up), stays-lost (after a scripted
 //                                     "loss" the headset never comes back: xrGetSystem says
-//                                     XR_ERROR_FORM_FACTOR_UNAVAILABLE)
+//                                     XR_ERROR_FORM_FACTOR_UNAVAILABLE), ignores-exit
+//                                     (xrRequestExitSession succeeds but the session goes on)
 struct Config {
   uint32_t width = 1440;
   uint32_t height = 1600;
@@ -96,6 +97,7 @@ struct Config {
   bool haptics_fail = false;
   bool position_late = false;
   bool stays_lost = false;
+  bool ignores_exit = false;
   static Config from_env();
 };
 
