@@ -284,11 +284,8 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
           window.present(*frame);
           ++frames;
         }
-        char text[256];
-        std::snprintf(text, sizeof text, "pushpull review (desktop) | %s%s | |d| %.1f mm | %d it %s | %s",
-                      std::string(deform::method_name(interaction.method())).c_str(),
-                      dragging ? " (dragging)" : "", life.to_mm(snapshot->d.norm()), snapshot->iteration,
-                      snapshot->converged ? "converged" : "not converged", colour_name(scene.colour()));
+        const std::string text = window_title("pushpull review (desktop)", interaction.method(), dragging,
+                                              *snapshot, life, colour_name(scene.colour()), "");
         if (title != text) window.set_title(title = text);
       } catch (const std::exception& e) {
         failure = e.what();

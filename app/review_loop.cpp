@@ -596,12 +596,9 @@ void run_review(const ReviewCommandOptions& o) {
           ++mirror_frames;
         }
         if (mirror) {
-          char title[256];
-          std::snprintf(title, sizeof title, "pushpull review | %s%s | |d| %.1f mm | %d it %s | %s | %s",
-                        std::string(deform::method_name(interaction.method())).c_str(),
-                        interaction.dragging() ? " (dragging)" : "", life.to_mm(snapshot->d.norm()),
-                        snapshot->iteration, snapshot->converged ? "converged" : "not converged",
-                        colour_name(scene.colour()), mirror_mode_name(mirror_view.mode()));
+          const std::string title =
+              window_title("pushpull review", interaction.method(), interaction.dragging(), *snapshot, life,
+                           colour_name(scene.colour()), mirror_mode_name(mirror_view.mode()));
           if (mirror_title != title) mirror->set_title(mirror_title = title);
         }
         const double ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();

@@ -26,4 +26,15 @@ std::vector<std::string> window_hud_lines(const ReviewInteraction& interaction,
   return lines;
 }
 
+std::string window_title(const std::string& name, deform::Method method, bool dragging,
+                         const deform::Snapshot& snapshot, const LifeSize& life, const std::string& colour,
+                         const std::string& view_mode) {
+  char text[256];
+  std::snprintf(text, sizeof text, "%s | %s%s | |d| %.1f mm | %d it %s | %s", name.c_str(),
+                std::string(deform::method_name(method)).c_str(), dragging ? " (dragging)" : "",
+                life.to_mm(snapshot.d.norm()), snapshot.iteration,
+                snapshot.converged ? "converged" : "not converged", colour.c_str());
+  return view_mode.empty() ? std::string(text) : std::string(text) + " | " + view_mode;
+}
+
 }  // namespace pushpull::app

@@ -24,4 +24,10 @@ namespace pushpull::app {
                                                         const std::string& view_mode,
                                                         const std::vector<std::string>& keys);
 
+// The window title with the same state: "<name> | asan (dragging) | |d| 70.7 mm | 30 it converged |
+// displacement", and " | <view_mode>" when it is not empty.
+[[nodiscard]] std::string window_title(const std::string& name, deform::Method method, bool dragging,
+                                       const deform::Snapshot& snapshot, const LifeSize& life,
+                                       const std::string& colour, const std::string& view_mode);
+
 }  // namespace pushpull::app
