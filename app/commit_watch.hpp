@@ -8,8 +8,11 @@
 
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <memory>
 #include <mutex>
+#include <set>
+#include <string>
 #include <vector>
 
 namespace pushpull::app {
@@ -23,16 +26,30 @@ struct CommitRecord {
   std::shared_ptr<const deform::Mesh> before;
 };
 
+// A commit the service could not make (its solve threw, or its request was stale): the model stays as it was.
+struct FailedCommit {
+  std::uint64_t request = 0;  // Service::commit's sequence
+  std::string error;          // the service's message
+};
+
 class CommitWatch {
  public:
   // For ServiceOptions::on_publish; the watch must outlive the service.
   [[nodiscard]] std::function<void(const std::shared_ptr<const deform::Snapshot>&)> callback();
+  // The loop committed `request` (Service::commit's sequence): an error published for it is a failed commit.
+  void expect_commit(std::uint64_t request);
   // The commits published since the last call, oldest first.
   [[nodiscard]] std::vector<CommitRecord> take();
+  // The expected commits that failed since the last call, oldest first.
+  [[nodiscard]] std::vector<FailedCommit> take_failed();
 
  private:
   std::mutex mutex_;
   std::vector<CommitRecord> pending_;
+  std::set<std::uint64_t> expected_;  // committed requests not yet finished
+  std::vector<FailedCommit> failed_;
+  // The last errors by request: one may be published before the loop says it committed that request.
+  std::map<std::uint64_t, std::string> recent_errors_;
   std::size_t count_ = 0;
   std::shared_ptr<const deform::Mesh> current_;  // the committed state of the last snapshot seen (worker only)
 };

@@ -1,6 +1,7 @@
 #include "desktop_loop.hpp"
 
 #include "commands.hpp"
+#include "commit_reports.hpp"
 #include "hand_sample.hpp"
 #include "interrupt_requests.hpp"
 #include "orbit_control.hpp"
@@ -111,15 +112,11 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
     Eigen::Vector3d hand_origin = Eigen::Vector3d::Zero(), hand_direction(0, 0, -1);
     Eigen::Vector3d press_origin = Eigen::Vector3d::Zero(), press_direction(0, 0, -1);
     auto record_interaction = [&](const InteractionEvent& e) {
+      if (e.kind == InteractionEvent::Kind::Committed) commits.expect_commit(e.request);
       log.write_interaction(e, life);
       recorder.write_interaction(t, e, interaction.handle_radius(), interaction.roi_radius());
     };
-    auto take_commits = [&] {
-      for (const CommitRecord& c : commits.take()) {
-        recorder.write_commit(t, c);
-        if (o.on_commit) o.on_commit(c);
-      }
-    };
+    auto take_commits = [&] { app::take_commits(commits, recorder, t, o.on_commit); };
 
     // Orbit around the model's box on the stage, from the reviewer's side.
     const renderer::Bounds bounds = stage_bounds(setup.rest->V, setup.placement);

@@ -1,6 +1,7 @@
 #include "review_loop.hpp"
 
 #include "commands.hpp"
+#include "commit_reports.hpp"
 #include "desktop_loop.hpp"
 #include "frame_stats.hpp"
 #include "grab_placement.hpp"
@@ -183,12 +184,7 @@ void run_review(const ReviewCommandOptions& o) {
       if (held_frames > 0) recorder.write_record("press held", t, {{"from", hold_from}, {"admitted", false}});
       held_frames = 0;
     };
-    auto take_commits = [&] {
-      for (const CommitRecord& c : commits.take()) {
-        recorder.write_commit(t, c);
-        if (o.on_commit) o.on_commit(c);
-      }
-    };
+    auto take_commits = [&] { app::take_commits(commits, recorder, t, o.on_commit); };
     std::optional<xr::Input> input;  // per session, like the eyes
     input.emplace(xr.instance(), xr.handle(), xr.stage_space());
     FrameStats stats;
@@ -213,6 +209,7 @@ void run_review(const ReviewCommandOptions& o) {
       recorder.write_method(t, interaction.method());
     };
     auto log_event = [&](const InteractionEvent& e) {
+      if (e.kind == InteractionEvent::Kind::Committed) commits.expect_commit(e.request);
       log.write_interaction(e, life);
       recorder.write_interaction(t, e, interaction.handle_radius(), interaction.roi_radius());
     };

@@ -36,6 +36,20 @@ ReviewSetup prepare_review(const ReviewCommandOptions& o) {
     throw CommandError(e.what());
   }
   s.life = LifeSize(o.life_size, s.model.bounds, o.model);
+  {
+    // The size the reviewer will see. A model far from a walk-around size is most often one in other units
+    // (a 7 cm toy car in metres, a car in millimetres): say how to make it life size.
+    const Eigen::Vector3d size = s.model.bounds.sizes() * s.life.scale();
+    const double longest = size.maxCoeff();
+    if (!o.quiet)
+      std::printf("pushpull review: the model is %.2f x %.2f x %.2f m at this scale\n", size.x(), size.y(),
+                  size.z());
+    if (longest < 0.3 || longest > 30.0)
+      std::fprintf(stderr,
+                   "pushpull review: note: its longest side is %.3g m; --length M makes it M metres long "
+                   "(a car: --length 4.2), --scale S sets metres per file unit\n",
+                   longest);
+  }
   s.rest = std::make_shared<const deform::Mesh>(s.model.deform_mesh);
   PlacementOptions placement;
   placement.up_model = vec3(o.up);

@@ -585,6 +585,22 @@ TEST(ReviewXr, CtrlCEndsTheReviewEvenWhenTheRuntimeIgnoresTheExitRequest) {
   EXPECT_EQ(recording_records(dir / "session.jsonl", "end").size(), 1u);
 }
 
+// A commit the solver did not converge for is said on stderr once the drag is over (the readout by the hand
+// no longer shows it): arap-m on the bonnet stops at its 1000 iterations.
+TEST(ReviewXr, ACommitThatDidNotConvergeIsSaid) {
+  const fs::path dir = test_dir();
+  const ReviewRun run =
+      run_review(dir, script_start() + R"({"t":1.4,"path":"/user/hand/right/input/trigger/value","value":0.0}
+{"t":2.5,"event":"exit"}
+)",
+                 "--method arap-m");
+  ASSERT_EQ(run.result.status, 0) << run.result.output;
+  ASSERT_EQ(run.of("commit").size(), 1u) << run.result.output;
+  EXPECT_NE(run.result.output.find("commit 1 (arap-m) is not converged after 1000 iterations"),
+            std::string::npos)
+      << run.result.output;
+}
+
 // A runtime call that fails mid-review with something other than a lost session (xrBeginFrame:
 // XR_ERROR_RUNTIME_FAILURE) ends the review with an error that names it, and keeps the work: the push/pull
 // committed before it is written to --out (as a review without the failure writes it), the recording ends

@@ -1,0 +1,30 @@
+#include "commit_reports.hpp"
+
+#include <cstdio>
+
+namespace pushpull::app {
+
+void take_commits(CommitWatch& commits, SessionRecorder& recorder, double t,
+                  const std::function<void(const CommitRecord&)>& on_commit) {
+  for (const CommitRecord& c : commits.take()) {
+    recorder.write_commit(t, c);
+    const deform::Snapshot& s = *c.snapshot;
+    if (!s.converged) {
+      char estimate[96] = "the solver has no estimate of its distance to the minimiser";
+      if (s.error_estimate)
+        std::snprintf(estimate, sizeof estimate, "estimated %.1e |d| from the minimiser", *s.error_estimate);
+      std::fprintf(
+          stderr,
+          "pushpull review: commit %zu (%s) is not converged after %d iterations (%s); undo takes it back\n",
+          c.index, std::string(deform::method_name(s.method)).c_str(), s.iteration, estimate);
+    }
+    if (on_commit) on_commit(c);
+  }
+  for (const FailedCommit& f : commits.take_failed()) {
+    std::fprintf(stderr, "pushpull review: the push/pull was not committed (the model stays as it was): %s\n",
+                 f.error.c_str());
+    recorder.write_record("commit failed", t, {{"request", f.request}, {"error", f.error}});
+  }
+}
+
+}  // namespace pushpull::app
