@@ -260,6 +260,10 @@ struct Renderer::Impl {
                         VkDescriptorSet frame_set);
   // The colour-map legend (set_legend) with the given overlay pipeline, inside a begun rendering.
   void record_legend(VkCommandBuffer cmd, VkPipeline pipeline);
+  // Begins rendering into `colour` (and `depth`, if not null) over the whole extent, sets the viewport and
+  // scissor to it and binds the pass's frame data as set 0 of the mesh pipelines.
+  void begin_rendering(VkCommandBuffer cmd, VkExtent2D extent, const VkRenderingAttachmentInfo& colour,
+                       const VkRenderingAttachmentInfo* depth, VkDescriptorSet frame_set);
   // Binds and draws meshes in the given order with the pipeline `pipeline_of` picks (set 0 = frame_set
   // bound).
   template <class PipelineOf>
@@ -457,6 +461,26 @@ void Renderer::Impl::record_draws(VkCommandBuffer cmd, std::span<const Draw* con
   }
 }
 
+void Renderer::Impl::begin_rendering(VkCommandBuffer cmd, VkExtent2D extent,
+                                     const VkRenderingAttachmentInfo& colour,
+                                     const VkRenderingAttachmentInfo* depth, VkDescriptorSet frame_set) {
+  VkRenderingInfo rendering{};
+  rendering.sType = VK_STRUCTURE_TYPE_RENDERING_INFO;
+  rendering.renderArea = {{0, 0}, extent};
+  rendering.layerCount = 1;
+  rendering.colorAttachmentCount = 1;
+  rendering.pColorAttachments = &colour;
+  rendering.pDepthAttachment = depth;
+  vkCmdBeginRendering(cmd, &rendering);
+  const VkViewport viewport{0.0f, 0.0f, static_cast<float>(extent.width), static_cast<float>(extent.height),
+                            0.0f, 1.0f};
+  const VkRect2D scissor{{0, 0}, extent};
+  vkCmdSetViewport(cmd, 0, 1, &viewport);
+  vkCmdSetScissor(cmd, 0, 1, &scissor);
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layouts.mesh.get(), 0, 1, &frame_set, 0,
+                          nullptr);
+}
+
 void Renderer::Impl::record_legend(VkCommandBuffer cmd, VkPipeline pipeline) {
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layouts.overlay2d.get(), 0, 1, &legend_set, 0,
@@ -483,20 +507,7 @@ void Renderer::Impl::record_over_copy(VkCommandBuffer cmd, PipelinePair& pipes, 
   colour.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
   colour.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;  // the copied image stays under the draws
   colour.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-  VkRenderingInfo rendering{};
-  rendering.sType = VK_STRUCTURE_TYPE_RENDERING_INFO;
-  rendering.renderArea = {{0, 0}, extent};
-  rendering.layerCount = 1;
-  rendering.colorAttachmentCount = 1;
-  rendering.pColorAttachments = &colour;
-  vkCmdBeginRendering(cmd, &rendering);
-  const VkViewport viewport{0.0f, 0.0f, static_cast<float>(extent.width), static_cast<float>(extent.height),
-                            0.0f, 1.0f};
-  const VkRect2D scissor{{0, 0}, extent};
-  vkCmdSetViewport(cmd, 0, 1, &viewport);
-  vkCmdSetScissor(cmd, 0, 1, &scissor);
-  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layouts.mesh.get(), 0, 1, &frame_set, 0,
-                          nullptr);
+  begin_rendering(cmd, extent, colour, nullptr, frame_set);
   std::vector<const Draw*> ordered;
   for (const Draw& draw : draws) ordered.push_back(&draw);
   record_draws(cmd, ordered, 0, [&](const Draw&) { return pipes.over_copy.get(); });
@@ -565,24 +576,7 @@ void Renderer::Impl::record_view(VkCommandBuffer cmd, const PipelinePair& pipes,
   depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
   depth.clearValue.depthStencil = {1.0f, 0};
 
-  VkRenderingInfo rendering{};
-
-  rendering.sType = VK_STRUCTURE_TYPE_RENDERING_INFO;
-  rendering.renderArea = {{0, 0}, extent};
-  rendering.layerCount = 1;
-  rendering.colorAttachmentCount = 1;
-  rendering.pColorAttachments = &colour;
-  rendering.pDepthAttachment = &depth;
-  vkCmdBeginRendering(cmd, &rendering);
-
-  VkViewport viewport{0.0f, 0.0f, static_cast<float>(extent.width), static_cast<float>(extent.height),
-                      0.0f, 1.0f};
-  VkRect2D scissor{{0, 0}, extent};
-  vkCmdSetViewport(cmd, 0, 1, &viewport);
-  vkCmdSetScissor(cmd, 0, 1, &scissor);
-
-  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layouts.mesh.get(), 0, 1, &frame_set, 0,
-                          nullptr);
+  begin_rendering(cmd, extent, colour, &depth, frame_set);
   // Depth-tested draws first, then the on-top ones.
   std::vector<const Draw*> ordered;
   for (const Draw& draw : draws)

@@ -59,6 +59,25 @@ RenderMesh bump_on(const RenderMesh& flat) {
   return bent;
 }
 
+// The displacement map over [0, 1], unlit: the pixels are the map's colours.
+FrameSettings unlit_displacement() {
+  FrameSettings settings;
+  settings.color_mode = ColorMode::displacement;
+  settings.scalar_max = 1.0f;
+  settings.lighting = false;
+  return settings;
+}
+
+// `mesh` (a make_sheet) seen by the sheet camera, kSize x kSize, with `settings`.
+TextureRGBA8 sheet_image(const Context& context, Renderer& renderer, MeshId mesh,
+                         const FrameSettings& settings) {
+  OffscreenTarget target(context, kSize, kSize);
+  const View view = testing::sheet_camera();
+  const Draw draw{mesh, glm::mat4(1.0f)};
+  renderer.render(std::span(&view, 1), std::span(&draw, 1), settings, target.targets());
+  return target.read_back();
+}
+
 Material red_paint() {
   Material m;
   m.base_colour = {0.5f, 0.02f, 0.02f, 1.0f};
@@ -94,15 +113,8 @@ TEST(Renderer, DisplacementColourMapMatchesCpuMapOnSheet) {
   {
     Renderer renderer(context);
     const MeshId mesh = renderer.add_mesh(make_sheet(64));
-    OffscreenTarget target(context, kSize, kSize);
-    const View view = testing::sheet_camera();
-    const Draw draw{mesh, glm::mat4(1.0f)};
-    FrameSettings settings;
-    settings.color_mode = ColorMode::displacement;
-    settings.scalar_max = 1.0f;
-    settings.lighting = false;
-    renderer.render(std::span(&view, 1), std::span(&draw, 1), settings, target.targets());
-    const TextureRGBA8 image = target.read_back();
+    FrameSettings settings = unlit_displacement();
+    const TextureRGBA8 image = sheet_image(context, renderer, mesh, settings);
     // scalar = (x + 1) / 2 across the sheet, which spans the image width.
     for (float t : {0.05f, 0.2f, 0.4f, 0.5f, 0.6f, 0.8f, 0.95f}) {
       const auto x = uint32_t(t * float(kSize));
@@ -111,8 +123,8 @@ TEST(Renderer, DisplacementColourMapMatchesCpuMapOnSheet) {
                          "t=" + std::to_string(t));
     }
     settings.lighting = true;
-    renderer.render(std::span(&view, 1), std::span(&draw, 1), settings, target.targets());
-    testing::expect_matches_reference(target.read_back(), "sheet_displacement", 8, 64);
+    testing::expect_matches_reference(sheet_image(context, renderer, mesh, settings), "sheet_displacement", 8,
+                                      64);
   }
   EXPECT_EQ(context.validation_message_count(), 0u);
 }
@@ -127,15 +139,11 @@ TEST(Renderer, CurvatureSignIsYellowPositiveBlueNegativeGreyZero) {
       sheet.scalars[v] = x < -0.3f ? 2.5f : (x > 0.3f ? -2.5f : 0.0f);  // K > 0 | K = 0 | K < 0
     }
     const MeshId mesh = renderer.add_mesh(sheet);
-    OffscreenTarget target(context, kSize, kSize);
-    const View view = testing::sheet_camera();
-    const Draw draw{mesh, glm::mat4(1.0f)};
     FrameSettings settings;
     settings.color_mode = ColorMode::curvature_sign;
     settings.curvature_epsilon = 1e-3f;
     settings.lighting = false;
-    renderer.render(std::span(&view, 1), std::span(&draw, 1), settings, target.targets());
-    const TextureRGBA8 image = target.read_back();
+    const TextureRGBA8 image = sheet_image(context, renderer, mesh, settings);
     expect_colour_near(pixel(image, kSize / 8, kSize / 2), encoded(curvature_sign_colour(1.0f, 0.0f)), 2,
                        "K>0");
     expect_colour_near(pixel(image, kSize / 2, kSize / 2), encoded(curvature_sign_colour(0.0f, 0.0f)), 2,
@@ -198,15 +206,7 @@ TEST(Renderer, AHoverHighlightIsMagentaOnTheDisplacementMapsRed) {
       sheet.overlays[v].fixed = sheet.overlays[v].handle = hover;
     }
     const MeshId mesh = renderer.add_mesh(sheet);
-    OffscreenTarget target(context, kSize, kSize);
-    const View view = testing::sheet_camera();
-    const Draw draw{mesh, glm::mat4(1.0f)};
-    FrameSettings settings;
-    settings.color_mode = ColorMode::displacement;
-    settings.scalar_max = 1.0f;
-    settings.lighting = false;
-    renderer.render(std::span(&view, 1), std::span(&draw, 1), settings, target.targets());
-    const TextureRGBA8 image = target.read_back();
+    const TextureRGBA8 image = sheet_image(context, renderer, mesh, unlit_displacement());
     const auto hover = pixel(image, kSize / 2, kSize / 2);
     EXPECT_GT(hover.r, hover.g + 80) << "magenta";
     EXPECT_GT(hover.b, hover.g + 80) << "magenta";
