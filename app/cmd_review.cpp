@@ -101,6 +101,12 @@ void add_review_command(CLI::App& root) {
          "busy with other work starves previews and commits)")
       ->check(CLI::IsMember({"idle"}) | CLI::Range(0, 19))
       ->default_str("10");
+  cmd->add_option(
+         "--solver-cpus", o->solver_cpus,
+         "Headset: CPUs of the solver's own (e.g. 3, 2-3, or auto: the last one), the frame loop and the "
+         "threads it starts (lavapipe's) keep the others, so a solve never takes a frame's core; none: all "
+         "share them")
+      ->default_str("none");
   add_life_size_options(*cmd, o->life_size);
   cmd->callback([o] { run_review(*o); });
 }

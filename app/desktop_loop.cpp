@@ -101,7 +101,9 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
                                   "pushpull review (desktop)");
     ReviewScene scene(renderer, setup.model, setup.placement, setup.colour, life.scale());
     CommitWatch commits;  // before the service: its worker calls into it until the service is destroyed
-    deform::Service service(setup.rest, deform::ServiceOptions{commits.callback()});
+    deform::ServiceOptions service_options;
+    service_options.on_publish = commits.callback();
+    deform::Service service(setup.rest, std::move(service_options));
     ReviewInteraction interaction(service, *setup.rest, setup.placement, setup.interaction);
     // The recording's clock: frame n at n / 90 s (xr/sim's virtual clock at 90 Hz), so a replay on the simulated
     // runtime sees each recorded frame at its own frame.

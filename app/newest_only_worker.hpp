@@ -17,8 +17,13 @@ namespace pushpull::app {
 template <class Job, class Result>
 class NewestOnlyWorker {
  public:
-  explicit NewestOnlyWorker(std::function<Result(const Job&)> work) : work_(std::move(work)) {
-    thread_ = std::thread([this] { run(); });
+  // on_start: runs first on the worker's thread (e.g. to pin it to CPUs), when given.
+  explicit NewestOnlyWorker(std::function<Result(const Job&)> work, std::function<void()> on_start = {})
+      : work_(std::move(work)) {
+    thread_ = std::thread([this, on_start = std::move(on_start)] {
+      if (on_start) on_start();
+      run();
+    });
   }
   ~NewestOnlyWorker() {
     {

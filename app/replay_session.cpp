@@ -174,6 +174,7 @@ void run_replay(const ReplayOptions& o) {
   // it (the loop waits for the solver wherever results matter anyway).
   review.solver_nice = 0;
   review.solver_idle = false;
+  review.solver_cpus = "none";
   if (o.capture_every <= 0)  // draw only the frames xr/sim captures (frame times are n / rate)
     review.draw_frame = [captures, frame](double t) {
       return std::any_of(captures.begin(), captures.end(), [&](double c) { return std::abs(t - c) < 0.5 * frame; });

@@ -15,12 +15,14 @@
 #include "review_scene.hpp"
 #include "review_setup.hpp"
 #include "session_recorder.hpp"
+#include "solver_cpus.hpp"
 #include "stage_placement.hpp"
 #include "vulkan_validation.hpp"
 #include "window_hud.hpp"
 #include "world_label.hpp"
 
 #include "pushpull/assets/model.hpp"
+#include "pushpull/deform/cpu_affinity.hpp"
 #include "pushpull/deform/service.hpp"
 #include "pushpull/renderer/context.hpp"
 #include "pushpull/renderer/mirror_window.hpp"
@@ -86,6 +88,22 @@ void run_review(const ReviewCommandOptions& o) {
     session_options.vulkan_layers = validation_layers();
     for (const auto& e : validation_extensions()) session_options.vulkan_instance_extensions.push_back(e);
   }
+  // --solver-cpus: the frame thread moves to the frames' CPUs before the runtime makes the Vulkan device, so
+  // the threads the device starts (lavapipe's) stay there too; the solver's threads go to theirs.
+  const std::vector<int> all_cpus = deform::allowed_cpus();
+  std::optional<CpuSplit> cpus;
+  try {
+    cpus = split_cpus(o.solver_cpus, all_cpus);
+  } catch (const std::invalid_argument& e) {
+    throw CommandError(e.what());
+  }
+  if (cpus && !deform::pin_calling_thread(cpus->frames)) {
+    std::fprintf(stderr,
+                 "pushpull review: --solver-cpus %s: this system does not let threads be pinned to CPUs; "
+                 "the solver shares them with the frames\n",
+                 o.solver_cpus.c_str());
+    cpus.reset();
+  }
   std::optional<xr::Session> session;
   try {
     session.emplace(session_options);
@@ -94,6 +112,7 @@ void run_review(const ReviewCommandOptions& o) {
     if (std::getenv("DISPLAY") == nullptr && std::getenv("WAYLAND_DISPLAY") == nullptr)
       throw CommandError(e.what());
     std::fprintf(stderr, "pushpull review: %s; opening the desktop window instead\n", e.what());
+    if (cpus) (void)deform::pin_calling_thread(all_cpus);  // the desktop window shares the CPUs
     return run_desktop(o, setup);
   }
   xr::Session& xr = *session;
@@ -103,6 +122,9 @@ void run_review(const ReviewCommandOptions& o) {
                 xr.eye(0).height(),
                 xr.eye(0).format() == VK_FORMAT_B8G8R8A8_SRGB ? "B8G8R8A8_SRGB" : "R8G8B8A8_SRGB",
                 xr.stage_is_local() ? "LOCAL (no STAGE)" : "STAGE");
+  if (cpus && !o.quiet)
+    std::printf("pushpull review: the solver runs on CPU %s, the frames on CPU %s\n",
+                cpu_list_text(cpus->solver).c_str(), cpu_list_text(cpus->frames).c_str());
 
   EventLog log(o.events, !o.quiet);
   log.write_start(o, setup, xr.runtime_name());
@@ -139,14 +161,17 @@ void run_review(const ReviewCommandOptions& o) {
     auto last_mirror = Clock::now();
     // Live: snapshots become vertex data on the scene's own thread (the frame thread only copies them). A
     // replay converts on this thread, so every drawn frame shows exactly the settled snapshot.
-    ReviewScene scene(renderer, model, placement, colour, life.scale(), /*async=*/!o.settle_drawn_frames);
+    ReviewScene scene(renderer, model, placement, colour, life.scale(), /*async=*/!o.settle_drawn_frames,
+                      cpus ? cpus->solver : std::vector<int>{});
     // The current session's swapchain images (made again after a lost session).
     std::optional<EyeTargets> eyes;
     eyes.emplace(vk.device, xr.eye(0), xr.eye(1));
     CommitWatch commits;  // before the service: its worker calls into it until the service is destroyed
-    deform::ServiceOptions service_options{commits.callback()};
+    deform::ServiceOptions service_options;
+    service_options.on_publish = commits.callback();
     service_options.worker_nice = o.solver_nice;  // frames first: the solver takes what the frame loop leaves
     service_options.worker_idle = o.solver_idle;
+    if (cpus) service_options.worker_cpus = cpus->solver;
     deform::Service service(rest, std::move(service_options));
     ReviewInteraction interaction(service, *rest, placement, interaction_options);
     std::size_t next_method_change = 0;  // into o.method_changes

@@ -42,6 +42,9 @@ struct ReviewCommandOptions {
   // idle scheduling class (worker_idle). --solver-priority: the niceness or "idle".
   bool solver_idle = false;
   int solver_nice = 10;
+  // The headset review's CPUs for the solver (solver_cpus.hpp: "none", "auto" or a list); the frame loop
+  // keeps the others. --solver-cpus.
+  std::string solver_cpus = "none";
   // After a lost session: how long to wait for the headset to come back before ending (s; 0: end at once).
   double reconnect_s = 30.0;
   bool validation = false;  // Vulkan validation layer on the runtime's instance; any message fails the run

@@ -1,5 +1,6 @@
 #include "review_scene.hpp"
 
+#include "pushpull/deform/cpu_affinity.hpp"
 #include "pushpull/deform/metrics.hpp"
 #include "pushpull/renderer/camera.hpp"
 #include "pushpull/renderer/geometry.hpp"
@@ -27,7 +28,7 @@ double round_up_mm(double mm) {
 
 ReviewScene::ReviewScene(renderer::Renderer& renderer, const assets::Model& model,
                          const StagePlacement& placement, ReviewColour colour, double life_size_scale,
-                         bool async)
+                         bool async, std::vector<int> converter_cpus)
     : renderer_(renderer),
       render_(build_render_model(model)),
       rest_V_(model.deform_mesh.V),
@@ -57,8 +58,8 @@ ReviewScene::ReviewScene(renderer::Renderer& renderer, const assets::Model& mode
   set_placement(placement);
   if (async) {
     stream_ = renderer_.vertex_stream(mesh_);
-    converter_ =
-        std::make_unique<NewestOnlyWorker<ConversionJob, SnapshotVertices>>([this](const ConversionJob& job) {
+    converter_ = std::make_unique<NewestOnlyWorker<ConversionJob, SnapshotVertices>>(
+        [this](const ConversionJob& job) {
           SnapshotVertices out = convert_snapshot(render_, rest_V_, F_, scale_, job.colour, job.snapshot);
           if (!stream_) return out;
           // Into a vertex set the frame loop binds as it is (none free: the frame loop copies the vectors).
@@ -75,7 +76,8 @@ ReviewScene::ReviewScene(renderer::Renderer& renderer, const assets::Model& mode
           out.cpu_ms +=
               std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
           return out;
-        });
+        },
+        [cpus = std::move(converter_cpus)] { (void)deform::pin_calling_thread(cpus); });
   }
 }
 

@@ -53,8 +53,11 @@ class ReviewScene {
   // renderer has a VertexStream for the mesh, that thread writes them into a vertex set the frame loop only
   // publishes (no per-frame copy of vertex data on the frame's thread), else the frame loop copies them
   // (Renderer::update_vertices).
+  // converter_cpus: the CPUs the async converter's thread runs on (deform/cpu_affinity.hpp; empty: where the
+  // caller's threads may).
   ReviewScene(renderer::Renderer& renderer, const assets::Model& model, const StagePlacement& placement,
-              ReviewColour colour, double life_size_scale, bool async = false);
+              ReviewColour colour, double life_size_scale, bool async = false,
+              std::vector<int> converter_cpus = {});
 
   // Shows the snapshot when its generation is new. Synchronous (not async, or wait): converts and uploads on
   // the calling thread, O(#Vr). Async: posts it to the converter and uploads the newest finished conversion,

@@ -5,6 +5,7 @@
 #include "command_runner.hpp"
 #include "xr_sim_environment.hpp"
 
+#include "pushpull/deform/cpu_affinity.hpp"
 #include "pushpull/deform/mesh_io.hpp"
 #include "pushpull/deform/method.hpp"
 #include "pushpull/renderer/image_io.hpp"
@@ -251,6 +252,36 @@ TEST(ReviewXr, DragCommitsWhatDeformComputesForTheSameP0AndD) {
     EXPECT_GT(blue, 50u) << entry.path();
   }
   EXPECT_EQ(images, 2) << "one capture, both eyes";
+}
+
+// --solver-cpus: the solver on CPUs of its own commits the same model as sharing them; the split is printed;
+// a list the process cannot use is refused before the session starts, naming the CPU.
+TEST(ReviewXr, TheSolverOnCpusOfItsOwnCommitsTheSameModel) {
+  const fs::path dir = test_dir();
+  const std::string script =
+      script_start() + R"({"t":1.4,"path":"/user/hand/right/input/trigger/value","value":1.0}
+{"t":1.5,"path":"/user/hand/right/input/trigger/value","value":0.0}
+{"t":2.0,"event":"exit"}
+)";
+  const ReviewRun shared = run_review(dir, script, "--out " + (dir / "shared.off").string());
+  ASSERT_EQ(shared.result.status, 0) << shared.result.output;
+  const ReviewRun split = run_review(dir, script, "--solver-cpus auto --out " + (dir / "split.off").string());
+  ASSERT_EQ(split.result.status, 0) << split.result.output;
+  ASSERT_EQ(split.of("commit").size(), 1u) << split.result.output;
+  const std::vector<int> cpus = pushpull::deform::allowed_cpus();
+  if (cpus.size() >= 2) {
+    EXPECT_NE(split.result.output.find("the solver runs on CPU " + std::to_string(cpus.back()) +
+                                       ", the frames on CPU"),
+              std::string::npos)
+        << split.result.output;
+  }
+  EXPECT_EQ(pushpull::deform::read_mesh(dir / "split.off").V,
+            pushpull::deform::read_mesh(dir / "shared.off").V);
+  const ReviewRun refused = run_review(dir, script, "--solver-cpus 4095");
+  EXPECT_NE(refused.result.status, 0);
+  EXPECT_NE(refused.result.output.find("--solver-cpus 4095: CPU 4095 is not one this process may run on"),
+            std::string::npos)
+      << refused.result.output;
 }
 
 TEST(ReviewXr, SessionLostMidDragLeavesTheModelAsBeforeTheDrag) {

@@ -20,15 +20,18 @@
 #include <thread>
 #include <utility>
 
+#include "pushpull/deform/cpu_affinity.hpp"
 #include "pushpull/deform/mesh_validation.hpp"
 #include "snapshot_handoff.hpp"
 
 namespace pushpull::deform {
 namespace {
 
-// setpriority on the calling thread (Linux threads have their own niceness), or the idle scheduling class.
-// Threads the worker starts later (the solver's helper) inherit both.
-void lower_thread_priority(int nice, bool idle) {
+// The worker's place on the machine: its CPUs (worker_cpus), then its niceness (setpriority on the calling
+// thread: Linux threads have their own) or the idle scheduling class. Threads the worker starts later (the
+// solver's helper) inherit all three.
+void place_worker_thread(int nice, bool idle, const std::vector<int>& cpus) {
+  (void)pin_calling_thread(cpus);
 #ifdef __linux__
   if (nice > 0) (void)::setpriority(PRIO_PROCESS, static_cast<id_t>(::gettid()), std::min(nice, 19));
   if (idle) {
@@ -428,11 +431,11 @@ Service::Service(std::shared_ptr<const Mesh> initial, ServiceOptions options)
   state.entry.hash = position_hash(state.entry.state->V);
   impl_->states.push_back(std::move(state));
   impl_->publish(impl_->state_snapshot(Snapshot::Kind::Rest, 0, Clock::now()));
-  impl_->worker =
-      std::thread([impl = impl_.get(), nice = impl_->options.worker_nice, idle = impl_->options.worker_idle] {
-        lower_thread_priority(nice, idle);
-        impl->loop();
-      });
+  impl_->worker = std::thread([impl = impl_.get(), nice = impl_->options.worker_nice,
+                               idle = impl_->options.worker_idle, cpus = impl_->options.worker_cpus] {
+    place_worker_thread(nice, idle, cpus);
+    impl->loop();
+  });
 }
 
 Service::~Service() {

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "../test_shapes.hpp"
+#include "pushpull/deform/cpu_affinity.hpp"
 #include "pushpull/deform/deformer.hpp"
 #include "pushpull/deform/roi.hpp"
 #include "pushpull/deform/service.hpp"
@@ -143,6 +144,32 @@ TEST(Service, TheWorkerRunsInTheSchedulingClassAsked) {
     EXPECT_EQ(niceness.load(), 7);
     EXPECT_EQ(*s->positions, cold_solve(p, r));
   }
+}
+
+// worker_cpus: the worker runs on the CPUs asked for (the caller's thread keeps its own); the solve is the
+// same.
+TEST(Service, TheWorkerRunsOnTheCpusAsked) {
+  const std::vector<int> before = allowed_cpus();
+  ASSERT_FALSE(before.empty());
+  const Problem p = make_problem(12);
+  std::mutex mutex;
+  std::vector<int> seen;
+  ServiceOptions options;
+  options.worker_cpus = {before.back()};
+  options.on_publish = [&](const std::shared_ptr<const Snapshot>&) {
+    std::lock_guard lock(mutex);
+    seen = allowed_cpus();
+  };
+  Service service(p.mesh, std::move(options));
+  const Request r = make_request(p, {0.0, 0.0, 0.05});
+  (void)service.submit(r);
+  const auto s = service.wait_idle();
+  {
+    std::lock_guard lock(mutex);
+    EXPECT_EQ(seen, std::vector<int>{before.back()});
+  }
+  EXPECT_EQ(allowed_cpus(), before);
+  EXPECT_EQ(*s->positions, cold_solve(p, r));
 }
 #endif
 

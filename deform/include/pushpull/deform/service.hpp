@@ -146,6 +146,10 @@ struct ServiceOptions {
   // it waits for the solver's time slice: the frame-time spikes of scripts/bench-review). Under a machine
   // loaded by other work, previews then arrive late. Ignored elsewhere.
   bool worker_idle = false;
+  // CPUs the worker and its helper thread run on (cpu_affinity.hpp; empty: wherever the caller's threads
+  // may). A frame loop gives the solver CPUs of its own so solves never take the frame loop's cores. A
+  // set the system refuses leaves the worker where it was (results do not depend on it).
+  std::vector<int> worker_cpus;
 };
 
 class Service {

@@ -1,0 +1,73 @@
+// app/solver_cpus: `pushpull review --solver-cpus` lists, "auto" and "none", and the errors that name the
+// problem.
+#include "solver_cpus.hpp"
+
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace pushpull::app {
+namespace {
+
+using Cpus = std::vector<int>;
+
+std::string error_of(const std::string& spec, const Cpus& allowed) {
+  try {
+    (void)split_cpus(spec, allowed);
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(SolverCpus, ListsAndRangesSplitTheAllowedCpus) {
+  const Cpus allowed{0, 1, 2, 3, 4, 5, 6, 7};
+  const auto a = split_cpus("3", allowed);
+  ASSERT_TRUE(a);
+  EXPECT_EQ(a->solver, (Cpus{3}));
+  EXPECT_EQ(a->frames, (Cpus{0, 1, 2, 4, 5, 6, 7}));
+  const auto b = split_cpus("6-7,2,2", allowed);
+  ASSERT_TRUE(b);
+  EXPECT_EQ(b->solver, (Cpus{2, 6, 7}));
+  EXPECT_EQ(b->frames, (Cpus{0, 1, 3, 4, 5}));
+}
+
+TEST(SolverCpus, AutoTakesTheLastCpuWhenThereAreTwo) {
+  const auto two = split_cpus("auto", {0, 1});
+  ASSERT_TRUE(two);
+  EXPECT_EQ(two->solver, (Cpus{1}));
+  EXPECT_EQ(two->frames, (Cpus{0}));
+  const auto gaps = split_cpus("auto", {2, 5, 9});
+  ASSERT_TRUE(gaps);
+  EXPECT_EQ(gaps->solver, (Cpus{9}));
+  EXPECT_EQ(gaps->frames, (Cpus{2, 5}));
+  EXPECT_FALSE(split_cpus("auto", {0}));  // one CPU: nothing to split
+  EXPECT_FALSE(split_cpus("auto", {}));
+  EXPECT_FALSE(split_cpus("none", {0, 1}));
+}
+
+TEST(SolverCpus, ErrorsNameTheProblem) {
+  const Cpus allowed{0, 1};
+  EXPECT_NE(error_of("0-1", allowed).find("leaves no CPU for the frames (this process has 0-1)"),
+            std::string::npos);
+  EXPECT_NE(error_of("5", allowed).find("CPU 5 is not one this process may run on (0-1)"), std::string::npos);
+  EXPECT_NE(error_of("x", allowed).find("'x' is not a CPU number"), std::string::npos);
+  EXPECT_NE(error_of("", allowed).find("'' is not a CPU number"), std::string::npos);
+  EXPECT_NE(error_of("1,", allowed).find("'' is not a CPU number"), std::string::npos);
+  EXPECT_NE(error_of("-1", allowed).find("'' is not a CPU number"), std::string::npos);
+  EXPECT_NE(error_of("1-0", allowed).find("the range '1-0' is empty"), std::string::npos);
+  EXPECT_NE(error_of("99999", allowed).find("not a CPU number"), std::string::npos);
+  EXPECT_NE(error_of("4096", allowed).find("too large"), std::string::npos);
+}
+
+TEST(SolverCpus, ListTextUsesRanges) {
+  EXPECT_EQ(cpu_list_text({0, 1, 3}), "0-1,3");
+  EXPECT_EQ(cpu_list_text({2}), "2");
+  EXPECT_EQ(cpu_list_text({0, 1, 2, 5, 6, 9}), "0-2,5-6,9");
+  EXPECT_EQ(cpu_list_text({}), "none");
+}
+
+}  // namespace
+}  // namespace pushpull::app
