@@ -27,4 +27,19 @@ void take_commits(CommitWatch& commits, SessionRecorder& recorder, double t,
   }
 }
 
+bool take_history_step(deform::Service& service, HistoryStep step, double t, double notice_now, EventLog& log,
+                       SessionRecorder& recorder, TimedNotice& notice, bool print) {
+  const char* name = step == HistoryStep::Undo ? "undo" : "redo";
+  if (request_history_step(service, step)) {
+    log.write({{"event", name}});
+    recorder.write_record(name, t);
+    if (print) std::printf("pushpull review: %s\n", name);
+    return true;
+  }
+  notice.show(nothing_to(step), notice_now);
+  log.write({{"event", nothing_to(step)}});
+  if (print) std::printf("pushpull review: %s\n", nothing_to(step));
+  return false;
+}
+
 }  // namespace pushpull::app

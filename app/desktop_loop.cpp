@@ -3,6 +3,7 @@
 #include "commands.hpp"
 #include "commit_reports.hpp"
 #include "hand_sample.hpp"
+#include "history_steps.hpp"
 #include "interrupt_requests.hpp"
 #include "orbit_control.hpp"
 #include "review_end.hpp"
@@ -22,6 +23,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <optional>
@@ -119,14 +121,29 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
       recorder.write_interaction(t, e, interaction.handle_radius(), interaction.roi_radius());
     };
     auto take_commits = [&] { app::take_commits(commits, recorder, t, o.on_commit); };
+    // "nothing to undo", for a while in the HUD and the readout, on the wall clock (t, the recording's, runs
+    // at 90 frames a second whatever the window's frame rate).
+    TimedNotice notice;
+    const auto start = std::chrono::steady_clock::now();
+    auto now = [&] {
+      return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    };
+    auto history_text = [&] {
+      const std::string text = notice.text(now());
+      return text.empty() ? edit_counts_text(edit_counts(service)) : text;
+    };
+    auto ask_history_step = [&](HistoryStep step) {
+      (void)take_history_step(service, step, t, now(), log, recorder, notice, !o.quiet);
+    };
 
     // Orbit around the model's box on the stage, from the reviewer's side.
     const renderer::Bounds bounds = stage_bounds(setup.rest->V, setup.placement);
     WorldLabel cursor_label(renderer, 0.02f, 600);  // line height 0.02, scaled per frame
     WorldLabel hud(renderer, 0.02f, 1200);          // the window's top-left corner
-    renderer::OrbitCamera orbit;
-    orbit.azimuth_deg = 30.0f;
-    orbit.elevation_deg = 25.0f;
+    renderer::OrbitCamera start_view;
+    start_view.azimuth_deg = 30.0f;
+    start_view.elevation_deg = 25.0f;
+    renderer::OrbitCamera orbit = start_view;
     renderer::MirrorWindow::Pointer last{};
     long held_frames = 0;  // frames the left button's press has been held back while the service solves
     bool dragging = false;
@@ -151,6 +168,7 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
             1e-9;  // as xr/sim's script_time
         bool quit = false, undo = false, redo = false, colour = false, method = false;
         for (int key : window.take_key_presses()) {
+          if (key == 'F' || key == 268 /* GLFW_KEY_HOME */) orbit = start_view;  // back to the first view
           quit = quit || key == 256 /* GLFW_KEY_ESCAPE */;
           undo = undo || key == 'U';
           redo = redo || key == 'R';
@@ -225,16 +243,9 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
         if (interaction.dragging()) recorder.write_drag(t, interaction.current_d());
         dragging = interaction.dragging();
         if (!dragging) {  // in the headset loop's order: after the gesture
-          if (hands_in[1].undo_pressed) {
-            service.undo();
-            log.write({{"event", "undo"}});
-            recorder.write_record("undo", t);
-          }
-          if (hands_in[1].redo_pressed) {
-            service.redo();
-            log.write({{"event", "redo"}});
-            recorder.write_record("redo", t);
-          }
+          for (const auto& [pressed, step] : {std::pair{hands_in[1].undo_pressed, HistoryStep::Undo},
+                                              std::pair{hands_in[1].redo_pressed, HistoryStep::Redo}})
+            if (pressed) ask_history_step(step);
         }
         if (colour) scene.set_colour(next_colour(scene.colour()));
         scene.set_highlight(interaction.hover_handle(1));
@@ -265,14 +276,26 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
             // projection[1][1] = -1 / tan(fov_y / 2) (Vulkan's clip y points down).
             const double tan_half_fov = 1.0 / std::max(1e-6, std::abs(double(view.projection[1][1])));
             const double line = 0.035 * 2.0 * distance * tan_half_fov;
-            cursor_label.set_text(readout_lines(interaction, *snapshot, life, held_frames > 0));
-            cursor_label.place(*anchor + Eigen::Vector3d(0.0, 0.5 * line, 0.0), camera, line / 0.02);
+            cursor_label.set_text(
+                readout_lines(interaction, *snapshot, life, held_frames > 0, notice.text(now())));
+            // Beside the point as a tooltip, not over the surface it edits: a line up and to its right, or
+            // to its left in the right part of the window.
+            const glm::mat4 camera_to_stage = glm::inverse(view.view);
+            const Eigen::Vector3d right = to_eigen(glm::vec3(camera_to_stage[0])).normalized();
+            const Eigen::Vector3d up = to_eigen(glm::vec3(camera_to_stage[1])).normalized();
+            const glm::vec4 clip =
+                view.projection * view.view *
+                glm::vec4(float(anchor->x()), float(anchor->y()), float(anchor->z()), 1.0f);
+            const double side = clip.w > 0.0f && clip.x / clip.w > 0.4f ? -1.0 : 1.0;
+            const double half_width = 0.5 * double(cursor_label.width()) * line / 0.02;
+            cursor_label.place(*anchor + side * (half_width + line) * right + line * up, camera, line / 0.02);
             if (const auto d = cursor_label.draw()) draws.push_back(*d);
           }
           hud.set_text(window_hud_lines(
               interaction, *snapshot, life, colour_name(scene.colour()), "",
               {"left drag: push/pull (Shift: along the normal)  right drag: turn  wheel: zoom",
-               "U undo  R redo  C colour  M method  Esc end"}));
+               "U undo  R redo  C colour  M method  F first view  Esc end"},
+              history_text()));
           hud.place_top_left(view, 0.03);
           if (const auto d = hud.draw()) draws.push_back(*d);
         }
@@ -283,8 +306,9 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
           window.present(*frame);
           ++frames;
         }
-        const std::string text = window_title("pushpull review (desktop)", interaction.method(), dragging,
-                                              *snapshot, life, colour_name(scene.colour()), "");
+        const std::string text =
+            window_title("pushpull review (desktop)", interaction.method(), dragging, *snapshot, life,
+                         colour_name(scene.colour()), "", history_text());
         if (title != text) window.set_title(title = text);
       } catch (const std::exception& e) {
         failure = e.what();

@@ -24,12 +24,12 @@ Eigen::Vector3d to_eigen(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
 }  // namespace
 
 std::vector<std::string> readout_lines(const ReviewInteraction& interaction, const deform::Snapshot& s,
-                                       const LifeSize& life, bool press_held) {
+                                       const LifeSize& life, bool press_held, const std::string& notice) {
   char a[96], b[96];
   const std::string method(deform::method_name(interaction.method()));
   if (!interaction.dragging() && press_held) return {"press held", "the last commit is solving"};
   if (!interaction.dragging()) {
-    std::snprintf(a, sizeof a, "%s", method.c_str());
+    std::snprintf(a, sizeof a, "%s%s%s", method.c_str(), notice.empty() ? "" : "  ", notice.c_str());
     std::snprintf(b, sizeof b, "handle %.0f mm  region %.0f mm", life.to_mm(interaction.handle_radius()),
                   life.to_mm(interaction.roi_radius()));
     return {a, b};

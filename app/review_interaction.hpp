@@ -57,12 +57,13 @@ struct InteractionEvent {
 
 class ReviewInteraction;
 
-// The readout shown by the hand (headset) or the cursor (desktop): while dragging "|d| 70.7 mm" and the method,
-// iterations and solver state ("asan  10 it  converged", "solving", or the error); while aiming the method and
-// the handle and region sizes, or with press_held (a press held back until the last commit lands) that it
-// waits. Lengths in life-size mm.
-[[nodiscard]] std::vector<std::string> readout_lines(const ReviewInteraction& interaction, const deform::Snapshot& s,
-                                                     const LifeSize& life, bool press_held = false);
+// The readout shown by the hand (headset) or the cursor (desktop): while dragging "|d| 70.7 mm" and the
+// method, iterations and solver state ("asan  10 it  converged", "solving", or the error); while aiming the
+// method and the handle and region sizes, or with press_held (a press held back until the last commit lands)
+// that it waits; a notice ("nothing to undo") follows the method while aiming. Lengths in life-size mm.
+[[nodiscard]] std::vector<std::string> readout_lines(const ReviewInteraction& interaction,
+                                                     const deform::Snapshot& s, const LifeSize& life,
+                                                     bool press_held = false, const std::string& notice = "");
 
 // The solver's state in a snapshot, as the readouts say it: "solving" until it is final, then "converged" or
 // "not converged".

@@ -6,6 +6,7 @@
 #include "frame_stats.hpp"
 #include "grab_placement.hpp"
 #include "hand_sample.hpp"
+#include "history_steps.hpp"
 #include "interrupt_requests.hpp"
 #include "mirror_view.hpp"
 #include "orbit_control.hpp"
@@ -210,6 +211,14 @@ void run_review(const ReviewCommandOptions& o) {
       held_frames = 0;
     };
     auto take_commits = [&] { app::take_commits(commits, recorder, t, o.on_commit); };
+    TimedNotice notice;  // "nothing to undo", for a while by the hand and in the mirror's HUD
+    auto ask_history_step = [&](HistoryStep step) {
+      if (take_history_step(service, step, t, t, log, recorder, notice, !o.quiet)) commands_pending = true;
+    };
+    auto history_text = [&] {
+      const std::string text = notice.text(t);
+      return text.empty() ? edit_counts_text(edit_counts(service)) : text;
+    };
     std::optional<xr::Input> input;  // per session, like the eyes
     input.emplace(xr.instance(), xr.handle(), xr.stage_space());
     FrameStats stats;
@@ -469,17 +478,9 @@ void run_review(const ReviewCommandOptions& o) {
             place_model(grab.placement());
             log.write({{"event", "placement reset"}});
           } else if (in.undo_pressed) {
-            service.undo();
-            commands_pending = true;
-            log.write({{"event", "undo"}});
-            recorder.write_record("undo", t);
+            ask_history_step(HistoryStep::Undo);
           }
-          if (in.redo_pressed) {
-            service.redo();
-            commands_pending = true;
-            log.write({{"event", "redo"}});
-            recorder.write_record("redo", t);
-          }
+          if (in.redo_pressed) ask_history_step(HistoryStep::Redo);
         }
         // Replay: the method changes the recording made with a key, at the frames it made them.
         while (next_method_change < o.method_changes.size() &&
@@ -526,10 +527,13 @@ void run_review(const ReviewCommandOptions& o) {
           int h = interaction.dragging() ? interaction.drag_hand() : -1;
           for (int k : {1, 0})
             if (h < 0 && hands[size_t(k)].tracked && interaction.hovers()[size_t(k)]) h = k;
+          // A notice ("nothing to undo") shows by a hand even when it aims at nothing.
+          for (int k : {1, 0})
+            if (h < 0 && hands[size_t(k)].tracked && !notice.text(t).empty()) h = k;
           static const std::vector<int> kNoVertices;
           scene.set_highlight(h >= 0 && !interaction.dragging() ? interaction.hover_handle(h) : kNoVertices);
           if (h >= 0 && hands[size_t(h)].tracked) {
-            hand_label.set_text(readout_lines(interaction, *snapshot, life, held_frames > 0));
+            hand_label.set_text(readout_lines(interaction, *snapshot, life, held_frames > 0, notice.text(t)));
             hand_label.place(hands[size_t(h)].origin_stage + Eigen::Vector3d(0.0, 0.05, 0.0), head_position);
           } else {
             hand_label.hide();
@@ -596,7 +600,7 @@ void run_review(const ReviewCommandOptions& o) {
               mirror_draws = draws;
             mirror_hud.set_text(window_hud_lines(interaction, *snapshot, life, colour_name(scene.colour()),
                                                  mirror_mode_name(mirror_view.mode()),
-                                                 {"V view  C colour  M method  Esc end"}));
+                                                 {"V view  C colour  M method  Esc end"}, history_text()));
             mirror_hud.place_top_left(mirror_camera, 0.03);
             if (const auto d = mirror_hud.draw()) mirror_draws.push_back(*d);
             renderer::RenderPass pass{std::span(&mirror_camera, 1), mirror_draws,
@@ -620,7 +624,7 @@ void run_review(const ReviewCommandOptions& o) {
         if (mirror) {
           const std::string title =
               window_title("pushpull review", interaction.method(), interaction.dragging(), *snapshot, life,
-                           colour_name(scene.colour()), mirror_mode_name(mirror_view.mode()));
+                           colour_name(scene.colour()), mirror_mode_name(mirror_view.mode()), history_text());
           if (mirror_title != title) mirror->set_title(mirror_title = title);
         }
         const double ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();

@@ -7,7 +7,7 @@ namespace pushpull::app {
 std::vector<std::string> window_hud_lines(const ReviewInteraction& interaction,
                                           const deform::Snapshot& snapshot, const LifeSize& life,
                                           const std::string& colour, const std::string& view_mode,
-                                          const std::vector<std::string>& keys) {
+                                          const std::vector<std::string>& keys, const std::string& history) {
   const std::string method(deform::method_name(interaction.method()));
   char state[160];
   if (snapshot.kind == deform::Snapshot::Kind::Error) {
@@ -18,7 +18,7 @@ std::vector<std::string> window_hud_lines(const ReviewInteraction& interaction,
   } else if (!snapshot.final) {
     std::snprintf(state, sizeof state, "%s  solving  %d it", method.c_str(), snapshot.iteration);
   } else {
-    std::snprintf(state, sizeof state, "%s  ready", method.c_str());
+    std::snprintf(state, sizeof state, "%s  ready  %s", method.c_str(), history.c_str());
   }
   std::vector<std::string> lines{state,
                                  "colour: " + colour + (view_mode.empty() ? "" : "   view: " + view_mode)};
@@ -28,12 +28,15 @@ std::vector<std::string> window_hud_lines(const ReviewInteraction& interaction,
 
 std::string window_title(const std::string& name, deform::Method method, bool dragging,
                          const deform::Snapshot& snapshot, const LifeSize& life, const std::string& colour,
-                         const std::string& view_mode) {
-  char text[256];
-  std::snprintf(text, sizeof text, "%s | %s%s | |d| %.1f mm | %d it %s | %s", name.c_str(),
-                std::string(deform::method_name(method)).c_str(), dragging ? " (dragging)" : "",
-                life.to_mm(snapshot.d.norm()), snapshot.iteration,
-                snapshot.converged ? "converged" : "not converged", colour.c_str());
+                         const std::string& view_mode, const std::string& history) {
+  char text[320];
+  if (dragging)
+    std::snprintf(text, sizeof text, "%s | %s (dragging) | |d| %.1f mm | %d it %s | %s", name.c_str(),
+                  std::string(deform::method_name(method)).c_str(), life.to_mm(snapshot.d.norm()),
+                  snapshot.iteration, snapshot.converged ? "converged" : "not converged", colour.c_str());
+  else
+    std::snprintf(text, sizeof text, "%s | %s | %s | %s", name.c_str(),
+                  std::string(deform::method_name(method)).c_str(), history.c_str(), colour.c_str());
   return view_mode.empty() ? std::string(text) : std::string(text) + " | " + view_mode;
 }
 

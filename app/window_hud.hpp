@@ -11,23 +11,43 @@
 #include "pushpull/deform/service.hpp"
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace pushpull::app {
 
+// A line the HUD and the readout show for a while ("nothing to undo"), on the loop's clock (seconds).
+class TimedNotice {
+ public:
+  void show(std::string text, double now, double seconds = 2.5) {
+    text_ = std::move(text);
+    until_ = now + seconds;
+  }
+  // The text until it expires, then empty.
+  [[nodiscard]] std::string text(double now) const { return now < until_ ? text_ : std::string(); }
+
+ private:
+  std::string text_;
+  double until_ = -1.0;
+};
+
 // Line 1: "asan  |d| 70.7 mm  30 it  converged" while dragging, "asan  solving  12 it" while a commit, undo
-// or redo is solved, else "asan  ready"; line 2: "colour: displacement" and, when view_mode is not empty, "
-// view: <view_mode>"; then `keys`, one line each.
+// or redo is solved, else "asan  ready  <history>" (history: the edits, edit_counts_text(), or a notice);
+// line 2: "colour: displacement" and, when view_mode is not empty, "   view: <view_mode>"; then `keys`, one
+// line each.
 [[nodiscard]] std::vector<std::string> window_hud_lines(const ReviewInteraction& interaction,
                                                         const deform::Snapshot& snapshot,
                                                         const LifeSize& life, const std::string& colour,
                                                         const std::string& view_mode,
-                                                        const std::vector<std::string>& keys);
+                                                        const std::vector<std::string>& keys,
+                                                        const std::string& history);
 
 // The window title with the same state: "<name> | asan (dragging) | |d| 70.7 mm | 30 it converged |
-// displacement", and " | <view_mode>" when it is not empty.
+// displacement" while dragging, "<name> | asan | <history> | displacement" otherwise, and " | <view_mode>"
+// when it is not empty.
 [[nodiscard]] std::string window_title(const std::string& name, deform::Method method, bool dragging,
                                        const deform::Snapshot& snapshot, const LifeSize& life,
-                                       const std::string& colour, const std::string& view_mode);
+                                       const std::string& colour, const std::string& view_mode,
+                                       const std::string& history);
 
 }  // namespace pushpull::app

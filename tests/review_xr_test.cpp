@@ -699,9 +699,12 @@ TEST(ReviewXr, UndoRestoresTheModelAndRedoReappliesIt) {
   const std::string release = R"({"t":1.4,"path":"/user/hand/right/input/trigger/value","value":1.0}
 {"t":1.5,"path":"/user/hand/right/input/trigger/value","value":0.0}
 )";
-  // X (left) = undo at 2.0 s; Y (left) = redo at 2.5 s; undo again at 3.0 s: the model ends as loaded.
-  const ReviewRun run = run_review(
-      dir, script_start() + release + R"({"t":2.0,"path":"/user/hand/left/input/x/click","value":true}
+  // X (left) = undo at 0.2 s, before anything was committed: nothing to undo, said, not sent nor recorded.
+  // Then X = undo at 2.0 s; Y (left) = redo at 2.5 s; undo again at 3.0 s: the model ends as loaded.
+  const ReviewRun run =
+      run_review(dir, script_start() + R"({"t":0.2,"path":"/user/hand/left/input/x/click","value":true}
+{"t":0.3,"path":"/user/hand/left/input/x/click","value":false}
+)" + release + R"({"t":2.0,"path":"/user/hand/left/input/x/click","value":true}
 {"t":2.1,"path":"/user/hand/left/input/x/click","value":false}
 {"t":2.5,"path":"/user/hand/left/input/y/click","value":true}
 {"t":2.6,"path":"/user/hand/left/input/y/click","value":false}
@@ -709,12 +712,17 @@ TEST(ReviewXr, UndoRestoresTheModelAndRedoReappliesIt) {
 {"t":3.1,"path":"/user/hand/left/input/x/click","value":false}
 {"t":3.5,"event":"exit"}
 )",
-      "--out " + (dir / "review.off").string());
+                 "--out " + (dir / "review.off").string() + " --record " + (dir / "session.jsonl").string());
   ASSERT_EQ(run.result.status, 0) << run.result.output;
   EXPECT_EQ(run.of("commit").size(), 1u) << run.result.output;
+  EXPECT_EQ(run.of("nothing to undo").size(), 1u) << run.result.output;
+  EXPECT_NE(run.result.output.find("pushpull review: nothing to undo"), std::string::npos)
+      << run.result.output;
   EXPECT_EQ(run.of("undo").size(), 2u) << run.result.output;
   EXPECT_EQ(run.of("redo").size(), 1u) << run.result.output;
+  EXPECT_EQ(recording_records(dir / "session.jsonl", "undo").size(), 2u);
   EXPECT_EQ(largest_move_from_hood(dir / "review.off"), 0.0);
+  expect_replays_with_commits(dir / "session.jsonl");
 }
 
 // hood.off's bonnet (scripts/make-example-hood.py) with nx by ny vertices, written to `path` as OFF.

@@ -521,4 +521,9 @@ std::size_t Service::history_position() const {
   return impl_->position;
 }
 
+std::size_t Service::history_size() const {
+  std::lock_guard lock(impl_->history_mutex);
+  return impl_->states.size();
+}
+
 }  // namespace pushpull::deform

@@ -185,6 +185,7 @@ class Service {
   [[nodiscard]] std::uint64_t revision() const;
   [[nodiscard]] std::vector<HistoryEntry> history() const;  // a copy, oldest first
   [[nodiscard]] std::size_t history_position() const;       // index of the current state in history()
+  [[nodiscard]] std::size_t history_size() const;           // history().size(), without the copy
 
  private:
   struct Impl;
