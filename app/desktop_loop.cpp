@@ -10,6 +10,7 @@
 #include "review_interaction.hpp"
 #include "review_scene.hpp"
 #include "session_recorder.hpp"
+#include "size_steering.hpp"
 #include "window_hud.hpp"
 #include "world_label.hpp"
 
@@ -112,6 +113,11 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
     constexpr double kRecordingRate = 90.0;
     std::int64_t loop_frames = 0;
     double t = 0.0;
+    // The display period xr/sim gives a replay of this recording (a whole number of ns), so the sizes the
+    // keys steer (size_steering.hpp) come out the same there.
+    const double frame_period = double(std::int64_t(1e9 / kRecordingRate)) * 1e-9;
+    SizeSteering sizes;
+    StickPulses size_keys;
     recorder.write_record("clock", 0.0, {{"rate_hz", kRecordingRate}});
     Eigen::Vector3d hand_origin = Eigen::Vector3d::Zero(), hand_direction(0, 0, -1);
     Eigen::Vector3d press_origin = Eigen::Vector3d::Zero(), press_direction(0, 0, -1);
@@ -169,6 +175,11 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
         bool quit = false, undo = false, redo = false, colour = false, method = false;
         for (int key : window.take_key_presses()) {
           if (key == 'F' || key == 268 /* GLFW_KEY_HOME */) orbit = start_view;  // back to the first view
+          // [ ] shrink / grow the handle, - = the region: a deflection of the recorded right thumbstick.
+          if (key == 91 /* GLFW_KEY_LEFT_BRACKET */) size_keys.press(1, -1, frame_period);
+          if (key == 93 /* GLFW_KEY_RIGHT_BRACKET */) size_keys.press(1, +1, frame_period);
+          if (key == 45 /* GLFW_KEY_MINUS */) size_keys.press(0, -1, frame_period);
+          if (key == 61 /* GLFW_KEY_EQUAL */) size_keys.press(0, +1, frame_period);
           quit = quit || key == 256 /* GLFW_KEY_ESCAPE */;
           undo = undo || key == 'U';
           redo = redo || key == 'R';
@@ -229,13 +240,17 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
         }
         // Released this frame: the hand stays where the drag left it (the gesture's release reads d there).
         // Recorded as a headset frame would be: the camera as the head, the pointer as the right controller
-        // (its trigger the left button, its A and B buttons undo and redo), C as the left menu button.
+        // (its trigger the left button, its A and B buttons undo and redo, its stick the size keys); C is a
+        // "colour" record.
         std::array<xr::HandInput, 2> hands_in;
         hands_in[1].T_stage_aim = pointer_pose(hand_origin, hand_direction);
         hands_in[1].trigger = p.left && held_frames == 0 ? 1.0f : 0.0f;
         hands_in[1].undo_pressed = undo && !interaction.dragging();
         hands_in[1].redo_pressed = redo && !interaction.dragging();
-        hands_in[0].menu_pressed = colour;
+        {
+          const auto [x, y] = size_keys.next();
+          hands_in[1].thumbstick = {x, y};
+        }
         recorder.write_frame_input(t, camera_pose(view), hands_in, kDesktopProfile);
         for (const InteractionEvent& e :
              interaction.update({hand_sample(hands_in[0]), hand_sample(hands_in[1])}))
@@ -247,7 +262,13 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
                                               std::pair{hands_in[1].redo_pressed, HistoryStep::Redo}})
             if (pressed) ask_history_step(step);
         }
-        if (colour) scene.set_colour(next_colour(scene.colour()));
+        // As the headset loop, after the gesture and the undo/redo: the sizes the keys steer.
+        sizes.frame(interaction, hands_in[1].thumbstick.x, hands_in[1].thumbstick.y, frame_period, true, log,
+                    life, !o.quiet);
+        if (colour) {  // a "colour" record, which a replay applies at this frame
+          scene.set_colour(next_colour(scene.colour()));
+          recorder.write_colour(t, scene.colour());
+        }
         scene.set_highlight(interaction.hover_handle(1));
         if (method && !dragging && !o.fixed_method) {
           interaction.set_method(next_method(interaction.method()));
@@ -294,7 +315,7 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
           hud.set_text(window_hud_lines(
               interaction, *snapshot, life, colour_name(scene.colour()), "",
               {"left drag: push/pull (Shift: along the normal)  right drag: turn  wheel: zoom",
-               "U undo  R redo  C colour  M method  F first view  Esc end"},
+               "[ ] handle  - = region  U undo  R redo  C colour  M method  F first view  Esc end"},
               history_text()));
           hud.place_top_left(view, 0.03);
           if (const auto d = hud.draw()) draws.push_back(*d);

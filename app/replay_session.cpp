@@ -153,6 +153,7 @@ void run_replay(const ReplayOptions& o) {
   review.method = o.method.empty() ? h.at("method").get<std::string>() : o.method;
   review.fixed_method = !o.method.empty();
   if (o.method.empty()) review.method_changes = rec.method_changes;  // with --method: that one throughout
+  review.colour_changes = rec.colour_changes;
   review.mu = o.mu.value_or(h.at("mu").get<double>());
   review.handle_radius_m = h.at("handle_radius_m");
   review.roi_radius_m = h.at("roi_radius_m");

@@ -26,4 +26,11 @@ const char* colour_name(ReviewColour c) {
   return "?";
 }
 
+std::optional<ReviewColour> parse_colour(std::string_view name) {
+  for (const ReviewColour c :
+       {ReviewColour::Material, ReviewColour::Displacement, ReviewColour::CurvatureSign})
+    if (name == colour_name(c)) return c;
+  return std::nullopt;
+}
+
 }  // namespace pushpull::app

@@ -16,6 +16,7 @@
 #include "review_scene.hpp"
 #include "review_setup.hpp"
 #include "session_recorder.hpp"
+#include "size_steering.hpp"
 #include "solver_cpus.hpp"
 #include "stage_placement.hpp"
 #include "vulkan_validation.hpp"
@@ -222,7 +223,7 @@ void run_review(const ReviewCommandOptions& o) {
     std::optional<xr::Input> input;  // per session, like the eyes
     input.emplace(xr.instance(), xr.handle(), xr.stage_space());
     FrameStats stats;
-    bool sizes_changed = false;
+    SizeSteering sizes;
     GrabPlacement grab(placement);
     AnchorSchedule anchor_schedule(o.recorded_anchor);  // when the model moves in front of the reviewer
     ReviewMenu menu;
@@ -242,6 +243,12 @@ void run_review(const ReviewCommandOptions& o) {
       interaction.set_method(method);
       recorder.write_method(t, interaction.method());
     };
+    // Likewise a colour-map change is a "colour" record (the panel's are replayed through its input too).
+    auto change_colour = [&](ReviewColour c) {
+      scene.set_colour(c);
+      recorder.write_colour(t, c);
+    };
+    std::size_t next_colour_change = 0;  // into o.colour_changes
     auto log_event = [&](const InteractionEvent& e) {
       if (e.kind == InteractionEvent::Kind::Committed) commits.expect_commit(e.request);
       log.write_interaction(e, life);
@@ -434,7 +441,7 @@ void run_review(const ReviewCommandOptions& o) {
           const xr::HandInput& right = input->hand(xr::Hand::Right);
           const MenuChoice choice = menu.update(right.thumbstick.y, right.trigger);
           if (choice.method && !o.fixed_method) change_method(*choice.method);
-          if (choice.colour) scene.set_colour(*choice.colour);
+          if (choice.colour) change_colour(*choice.colour);
           for (auto& hand : hands) hand.trigger = 0.0f;
         }
         // A press while a commit, undo or redo is still being solved would hit the surface the reviewer no
@@ -487,23 +494,15 @@ void run_review(const ReviewCommandOptions& o) {
                o.method_changes[next_method_change].first <= t + 0.25 / double(recording_rate_hz)) {
           change_method(deform::parse_method(o.method_changes[next_method_change++].second));
         }
-        // Right thumbstick between drags: up/down grows/shrinks the handle, right/left the region (x2 per
-        // second at full deflection; a dead zone keeps a resting thumb from drifting them).
+        while (next_colour_change < o.colour_changes.size() &&
+               o.colour_changes[next_colour_change].first <= t + 0.25 / double(recording_rate_hz)) {
+          if (const auto c = parse_colour(o.colour_changes[next_colour_change++].second)) change_colour(*c);
+        }
+        // Right thumbstick between drags: the handle and region sizes (size_steering.hpp).
         {
           const XrVector2f stick = input->hand(xr::Hand::Right).thumbstick;
-          const double dt = double(frame.predicted_display_period) * 1e-9;
-          auto factor = [&](float v) { return std::abs(v) < 0.2f ? 1.0 : std::exp2(double(v) * dt); };
-          const double before = interaction.handle_radius() + interaction.roi_radius();
-          if (!menu.is_open()) interaction.scale_sizes(factor(stick.y), factor(stick.x));
-          sizes_changed = sizes_changed || interaction.handle_radius() + interaction.roi_radius() != before;
-          if (sizes_changed && std::abs(stick.x) < 0.2f && std::abs(stick.y) < 0.2f) {
-            sizes_changed = false;
-            log.write({{"event", "sizes"},
-                       {"handle_radius", interaction.handle_radius()},
-                       {"roi_radius", interaction.roi_radius()}});
-            std::printf("pushpull review: handle radius %.0f mm, region %.0f mm\n",
-                        life.to_mm(interaction.handle_radius()), life.to_mm(interaction.roi_radius()));
-          }
+          sizes.frame(interaction, stick.x, stick.y, double(frame.predicted_display_period) * 1e-9,
+                      !menu.is_open(), log, life, !o.quiet);
         }
         // Replay: a frame that is kept shows the solver's settled state, not whichever preview timing left.
         if (o.settle_drawn_frames && frame.should_render && o.draw_frame && o.draw_frame(t))
@@ -551,7 +550,7 @@ void run_review(const ReviewCommandOptions& o) {
         if (mirror) {
           mirror->poll_events();
           for (int key : mirror->take_key_presses()) {
-            if (key == 'C') scene.set_colour(next_colour(scene.colour()));
+            if (key == 'C') change_colour(next_colour(scene.colour()));
             if (key == 'V') mirror_view.set_mode(next_mirror_mode(mirror_view.mode()));
             if (key == 'M' && !interaction.dragging() && !o.fixed_method)
               change_method(next_method(interaction.method()));

@@ -64,6 +64,8 @@ struct ReviewCommandOptions {
   // Headset loop (replay): method changes made with a key during the recorded session, (recording time s,
   // method name) in time order; each applies after the gesture of the frame at that time, as the key did.
   std::vector<std::pair<double, std::string>> method_changes;
+  // Headset loop (replay): colour-map changes (recording time s, colour_name()), applied likewise.
+  std::vector<std::pair<double, std::string>> colour_changes;
   // Headset loop (replay): the presses the recorded session held back (press_hold.hpp), in time order. Set:
   // a press held back while solving is let through at exactly the recorded frame (the loop waits for the
   // service there) and any other press at once (waiting too), as the recorded loop did. Unset (live): a press

@@ -70,9 +70,7 @@ ReviewSetup prepare_review(const ReviewCommandOptions& o) {
     throw CommandError(std::string("--method: ") + e.what());
   }
   s.interaction.solver.mu = o.mu;
-  s.colour = o.colour == "material"         ? ReviewColour::Material
-             : o.colour == "curvature-sign" ? ReviewColour::CurvatureSign
-                                            : ReviewColour::Displacement;
+  s.colour = parse_colour(o.colour).value_or(ReviewColour::Displacement);
   return s;
 }
 

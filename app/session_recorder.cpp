@@ -122,7 +122,7 @@ void SessionRecorder::write_header(const ReviewCommandOptions& o, const ReviewSe
     for (int col = 0; col < 4; ++col) T.push_back(s.placement.T_stage_model(r, col));
   const deform::DeformOptions& solver = s.interaction.solver;
   json header{{"record", "header"},
-              {"format", "pushpull-session-3"},
+              {"format", "pushpull-session-4"},
               {"pushpull_version", PUSHPULL_VERSION},
               {"model", fs::absolute(o.model).lexically_normal().string()},
               // Also relative to the recording's folder: a recording kept beside its model (examples/)
@@ -211,6 +211,10 @@ void SessionRecorder::write_frame_input(double t, const std::optional<XrPosef>& 
       }
     }
   }
+}
+
+void SessionRecorder::write_colour(double t, ReviewColour colour) {
+  write_record("colour", t, {{"colour", colour_name(colour)}});
 }
 
 void SessionRecorder::write_method(double t, deform::Method method) {

@@ -1,7 +1,7 @@
 // The review's session recording (`pushpull review --record FILE`): JSON Lines, written as the session goes
 // and flushed after every line, so a crash keeps everything up to the crash.
 //
-//   {"record":"header","format":"pushpull-session-3","model":..,"model_sha256":..,"T_stage_model":[16],..}
+//   {"record":"header","format":"pushpull-session-4","model":..,"model_sha256":..,"T_stage_model":[16],..}
 //   {"t":0.0,"path":"/user/head","pose":{"p":[x,y,z],"q":[x,y,z,w]}}              input, xr/sim script format
 //   {"t":0.0,"path":"/user/hand/right/input/trigger/value","value":0.0}
 //   {"record":"press","time":0.5,"hand":"right","face":12,"p0":[..],"handle_radius":..,"roi_radius":..}
@@ -12,9 +12,13 @@
 //                                                                     (press_hold.hpp), ended at "time"
 //   {"record":"anchor","time":0.0,"x":..,"z":..,"yaw":..}   the model moved in front of the reviewer's head
 //                                                            (head_anchor.hpp; T_stage_model is before it)
+//   {"record":"colour","time":..,"colour":"curvature-sign"}   the colour map shown from this frame on
 // Format 2 adds "press held" (headset recordings; the desktop shows a hold as its trigger staying released),
-// format 3 "anchor" (headset recordings); `pushpull replay` reads 1 to 3 alike (a recording without holds is
-// replayed as format 1 was, one without an anchor keeps the header's placement).
+// format 3 "anchor" (headset recordings), format 4 "colour" (every colour-map change; desktop recordings no
+// longer press the left menu button for the colour key, and their size keys deflect the right stick);
+// `pushpull replay` reads 1 to 4 alike (a recording without holds is replayed as format 1 was, one without an
+// anchor keeps the header's placement, a desktop one before format 4 has its menu presses read as colour
+// changes).
 //   {"record":"end","time":..,"commits":n,"hash":".."}
 //
 // Input lines carry "t" and an OpenXR path. t counts the loop's frames: frame n at n / rate (the "clock"
@@ -31,6 +35,7 @@
 #pragma once
 
 #include "commit_watch.hpp"
+#include "review_colour.hpp"
 #include "review_interaction.hpp"
 
 #include "pushpull/xr/input.hpp"
@@ -89,6 +94,8 @@ class SessionRecorder {
   // The method of the next push/pulls changed (a key in the window): a derived record that `pushpull replay`
   // applies at the same frame.
   void write_method(double t, deform::Method method);
+  // {"record":"colour","time":t,"colour":"curvature-sign"}: the colour map shown from this frame on.
+  void write_colour(double t, ReviewColour colour);
   // A runtime event at t as an xr/sim script line ({"t":..,"event":"loss"}): what the loop saw happen.
   void write_event_input(double t, const std::string& event);
   // press / release (commit or cancel) from the interaction; release carries p1 = p0 + d and d.

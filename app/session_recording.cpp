@@ -1,6 +1,7 @@
 #include "session_recording.hpp"
 
 #include "commands.hpp"
+#include "review_colour.hpp"
 
 #include <cmath>
 
@@ -64,6 +65,10 @@ SessionRecording read_session_recording(const std::string& path) {
   SessionRecording r;
   r.path = path;
   bool ended = false;
+  // Desktop recordings before format 4 pressed the left menu button for the colour key (a replay's headset
+  // loop would open its panel): read as "colour" records instead, cycling from the header's colour map.
+  bool legacy_desktop = false;
+  ReviewColour legacy_colour = ReviewColour::Displacement;
   std::size_t begin = 0, number = 0;
   while (begin < text.size()) {
     ++number;
@@ -105,9 +110,23 @@ SessionRecording read_session_recording(const std::string& path) {
         if (!ok) corrupted(path, 1, std::string("header option \"") + key + "\" is not [x, y, z]");
       }
       r.header = j;
+      const std::string format = j.value("format", "");
+      legacy_desktop = options->value("desktop", false) && format.size() == 18 &&
+                       format.compare(0, 16, "pushpull-session") == 0 && format[17] < '4';
+      if (const nlohmann::json* colour = options->contains("colour") ? &(*options)["colour"] : nullptr;
+          colour != nullptr && colour->is_string())
+        legacy_colour = parse_colour(colour->get<std::string>()).value_or(legacy_colour);
     } else if (j.contains("t")) {
       if (const std::string problem = input_line_problem(j); !problem.empty()) corrupted(path, number, problem);
       r.last_input_time = std::max(r.last_input_time, j["t"].get<double>());
+      if (legacy_desktop && j.value("path", "") == "/user/hand/left/input/menu/click") {
+        if (j.contains("value") && j["value"].is_number() && j["value"].get<double>() > 0.5) {
+          legacy_colour = next_colour(legacy_colour);
+          r.colour_changes.emplace_back(j["t"].get<double>(), colour_name(legacy_colour));
+        }
+        r.lines = number;
+        continue;  // not in the script
+      }
     } else if (j.contains("record")) {
       if (!j["record"].is_string()) corrupted(path, number, "\"record\" is not a string");
       const std::string kind = j["record"];
@@ -120,6 +139,11 @@ SessionRecording read_session_recording(const std::string& path) {
                            j["time"].is_number() && is_method_name(j["method"].get<std::string>());
         if (!valid) corrupted(path, number, "a method record needs \"time\" and a known \"method\"");
         r.method_changes.emplace_back(j["time"].get<double>(), j["method"].get<std::string>());
+      } else if (kind == "colour") {
+        const bool valid = j.contains("colour") && j["colour"].is_string() && j.contains("time") &&
+                           j["time"].is_number() && parse_colour(j["colour"].get<std::string>());
+        if (!valid) corrupted(path, number, "a colour record needs \"time\" and a known \"colour\"");
+        r.colour_changes.emplace_back(j["time"].get<double>(), j["colour"].get<std::string>());
       } else if (kind == "press held") {
         const bool valid = j.contains("time") && j["time"].is_number() && j.contains("from") &&
                            j["from"].is_number() && j.contains("admitted") && j["admitted"].is_boolean() &&

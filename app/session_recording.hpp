@@ -33,6 +33,8 @@ struct SessionRecording {
   std::vector<nlohmann::json> records;       // every derived record, in order, with "line" added
   std::vector<RecordedCommit> commits;       // the commit records, in commit order
   std::vector<std::pair<double, std::string>> method_changes;  // "method" records: (time s, method name), in order
+  std::vector<std::pair<double, std::string>>
+      colour_changes;                        // "colour" records: (time s, colour map), in order
   std::vector<PressHold> press_holds;        // "press held" records, in order
   std::optional<HeadAnchor> anchor;          // the "anchor" record, if any (at most one)
   std::string script;                        // the complete lines before any cut, '\n'-terminated (for xr/sim)

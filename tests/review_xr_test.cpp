@@ -1225,7 +1225,8 @@ drag() { xdotool mousemove --window $wid $1 $2; sleep 0.3; xdotool mousedown 1; 
   sleep 0.3; xdotool mouseup 1; await release $5; }
 key() { xdotool key $1; await $2 $3; }  # to the window under the pointer (no window manager)
 drag 200 150 3 0 1
-key u undo 1; key r redo 1; key m method 1; key m method 2
+key u undo 1; key r redo 1; key m method 1; key m method 2; key c colour 1
+xdotool key bracketright; sleep 1.5  # the handle 1.25x: a deflection of the recorded stick over 29 frames
 drag 150 170 0 -3 2
 key u undo 2
 xdotool key Escape
@@ -1240,8 +1241,39 @@ wait $pid
   EXPECT_EQ(count("redo"), 1u);
   ASSERT_EQ(count("method"), 2u);
   EXPECT_EQ(recording_records(recording, "method").back().at("method"), "arap-sr");
+  ASSERT_EQ(count("colour"), 1u);
+  EXPECT_EQ(recording_records(recording, "colour")[0].at("colour"), "curvature-sign");
+  // The second press grabbed a handle 1.25 times the first's (the ] key), and the replay below grows the
+  // same.
+  const auto presses = recording_records(recording, "press");
+  ASSERT_EQ(presses.size(), 2u);
+  EXPECT_NEAR(double(presses[1].at("handle").at("radius")) / double(presses[0].at("handle").at("radius")),
+              1.25, 0.02);
 
   expect_replays_with_commits(recording, 2);
+  // The same session as a format-3 desktop recording wrote it (the colour key as the left menu button, no
+  // "colour" record) still replays: the menu presses are read as colour changes, the headset's panel stays
+  // shut and the second drag goes through.
+  {
+    const fs::path legacy = dir / "legacy" / "desktop.jsonl";
+    fs::create_directories(legacy.parent_path());
+    std::ifstream in(recording);
+    std::ofstream o(legacy);
+    for (std::string line; std::getline(in, line);) {
+      if (const auto at = line.find("pushpull-session-4"); at != std::string::npos) line[at + 17] = '3';
+      if (line.find("\"record\":\"colour\"") == std::string::npos) {
+        o << line << "\n";
+        continue;
+      }
+      const double time = nlohmann::json::parse(line).at("time");
+      o << R"({"t":)" << number(time) << R"(,"path":"/user/hand/left/input/menu/click","value":1.0})"
+        << "\n"
+        << R"({"t":)" << number(time + 1.0 / 90.0)
+        << R"(,"path":"/user/hand/left/input/menu/click","value":0.0})"
+        << "\n";
+    }
+  }
+  expect_replays_with_commits(dir / "legacy" / "desktop.jsonl", 2);
   const auto desktop_model = pushpull::deform::read_mesh(out);
   const auto replayed_model = pushpull::deform::read_mesh(dir / "replay" / "final.off");
   EXPECT_EQ((desktop_model.V - replayed_model.V).cwiseAbs().maxCoeff(), 0.0);  // undone to commit 1 in both
