@@ -39,6 +39,14 @@ std::vector<std::string> readout_lines(const ReviewInteraction& interaction, con
     return {a, method + "  error: " + s.error.substr(0, 40)};
   std::snprintf(b, sizeof b, "%s  %d it  %s", method.c_str(), s.iteration,
                 solver_state(s));
+  // A pull much longer than the handle is wide makes a spike, not a bulge: said while there is time to let go
+  // and grow the handle.
+  const double ratio = interaction.current_d().norm() / std::max(interaction.handle_radius(), 1e-12);
+  if (ratio > kSteepPull) {
+    char c[96];
+    std::snprintf(c, sizeof c, "steep: %.0fx the handle radius", ratio);
+    return {a, b, c};
+  }
   return {a, b};
 }
 
