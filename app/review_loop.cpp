@@ -298,6 +298,12 @@ void run_review(const ReviewCommandOptions& o) {
     // the recording ended, then the review fails with it.
     std::optional<std::string> failure;
     std::optional<Clock::time_point> interrupted_at;  // when the loop saw an interrupt
+    // The mirror's image acquired in this frame and not yet presented: given up if the frame throws.
+    std::optional<renderer::MirrorWindow::Frame> mirror_target;
+    auto abandon_mirror_frame = [&] {
+      if (mirror && mirror_target) mirror->abandon(*mirror_target);
+      mirror_target.reset();
+    };
     while (!xr.exit_requested() || xr.lost() || session_lost) {
       if (interrupted() && !interrupted_at) {
         interrupted_at = Clock::now();
@@ -576,7 +582,7 @@ void run_review(const ReviewCommandOptions& o) {
           passes.push_back({eye_views, draws, eye_settings, &eye_targets, {}});
           rendered = true;
         }
-        std::optional<renderer::MirrorWindow::Frame> mirror_target;
+        mirror_target.reset();
         renderer::View mirror_camera;
         if (mirror) {
           const auto now = Clock::now();
@@ -618,6 +624,7 @@ void run_review(const ReviewCommandOptions& o) {
         xr.end_frame(frame, rendered);
         if (mirror_target) {
           mirror->present(*mirror_target);
+          mirror_target.reset();
           ++mirror_frames;
         }
         if (mirror) {
@@ -632,14 +639,16 @@ void run_review(const ReviewCommandOptions& o) {
           (solving ? stats.solving_cpu_ms : stats.idle_cpu_ms).push_back(thread_cpu_ms() - start_cpu_ms);
         }
       } catch (const xr::XrError& e) {
+        guarded(failure, abandon_mirror_frame);
         if (e.result() == XR_ERROR_SESSION_LOST || e.result() == XR_ERROR_INSTANCE_LOST) {
           session_lost = true;
           continue;
         }
-        failure = e.what();
+        if (!failure) failure = e.what();
         break;
       } catch (const std::exception& e) {
-        failure = e.what();
+        guarded(failure, abandon_mirror_frame);
+        if (!failure) failure = e.what();
         break;
       }
     }

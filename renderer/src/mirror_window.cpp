@@ -226,6 +226,10 @@ void MirrorWindow::present(const Frame& frame) {
   PP_VK_CHECK(result);
 }
 
+void MirrorWindow::abandon(const Frame& /*frame*/) {
+  impl_->needs_recreate = true;
+}
+
 bool MirrorWindow::should_close() const {
   return glfwWindowShouldClose(impl_->window) == GLFW_TRUE;
 }

@@ -103,6 +103,15 @@ XrResult XRAPI_CALL end_frame(XrSession handle, const XrFrameEndInfo* info) {
   }
   if (const XrResult r = validate_layers(*s, *info); XR_FAILED(r)) return r;
   s->frame_begun = false;
+  if (s->lose_at_next_end) {  // scripted: the session is lost in the middle of the app's frame
+    s->lose_at_next_end = false;
+    if (!s->loss_pending) {
+      s->loss_pending = true;
+      if (s->instance->config.stays_lost) s->instance->headset_gone = true;
+      s->set_state(XR_SESSION_STATE_LOSS_PENDING, info->displayTime);
+    }
+    return XR_ERROR_SESSION_LOST;
+  }
   capture_frame(*s, *info, s->frames_ended);
   s->frames_ended++;
   return s->loss_pending ? XR_SESSION_LOSS_PENDING : XR_SUCCESS;

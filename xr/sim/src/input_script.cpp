@@ -76,8 +76,10 @@ InputScript InputScript::parse(std::istream& in, const std::string& source) {
           kind = ScriptEventKind::recenter;
         else if (e == "failure")
           kind = ScriptEventKind::failure;
+        else if (e == "lost")
+          kind = ScriptEventKind::lost;
         else
-          fail(source, line, "unknown event \"" + e + "\" (exit, loss, capture, recenter, failure)");
+          fail(source, line, "unknown event \"" + e + "\" (exit, loss, lost, capture, recenter, failure)");
         script.events_.push_back({t, kind});
         continue;
       }

@@ -4,9 +4,10 @@
 //   {"t": 2.0, "path": "/user/hand/left/input/menu/click", "value": true}
 //   {"t": 2.5, "path": "/user/hand/left/input/thumbstick", "value": [0.0, 1.0]}
 //   {"t": 0.0, "path": "/user/head", "pose": {...}}
-//   {"t": 9.0, "event": "exit"}      also "loss", "capture", "recenter" and "failure" (the next
+//   {"t": 9.0, "event": "exit"}      also "loss", "capture", "recenter", "failure" (the next
 //                                    xrBeginFrame fails with XR_ERROR_RUNTIME_FAILURE, as runtimes sometimes
-//                                    do)
+//                                    do) and "lost" (the next xrEndFrame fails with XR_ERROR_SESSION_LOST,
+//                                    the session lost in the middle of the app's frame, then as "loss")
 //
 // Times are seconds from the start of the session's frame clock. Poses are T_stage_device (STAGE
 // space, meters, unit quaternions x y z w) and are interpolated between samples (slerp), held before
@@ -32,7 +33,7 @@ struct InputValue {
   bool operator==(const InputValue&) const = default;
 };
 
-enum class ScriptEventKind { exit, loss, capture, recenter, failure };
+enum class ScriptEventKind { exit, loss, capture, recenter, failure, lost };
 
 struct ScriptEvent {
   double t = 0.0;  // seconds

@@ -51,6 +51,9 @@ void run_script_events(Session& s, XrTime now) {
       case ScriptEventKind::failure:
         s.fail_next_begin = true;
         break;
+      case ScriptEventKind::lost:
+        s.lose_at_next_end = true;
+        break;
       case ScriptEventKind::recenter:  // the reviewer recentred the view: STAGE and LOCAL are about to move
         for (const XrReferenceSpaceType type :
              {XR_REFERENCE_SPACE_TYPE_STAGE, XR_REFERENCE_SPACE_TYPE_LOCAL}) {

@@ -207,6 +207,7 @@ struct Session {
   std::size_t next_script_event = 0;
   bool capture_requested = false;
   bool fail_next_begin = false;  // a scripted "failure": the next xrBeginFrame says XR_ERROR_RUNTIME_FAILURE
+  bool lose_at_next_end = false;  // a scripted "lost": the next xrEndFrame says XR_ERROR_SESSION_LOST
 
   std::vector<Space*> spaces;
   std::vector<Swapchain*> swapchains;

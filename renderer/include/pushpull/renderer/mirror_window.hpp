@@ -42,6 +42,10 @@ class MirrorWindow {
   };
   std::optional<Frame> acquire();
   void present(const Frame& frame);
+  // A frame acquired and never presented (the loop's frame threw in between): its image stays acquired and
+  // its semaphores may be left signalled, so the swapchain and its semaphores are made again before the next
+  // acquire (which waits for the device to go idle, an error path only).
+  void abandon(const Frame& frame);
 
   [[nodiscard]] bool should_close() const;
   void poll_events();
