@@ -8,7 +8,6 @@
 #include "hand_sample.hpp"
 #include "history_steps.hpp"
 #include "interrupt_requests.hpp"
-#include "mirror_view.hpp"
 #include "orbit_control.hpp"
 #include "review_end.hpp"
 #include "review_interaction.hpp"
@@ -19,6 +18,7 @@
 #include "size_steering.hpp"
 #include "solver_cpus.hpp"
 #include "stage_placement.hpp"
+#include "supervisor_mirror.hpp"
 #include "vulkan_validation.hpp"
 #include "window_hud.hpp"
 #include "world_label.hpp"
@@ -152,15 +152,11 @@ void run_review(const ReviewCommandOptions& o) {
     renderer_options.samples = VkSampleCountFlagBits(o.samples);
     renderer_options.frames_in_flight = 2;  // loop frames: the eyes and the mirror are one render_frame()
     renderer::Renderer renderer(context, renderer_options);
-    std::optional<renderer::MirrorWindow> mirror;
+    std::optional<SupervisorMirror> mirror;
     if (o.mirror)
-      mirror.emplace(context, uint32_t(o.mirror_size[0]), uint32_t(o.mirror_size[1]), "pushpull review");
-    MirrorView mirror_view;
-    if (mirror) mirror_view.set_orbit_bounds(stage_bounds(rest->V, placement));
+      mirror.emplace(context, renderer, uint32_t(o.mirror_size[0]), uint32_t(o.mirror_size[1]),
+                     stage_bounds(rest->V, placement));
     std::optional<std::array<xr::EyeView, 2>> last_eyes;
-    std::string mirror_title;
-    size_t mirror_frames = 0, mirror_blits = 0;
-    auto last_mirror = Clock::now();
     // Live: snapshots become vertex data on the scene's own thread (the frame thread only copies them). A
     // replay converts on this thread, so every drawn frame shows exactly the settled snapshot.
     ReviewScene scene(renderer, model, placement, colour, life.scale(), /*async=*/!o.settle_drawn_frames,
@@ -228,15 +224,13 @@ void run_review(const ReviewCommandOptions& o) {
     AnchorSchedule anchor_schedule(o.recorded_anchor);  // when the model moves in front of the reviewer
     ReviewMenu menu;
     WorldLabel hand_label(renderer, 0.02f, 600), menu_label(renderer, 0.03f, 1500);
-    WorldLabel mirror_hud(renderer, 0.02f, 1000);  // the mirror's own views only (a copied eye has none)
-    std::vector<renderer::Draw> mirror_draws;      // a frame's draws and the mirror's HUD (its pass spans them)
     Eigen::Vector3d head_position(0.0, 1.6, 0.0), head_forward(0.0, 0.0, -1.0);  // stage; the last seen
 
     // The model moved on the stage (grip): what aims at it, draws it and frames it follows.
     auto place_model = [&](const StagePlacement& p) {
       interaction.set_placement(p);
       scene.set_placement(p);
-      if (mirror) mirror_view.set_orbit_bounds(stage_bounds(rest->V, p));  // O(#V): only with a mirror
+      if (mirror) mirror->set_orbit_bounds(stage_bounds(rest->V, p));  // O(#V): only with a mirror
     };
     // A method change (headset panel, mirror key, or a replayed one) is a "method" record at this frame.
     auto change_method = [&](deform::Method method) {
@@ -298,11 +292,9 @@ void run_review(const ReviewCommandOptions& o) {
     // the recording ended, then the review fails with it.
     std::optional<std::string> failure;
     std::optional<Clock::time_point> interrupted_at;  // when the loop saw an interrupt
-    // The mirror's image acquired in this frame and not yet presented: given up if the frame throws.
-    std::optional<renderer::MirrorWindow::Frame> mirror_target;
+    // The mirror's image acquired in a frame that threw before presenting it: given up.
     auto abandon_mirror_frame = [&] {
-      if (mirror && mirror_target) mirror->abandon(*mirror_target);
-      mirror_target.reset();
+      if (mirror) mirror->abandon();
     };
     while (!xr.exit_requested() || xr.lost() || session_lost) {
       if (interrupted() && !interrupted_at) {
@@ -332,8 +324,7 @@ void run_review(const ReviewCommandOptions& o) {
         if (!xr.running()) {
           // The headset is idle (standby, not yet ready): the supervisor's window still answers (close, Esc).
           if (mirror) {
-            mirror->poll_events();
-            for (int key : mirror->take_key_presses())
+            for (int key : mirror->poll())
               if (key == 256 /* GLFW_KEY_ESCAPE */) xr.request_exit();
             if (mirror->should_close()) xr.request_exit();
           }
@@ -554,16 +545,14 @@ void run_review(const ReviewCommandOptions& o) {
         if (frame.should_render) last_eyes = frame.eyes;
         // The mirror's input first: its keys act on this frame.
         if (mirror) {
-          mirror->poll_events();
-          for (int key : mirror->take_key_presses()) {
+          for (int key : mirror->poll()) {
             if (key == 'C') change_colour(next_colour(scene.colour()));
-            if (key == 'V') mirror_view.set_mode(next_mirror_mode(mirror_view.mode()));
+            if (key == 'V') mirror->next_mode();
             if (key == 'M' && !interaction.dragging() && !o.fixed_method)
               change_method(next_method(interaction.method()));
             if (key == 256 /* GLFW_KEY_ESCAPE */) xr.request_exit();
           }
           if (mirror->should_close()) xr.request_exit();
-          mirror_view.pointer(mirror->pointer());
         }
         // One loop frame, one submission: the eyes (when the runtime wants them and the frame is drawn) and
         // the mirror window share one frame in flight and one upload of the newest snapshot.
@@ -582,56 +571,26 @@ void run_review(const ReviewCommandOptions& o) {
           passes.push_back({eye_views, draws, eye_settings, &eye_targets, {}});
           rendered = true;
         }
-        mirror_target.reset();
-        renderer::View mirror_camera;
         if (mirror) {
-          const auto now = Clock::now();
-          const double dt = std::chrono::duration<double>(now - last_mirror).count();
-          last_mirror = now;
-          if (last_eyes) mirror_target = mirror->acquire();
-          if (mirror_target) {
-            const VkExtent2D e = mirror_target->targets.extent;
-            mirror_camera = mirror_view.update(*last_eyes, dt, float(e.width) / float(e.height));
-            // Headset-eye mode shows the left eye as drawn (a copy, no second drawing of the scene) with the
-            // HUD and the colour-map legend over it; the other modes draw their own view, with the legend and
-            // the HUD.
-            const bool blit = rendered && mirror_view.mode() == MirrorMode::HeadsetEye &&
-                              mirror->accepts_blit() && xr.eye(0).transfer_source() &&
-                              renderer.can_blit(eye_targets.format, mirror_target->targets.format);
-            // Its own view draws the scene and the HUD; a copied eye gets only the HUD drawn over it.
-            if (blit)
-              mirror_draws.clear();
-            else
-              mirror_draws = draws;
-            mirror_hud.set_text(window_hud_lines(interaction, *snapshot, life, colour_name(scene.colour()),
-                                                 mirror_mode_name(mirror_view.mode()),
-                                                 {"V view  C colour  M method  Esc end"}, history_text()));
-            mirror_hud.place_top_left(mirror_camera, 0.03);
-            if (const auto d = mirror_hud.draw()) mirror_draws.push_back(*d);
-            renderer::RenderPass pass{std::span(&mirror_camera, 1), mirror_draws,
-                                      scene.settings(/*legend=*/true), &mirror_target->targets,
-                                      mirror_target->sync};
-            if (blit) {
-              pass.blit_from = &eye_targets.views[0];
-              pass.blit_from_extent = eye_targets.extent;
-              ++mirror_blits;
-            }
-            scene.set_legend_window(e.width, e.height);
-            passes.push_back(pass);
+          const std::optional<renderer::RenderPass> pass =
+              mirror->pass(last_eyes, draws,
+                           window_hud_lines(interaction, *snapshot, life, colour_name(scene.colour()),
+                                            mirror_mode_name(mirror->mode()),
+                                            {"V view  C colour  M method  Esc end"}, history_text()),
+                           scene.settings(/*legend=*/true), rendered ? &eye_targets : nullptr,
+                           xr.eye(0).transfer_source());
+          if (pass) {
+            scene.set_legend_window(pass->targets->extent.width, pass->targets->extent.height);
+            passes.push_back(*pass);
           }
         }
         if (!passes.empty()) renderer.render_frame(passes);
         xr.end_frame(frame, rendered);
-        if (mirror_target) {
-          mirror->present(*mirror_target);
-          mirror_target.reset();
-          ++mirror_frames;
-        }
         if (mirror) {
-          const std::string title =
-              window_title("pushpull review", interaction.method(), interaction.dragging(), *snapshot, life,
-                           colour_name(scene.colour()), mirror_mode_name(mirror_view.mode()), history_text());
-          if (mirror_title != title) mirror->set_title(mirror_title = title);
+          mirror->present();
+          mirror->set_title(window_title("pushpull review", interaction.method(), interaction.dragging(),
+                                         *snapshot, life, colour_name(scene.colour()),
+                                         mirror_mode_name(mirror->mode()), history_text()));
         }
         const double ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
         if (++stats.frames > FrameStats::kWarmUpFrames) {
@@ -669,9 +628,7 @@ void run_review(const ReviewCommandOptions& o) {
     if (validation && validation->message_count() > 0)
       throw CommandError("Vulkan validation reported " + std::to_string(validation->message_count()) +
                          " message(s) (printed above)");
-    if (mirror)
-      std::printf("pushpull review: mirror window presented %zu frames (%zu copied from the left eye)\n",
-                  mirror_frames, mirror_blits);
+    if (mirror) std::printf("pushpull review: %s\n", mirror->summary().c_str());
     if (o.benchmark) stats.print();
   }
 }

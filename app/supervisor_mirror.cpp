@@ -1,0 +1,77 @@
+#include "supervisor_mirror.hpp"
+
+namespace pushpull::app {
+
+SupervisorMirror::SupervisorMirror(const renderer::Context& context, renderer::Renderer& renderer,
+                                   uint32_t width, uint32_t height, const renderer::Bounds& orbit_bounds)
+    : renderer_(renderer),
+      window_(context, width, height, "pushpull review"),
+      hud_(renderer, 0.02f, 1000),
+      last_pass_(std::chrono::steady_clock::now()) {
+  view_.set_orbit_bounds(orbit_bounds);
+}
+
+std::vector<int> SupervisorMirror::poll() {
+  window_.poll_events();
+  std::vector<int> keys = window_.take_key_presses();
+  view_.pointer(window_.pointer());
+  return keys;
+}
+
+std::optional<renderer::RenderPass> SupervisorMirror::pass(
+    const std::optional<std::array<xr::EyeView, 2>>& last_eyes,
+    const std::vector<renderer::Draw>& scene_draws, const std::vector<std::string>& hud_lines,
+    const renderer::FrameSettings& settings, const renderer::RenderTargets* eye_targets,
+    bool eyes_allow_copy) {
+  const auto now = std::chrono::steady_clock::now();
+  const double dt = std::chrono::duration<double>(now - last_pass_).count();
+  last_pass_ = now;
+  target_.reset();
+  if (!last_eyes) return std::nullopt;
+  target_ = window_.acquire();
+  if (!target_) return std::nullopt;
+  const VkExtent2D e = target_->targets.extent;
+  camera_ = view_.update(*last_eyes, dt, float(e.width) / float(e.height));
+  // Headset-eye mode shows the left eye as drawn (a copy, no second drawing of the scene) with the HUD and
+  // the colour-map legend over it; the other modes draw their own view, with the legend and the HUD.
+  const bool copy = eye_targets != nullptr && view_.mode() == MirrorMode::HeadsetEye &&
+                    window_.accepts_blit() && eyes_allow_copy &&
+                    renderer_.can_blit(eye_targets->format, target_->targets.format);
+  if (copy)
+    draws_.clear();
+  else
+    draws_ = scene_draws;
+  hud_.set_text(hud_lines);
+  hud_.place_top_left(camera_, 0.03);
+  if (const auto d = hud_.draw()) draws_.push_back(*d);
+  renderer::RenderPass pass{std::span(&camera_, 1), draws_, settings, &target_->targets, target_->sync};
+  if (copy) {
+    pass.blit_from = &eye_targets->views[0];
+    pass.blit_from_extent = eye_targets->extent;
+    ++copies_;
+  }
+  return pass;
+}
+
+void SupervisorMirror::present() {
+  if (!target_) return;
+  window_.present(*target_);
+  target_.reset();
+  ++frames_;
+}
+
+void SupervisorMirror::abandon() {
+  if (target_) window_.abandon(*target_);
+  target_.reset();
+}
+
+void SupervisorMirror::set_title(const std::string& title) {
+  if (title_ != title) window_.set_title(title_ = title);
+}
+
+std::string SupervisorMirror::summary() const {
+  return "mirror window presented " + std::to_string(frames_) + " frames (" + std::to_string(copies_) +
+         " copied from the left eye)";
+}
+
+}  // namespace pushpull::app
