@@ -1,10 +1,16 @@
 // `pushpull review`: push and pull a model in an OpenXR headset (review_loop.hpp).
 #include "commands.hpp"
 #include "review_loop.hpp"
+#include "solver_cpus.hpp"
+
+#include "pushpull/deform/cpu_affinity.hpp"
 
 #include <CLI/CLI.hpp>
 
 #include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
 
 namespace pushpull::app {
 
@@ -82,7 +88,7 @@ void add_review_command(CLI::App& root) {
       "--desktop", o->desktop,
       "No headset: the window is the workspace (also when no OpenXR runtime or headset is found). Right "
       "drag turns, scroll zooms, left drag on the surface pushes/pulls (Shift: along the normal); U undo, R "
-      "redo, C colour map, M method, Esc quit");
+      "redo, C colour map, M method, [ ] handle size, - = region size, F or Home the first view, Esc quit");
   cmd->add_option("--frames", o->frames, "Desktop mode: stop after N frames (0: when the window closes)");
   cmd->add_flag("--benchmark", o->benchmark, "Print the frame time, idle versus with the solver running");
   cmd->add_option(
@@ -103,10 +109,22 @@ void add_review_command(CLI::App& root) {
       ->default_str("10");
   cmd->add_option(
          "--solver-cpus", o->solver_cpus,
-         "Headset: CPUs of the solver's own (e.g. 3, 2-3, or auto: the last one), the frame loop and the "
-         "threads it starts (lavapipe's) keep the others, so a solve never takes a frame's core; none: all "
-         "share them")
-      ->default_str("none");
+         "Headset: CPUs of the solver's own (e.g. 3, 2-3, or auto: the last physical core), the frame loop "
+         "and the threads it starts (lavapipe's, LP_NUM_THREADS as many unless set) keep the others, so a "
+         "solve never takes a frame's core; none: all share them")
+      ->default_str("none")
+      ->check(
+          [](const std::string& value) -> std::string {  // named at once, before the model loads
+            const std::vector<int> allowed = deform::allowed_cpus();
+            if (allowed.empty()) return "";  // the review says it cannot pin here
+            try {
+              (void)split_cpus(value, allowed);
+            } catch (const std::invalid_argument& e) {
+              return e.what();
+            }
+            return "";
+          },
+          "CPU list");
   add_life_size_options(*cmd, o->life_size);
   cmd->callback([o] { run_review(*o); });
 }

@@ -28,9 +28,16 @@ void take_commits(CommitWatch& commits, SessionRecorder& recorder, double t,
 }
 
 bool take_history_step(deform::Service& service, HistoryStep step, double t, double notice_now, EventLog& log,
-                       SessionRecorder& recorder, TimedNotice& notice, bool print) {
+                       SessionRecorder& recorder, TimedNotice& notice, bool print,
+                       std::optional<bool> recorded) {
   const char* name = step == HistoryStep::Undo ? "undo" : "redo";
-  if (request_history_step(service, step)) {
+  if (recorded && *recorded) {
+    if (step == HistoryStep::Undo)
+      service.undo();
+    else
+      service.redo();
+  }
+  if (recorded ? *recorded : request_history_step(service, step)) {
     log.write({{"event", name}});
     recorder.write_record(name, t);
     if (print) std::printf("pushpull review: %s\n", name);

@@ -14,6 +14,7 @@
 #include "window_hud.hpp"
 
 #include <functional>
+#include <optional>
 
 namespace pushpull::app {
 
@@ -23,8 +24,10 @@ void take_commits(CommitWatch& commits, SessionRecorder& recorder, double t,
 // An undo or redo asked for at time t (the recording's clock): sent to the service, logged ("undo"), recorded
 // and, with print, said on stdout; or, when there is nothing to step to (request_history_step), logged
 // ("nothing to undo"), said and shown by `notice` from notice_now on (the clock the loop reads it with).
+// recorded: a replay's decision, whether the recording sent this step (then the service is not asked).
 // Returns whether it was sent.
 bool take_history_step(deform::Service& service, HistoryStep step, double t, double notice_now, EventLog& log,
-                       SessionRecorder& recorder, TimedNotice& notice, bool print);
+                       SessionRecorder& recorder, TimedNotice& notice, bool print,
+                       std::optional<bool> recorded = std::nullopt);
 
 }  // namespace pushpull::app

@@ -115,7 +115,7 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
     double t = 0.0;
     // The display period xr/sim gives a replay of this recording (a whole number of ns), so the sizes the
     // keys steer (size_steering.hpp) come out the same there.
-    const double frame_period = double(std::int64_t(1e9 / kRecordingRate)) * 1e-9;
+    const double frame_period = recording_frame_period_s(kRecordingRate);
     SizeSteering sizes;
     StickPulses size_keys;
     recorder.write_record("clock", 0.0, {{"rate_hz", kRecordingRate}});
@@ -134,10 +134,7 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
     auto now = [&] {
       return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     };
-    auto history_text = [&] {
-      const std::string text = notice.text(now());
-      return text.empty() ? edit_counts_text(edit_counts(service)) : text;
-    };
+    auto history_text = [&] { return history_line(notice.text(now()), service); };
     auto ask_history_step = [&](HistoryStep step) {
       (void)take_history_step(service, step, t, now(), log, recorder, notice, !o.quiet);
     };
@@ -174,7 +171,8 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
             1e-9;  // as xr/sim's script_time
         bool quit = false, undo = false, redo = false, colour = false, method = false;
         for (int key : window.take_key_presses()) {
-          if (key == 'F' || key == 268 /* GLFW_KEY_HOME */) orbit = start_view;  // back to the first view
+          // Back to the first view (not mid-drag: the drag's plane would jump with the camera).
+          if ((key == 'F' || key == 268 /* GLFW_KEY_HOME */) && !interaction.dragging()) orbit = start_view;
           // [ ] shrink / grow the handle, - = the region: a deflection of the recorded right thumbstick.
           if (key == 91 /* GLFW_KEY_LEFT_BRACKET */) size_keys.press(1, -1, frame_period);
           if (key == 93 /* GLFW_KEY_RIGHT_BRACKET */) size_keys.press(1, +1, frame_period);
@@ -248,7 +246,7 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
         hands_in[1].undo_pressed = undo && !interaction.dragging();
         hands_in[1].redo_pressed = redo && !interaction.dragging();
         {
-          const auto [x, y] = size_keys.next();
+          const auto [x, y] = size_keys.next(/*held=*/interaction.dragging() || press);  // no sizes mid-drag
           hands_in[1].thumbstick = {x, y};
         }
         recorder.write_frame_input(t, camera_pose(view), hands_in, kDesktopProfile);

@@ -35,10 +35,12 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <ctime>
 #include <numeric>
 #include <thread>
@@ -55,6 +57,13 @@ double heading(const HandSample& s) {
   const Eigen::Vector3d h =
       std::hypot(f.x(), f.z()) > 0.3 ? f : (f.y() < 0.0 ? s.up_stage : Eigen::Vector3d(-s.up_stage));
   return std::atan2(-h.x(), -h.z());
+}
+
+// Replay: the recorded changes (time s, name) due by `until`, from `next` on, each given to apply in order.
+template <class Apply>
+void apply_due(const std::vector<std::pair<double, std::string>>& changes, std::size_t& next, double until,
+               Apply apply) {
+  while (next < changes.size() && changes[next].first <= until) apply(changes[next++].second);
 }
 
 }  // namespace
@@ -94,18 +103,33 @@ void run_review(const ReviewCommandOptions& o) {
   // the threads the device starts (lavapipe's) stay there too; the solver's threads go to theirs.
   const std::vector<int> all_cpus = deform::allowed_cpus();
   std::optional<CpuSplit> cpus;
-  try {
-    cpus = split_cpus(o.solver_cpus, all_cpus);
-  } catch (const std::invalid_argument& e) {
-    throw CommandError(e.what());
+  if (o.solver_cpus != "none" && all_cpus.empty()) {
+    std::fprintf(stderr,
+                 "pushpull review: --solver-cpus %s: this system does not say which CPUs threads may run on; "
+                 "ignored, the solver shares them with the frames\n",
+                 o.solver_cpus.c_str());
+  } else {
+    try {
+      cpus = split_cpus(o.solver_cpus, all_cpus);
+    } catch (const std::invalid_argument& e) {
+      throw CommandError("--solver-cpus " + o.solver_cpus + ": " + e.what());
+    }
+    if (!cpus && o.solver_cpus == "auto")
+      std::fprintf(stderr, "pushpull review: --solver-cpus auto: one CPU (%s), nothing to split\n",
+                   cpu_list_text(all_cpus).c_str());
   }
   if (cpus && !deform::pin_calling_thread(cpus->frames)) {
-    std::fprintf(stderr,
-                 "pushpull review: --solver-cpus %s: this system does not let threads be pinned to CPUs; "
-                 "the solver shares them with the frames\n",
-                 o.solver_cpus.c_str());
+    std::fprintf(
+        stderr,
+        "pushpull review: --solver-cpus %s: the frame thread could not be pinned to CPU %s (%s); the "
+        "solver shares the CPUs with the frames\n",
+        o.solver_cpus.c_str(), cpu_list_text(cpus->frames).c_str(), std::strerror(errno));
     cpus.reset();
   }
+  // A CPU renderer (lavapipe, llvmpipe) starts a thread per CPU of the machine unless told otherwise: as many
+  // as the frames have, unless the user said.
+  if (cpus && std::getenv("LP_NUM_THREADS") == nullptr)
+    (void)::setenv("LP_NUM_THREADS", std::to_string(cpus->frames.size()).c_str(), 0);
   std::optional<xr::Session> session;
   try {
     session.emplace(session_options);
@@ -209,13 +233,23 @@ void run_review(const ReviewCommandOptions& o) {
     };
     auto take_commits = [&] { app::take_commits(commits, recorder, t, o.on_commit); };
     TimedNotice notice;  // "nothing to undo", for a while by the hand and in the mirror's HUD
+    std::size_t next_history_step = 0;  // replay: into o.history_steps
     auto ask_history_step = [&](HistoryStep step) {
-      if (take_history_step(service, step, t, t, log, recorder, notice, !o.quiet)) commands_pending = true;
+      std::optional<bool> recorded;
+      if (o.history_steps) {  // replay: sent when the recording sent it at this frame
+        const double half_frame = 0.5 / double(std::max(1L, recording_rate_hz));
+        const auto& steps = *o.history_steps;
+        while (next_history_step < steps.size() && steps[next_history_step].first < t - half_frame)
+          ++next_history_step;
+        const char* name = step == HistoryStep::Undo ? "undo" : "redo";
+        recorded = next_history_step < steps.size() && steps[next_history_step].first <= t + half_frame &&
+                   steps[next_history_step].second == name;
+        if (*recorded) ++next_history_step;
+      }
+      if (take_history_step(service, step, t, t, log, recorder, notice, !o.quiet, recorded))
+        commands_pending = true;
     };
-    auto history_text = [&] {
-      const std::string text = notice.text(t);
-      return text.empty() ? edit_counts_text(edit_counts(service)) : text;
-    };
+    auto history_text = [&] { return history_line(notice.text(t), service); };
     std::optional<xr::Input> input;  // per session, like the eyes
     input.emplace(xr.instance(), xr.handle(), xr.stage_space());
     FrameStats stats;
@@ -234,11 +268,13 @@ void run_review(const ReviewCommandOptions& o) {
     };
     // A method change (headset panel, mirror key, or a replayed one) is a "method" record at this frame.
     auto change_method = [&](deform::Method method) {
+      const deform::Method before = interaction.method();
       interaction.set_method(method);
-      recorder.write_method(t, interaction.method());
+      if (interaction.method() != before) recorder.write_method(t, interaction.method());
     };
     // Likewise a colour-map change is a "colour" record (the panel's are replayed through its input too).
     auto change_colour = [&](ReviewColour c) {
+      if (c == scene.colour()) return;  // e.g. a replayed record, then the panel's choice it came from
       scene.set_colour(c);
       recorder.write_colour(t, c);
     };
@@ -487,18 +523,27 @@ void run_review(const ReviewCommandOptions& o) {
           if (in.redo_pressed) ask_history_step(HistoryStep::Redo);
         }
         // Replay: the method changes the recording made with a key, at the frames it made them.
-        while (next_method_change < o.method_changes.size() &&
-               o.method_changes[next_method_change].first <= t + 0.25 / double(recording_rate_hz)) {
-          change_method(deform::parse_method(o.method_changes[next_method_change++].second));
+        apply_due(o.method_changes, next_method_change, t + 0.25 / double(recording_rate_hz),
+                  [&](const std::string& name) { change_method(deform::parse_method(name)); });
+        // The mirror's keys, where a replay applies the method and colour changes they made.
+        if (mirror) {
+          for (int key : mirror->poll()) {
+            if (key == 'C') change_colour(next_colour(scene.colour()));
+            if (key == 'V') mirror->next_mode();
+            if (key == 'M' && !interaction.dragging() && !o.fixed_method)
+              change_method(next_method(interaction.method()));
+            if (key == 256 /* GLFW_KEY_ESCAPE */) xr.request_exit();
+          }
+          if (mirror->should_close()) xr.request_exit();
         }
-        while (next_colour_change < o.colour_changes.size() &&
-               o.colour_changes[next_colour_change].first <= t + 0.25 / double(recording_rate_hz)) {
-          if (const auto c = parse_colour(o.colour_changes[next_colour_change++].second)) change_colour(*c);
-        }
+        apply_due(o.colour_changes, next_colour_change, t + 0.25 / double(recording_rate_hz),
+                  [&](const std::string& name) {
+                    if (const auto c = parse_colour(name)) change_colour(*c);
+                  });
         // Right thumbstick between drags: the handle and region sizes (size_steering.hpp).
         {
           const XrVector2f stick = input->hand(xr::Hand::Right).thumbstick;
-          sizes.frame(interaction, stick.x, stick.y, double(frame.predicted_display_period) * 1e-9,
+          sizes.frame(interaction, stick.x, stick.y, recording_frame_period_s(double(recording_rate_hz)),
                       !menu.is_open(), log, life, !o.quiet);
         }
         // Replay: a frame that is kept shows the solver's settled state, not whichever preview timing left.
@@ -543,17 +588,6 @@ void run_review(const ReviewCommandOptions& o) {
         for (const WorldLabel* label : {&hand_label, &menu_label})
           if (const auto d = label->draw()) draws.push_back(*d);
         if (frame.should_render) last_eyes = frame.eyes;
-        // The mirror's input first: its keys act on this frame.
-        if (mirror) {
-          for (int key : mirror->poll()) {
-            if (key == 'C') change_colour(next_colour(scene.colour()));
-            if (key == 'V') mirror->next_mode();
-            if (key == 'M' && !interaction.dragging() && !o.fixed_method)
-              change_method(next_method(interaction.method()));
-            if (key == 256 /* GLFW_KEY_ESCAPE */) xr.request_exit();
-          }
-          if (mirror->should_close()) xr.request_exit();
-        }
         // One loop frame, one submission: the eyes (when the runtime wants them and the frame is drawn) and
         // the mirror window share one frame in flight and one upload of the newest snapshot.
         std::vector<renderer::RenderPass> passes;

@@ -66,6 +66,10 @@ struct ReviewCommandOptions {
   std::vector<std::pair<double, std::string>> method_changes;
   // Headset loop (replay): colour-map changes (recording time s, colour_name()), applied likewise.
   std::vector<std::pair<double, std::string>> colour_changes;
+  // Headset loop (replay): the undo and redo the recorded session sent ("undo"/"redo" records: time s, kind).
+  // Set: an undo or redo button sends the step exactly when the recording did at that frame (live, whether it
+  // is sent depends on whether the service was busy, history_steps.hpp); unset: decided live.
+  std::optional<std::vector<std::pair<double, std::string>>> history_steps;
   // Headset loop (replay): the presses the recorded session held back (press_hold.hpp), in time order. Set:
   // a press held back while solving is let through at exactly the recorded frame (the loop waits for the
   // service there) and any other press at once (waiting too), as the recorded loop did. Unset (live): a press

@@ -111,6 +111,8 @@ SessionRecording read_session_recording(const std::string& path) {
       }
       r.header = j;
       const std::string format = j.value("format", "");
+      if (options->contains("desktop") && !(*options)["desktop"].is_boolean())
+        corrupted(path, 1, "header option \"desktop\" is not true or false");
       legacy_desktop = options->value("desktop", false) && format.size() == 18 &&
                        format.compare(0, 16, "pushpull-session") == 0 && format[17] < '4';
       if (const nlohmann::json* colour = options->contains("colour") ? &(*options)["colour"] : nullptr;

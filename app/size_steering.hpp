@@ -24,21 +24,27 @@ class SizeSteering {
   bool changed_ = false;
 };
 
-// Desktop keys as stick deflections: press() starts (or lengthens) a full deflection along one axis, next()
-// gives the stick of each frame. One press scales a size by kStep over kFrames frames at dt = 1/90 s.
+// The frame period (s) the sizes are steered with: that of the recording's whole-Hz clock exactly as xr/sim
+// gives a replay of it (XrDuration(1e9 / rate) ns), whatever period the live runtime reported, so a replay
+// steers the sizes bit for bit.
+[[nodiscard]] double recording_frame_period_s(double rate_hz);
+
+// Desktop keys as stick deflections: each press adds frames_per_press() frames of full deflection along its
+// axis (the axes deflect independently; presses against each other cancel), next() gives the stick of each
+// frame. One press scales a size by kStep.
 class StickPulses {
  public:
   static constexpr double kStep = 1.25;
   // Frames of full deflection for one press at frame period dt (s): round(log2(kStep) / dt).
   [[nodiscard]] static int frames_per_press(double dt);
-  // axis 0: x (region), 1: y (handle); direction +1 grows, -1 shrinks. A press against a running pulse
-  // replaces it.
+  // axis 0: x (region), 1: y (handle); direction +1 grows, -1 shrinks.
   void press(int axis, int direction, double dt);
-  // The stick for this frame (x, y), counting the frame.
-  [[nodiscard]] std::pair<float, float> next();
+  // The stick for this frame (x, y), counting the frame; held (a drag in progress, when the sizes do not
+  // change): centred, and nothing counted, so the pulses go on after the drag.
+  [[nodiscard]] std::pair<float, float> next(bool held);
 
  private:
-  int axis_ = 0, direction_ = 0, frames_left_ = 0;
+  int frames_[2] = {0, 0};  // per axis, signed: the direction and the frames of deflection left
 };
 
 }  // namespace pushpull::app

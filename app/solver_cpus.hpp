@@ -7,6 +7,7 @@
 // Thread-safety: plain functions.
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -18,11 +19,22 @@ struct CpuSplit {
   std::vector<int> frames;  // the allowed CPUs not in `solver`, ascending, never empty
 };
 
-// spec: "none" (no split: nullopt), "auto" (the last allowed CPU when at least two are allowed, else none),
-// or a list of CPU numbers and ranges, "1", "2-3", "1,3,5-7". allowed: the CPUs the process may run on
-// (deform::allowed_cpus()). Throws std::invalid_argument naming the problem: a malformed list, a CPU not
-// allowed, or a list that leaves no CPU for the frames.
-[[nodiscard]] std::optional<CpuSplit> split_cpus(const std::string& spec, const std::vector<int>& allowed);
+// The CPUs sharing a physical core with `cpu` (SMT siblings, itself included), from Linux's sysfs topology;
+// just {cpu} where it cannot be read.
+[[nodiscard]] std::vector<int> core_siblings(int cpu);
+
+// The largest CPU number a list may name (Linux's fixed-size cpu_set_t holds 0..1023).
+inline constexpr int kLargestCpu = 1023;
+
+// spec: "none" (no split: nullopt), "auto" (the physical core of the last allowed CPU, all its allowed SMT
+// siblings, when other CPUs remain for the frames; else that CPU alone when others remain; else none), or a
+// list of CPU numbers and ranges, "1", "2-3", "1,3,5-7". allowed: the CPUs the process may run on
+// (deform::allowed_cpus()); siblings: core_siblings, or a stand-in (tests). Throws std::invalid_argument
+// naming the problem (for the caller to put after "--solver-cpus"): a malformed list, a CPU not allowed, or a
+// list that leaves no CPU for the frames.
+[[nodiscard]] std::optional<CpuSplit> split_cpus(
+    const std::string& spec, const std::vector<int>& allowed,
+    const std::function<std::vector<int>(int)>& siblings = core_siblings);
 
 // "0-1,3": ascending CPUs as a list with ranges.
 [[nodiscard]] std::string cpu_list_text(const std::vector<int>& cpus);

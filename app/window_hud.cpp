@@ -1,8 +1,14 @@
 #include "window_hud.hpp"
 
+#include "history_steps.hpp"
+
 #include <cstdio>
 
 namespace pushpull::app {
+
+std::string history_line(const std::string& notice, const deform::Service& service) {
+  return notice.empty() ? edit_counts_text(edit_counts(service)) : notice;
+}
 
 std::vector<std::string> window_hud_lines(const ReviewInteraction& interaction,
                                           const deform::Snapshot& snapshot, const LifeSize& life,

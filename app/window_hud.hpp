@@ -31,6 +31,10 @@ class TimedNotice {
   double until_ = -1.0;
 };
 
+// What the HUD and the title say of the history between drags: the notice while it shows, else the edits
+// ("2 edits, 1 undone").
+[[nodiscard]] std::string history_line(const std::string& notice, const deform::Service& service);
+
 // Line 1: "asan  |d| 70.7 mm  30 it  converged" while dragging, "asan  solving  12 it" while a commit, undo
 // or redo is solved, else "asan  ready  <history>" (history: the edits, edit_counts_text(), or a notice);
 // line 2: "colour: displacement" and, when view_mode is not empty, "   view: <view_mode>"; then `keys`, one

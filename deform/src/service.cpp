@@ -28,8 +28,7 @@ namespace pushpull::deform {
 namespace {
 
 // The worker's place on the machine: its CPUs (worker_cpus), then its niceness (setpriority on the calling
-// thread: Linux threads have their own) or the idle scheduling class. Threads the worker starts later (the
-// solver's helper) inherit all three.
+// thread: Linux threads have their own) or the idle scheduling class.
 void place_worker_thread(int nice, bool idle, const std::vector<int>& cpus) {
   (void)pin_calling_thread(cpus);
 #ifdef __linux__

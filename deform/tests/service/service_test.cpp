@@ -150,7 +150,7 @@ TEST(Service, TheWorkerRunsInTheSchedulingClassAsked) {
 // same.
 TEST(Service, TheWorkerRunsOnTheCpusAsked) {
   const std::vector<int> before = allowed_cpus();
-  ASSERT_FALSE(before.empty());
+  if (before.size() < 2) GTEST_SKIP() << "one CPU: pinned or not, the worker runs on it";
   const Problem p = make_problem(12);
   std::mutex mutex;
   std::vector<int> seen;

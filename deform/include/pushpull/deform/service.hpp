@@ -141,14 +141,16 @@ struct ServiceOptions {
   // results do not depend on it, only how soon they arrive. Linux (setpriority on the thread); ignored
   // elsewhere.
   int worker_nice = 0;
-  // The idle scheduling class (Linux SCHED_IDLE) for the worker and its helper thread: they run only on CPU
-  // time no normal thread wants, and a frame loop's thread that wakes takes the core at once (with a niceness
-  // it waits for the solver's time slice: the frame-time spikes of scripts/bench-review). Under a machine
-  // loaded by other work, previews then arrive late. Ignored elsewhere.
+  // The idle scheduling class (Linux SCHED_IDLE) for the worker (which solves on its own thread alone,
+  // DeformOptions::threads = 1): it runs only on CPU time no normal thread wants, and a frame loop's thread
+  // that wakes takes the core at once (with a niceness it waits for the solver's time slice: the frame-time
+  // spikes of scripts/bench-review). Under a machine loaded by other work, previews then arrive late. Ignored
+  // elsewhere.
   bool worker_idle = false;
-  // CPUs the worker and its helper thread run on (cpu_affinity.hpp; empty: wherever the caller's threads
-  // may). A frame loop gives the solver CPUs of its own so solves never take the frame loop's cores. A
-  // set the system refuses leaves the worker where it was (results do not depend on it).
+  // CPUs the worker runs on (cpu_affinity.hpp; empty: wherever the caller's threads may); it solves on one
+  // thread, so a second CPU serves only other work given the same set (the review's snapshot conversion). A
+  // frame loop gives the solver CPUs of its own so solves never take the frame loop's cores. A set the
+  // system refuses leaves the worker where it was (results do not depend on it).
   std::vector<int> worker_cpus;
 };
 
