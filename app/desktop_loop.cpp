@@ -113,11 +113,6 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
     constexpr double kRecordingRate = 90.0;
     std::int64_t loop_frames = 0;
     double t = 0.0;
-    // The display period xr/sim gives a replay of this recording (a whole number of ns), so the sizes the
-    // keys steer (size_steering.hpp) come out the same there.
-    const double frame_period = recording_frame_period_s(kRecordingRate);
-    SizeSteering sizes;
-    StickPulses size_keys;
     recorder.write_record("clock", 0.0, {{"rate_hz", kRecordingRate}});
     Eigen::Vector3d hand_origin = Eigen::Vector3d::Zero(), hand_direction(0, 0, -1);
     Eigen::Vector3d press_origin = Eigen::Vector3d::Zero(), press_direction(0, 0, -1);
@@ -173,11 +168,27 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
         for (int key : window.take_key_presses()) {
           // Back to the first view (not mid-drag: the drag's plane would jump with the camera).
           if ((key == 'F' || key == 268 /* GLFW_KEY_HOME */) && !interaction.dragging()) orbit = start_view;
-          // [ ] shrink / grow the handle, - = the region: a deflection of the recorded right thumbstick.
-          if (key == 91 /* GLFW_KEY_LEFT_BRACKET */) size_keys.press(1, -1, frame_period);
-          if (key == 93 /* GLFW_KEY_RIGHT_BRACKET */) size_keys.press(1, +1, frame_period);
-          if (key == 45 /* GLFW_KEY_MINUS */) size_keys.press(0, -1, frame_period);
-          if (key == 61 /* GLFW_KEY_EQUAL */) size_keys.press(0, +1, frame_period);
+          // [ ] shrink / grow the handle, - = the region, kSizeStep a press, at once; a "sizes" record, which
+          // a replay sets again at this frame. Not mid-drag (the drag keeps the sizes it grabbed with).
+          double handle_factor = 1.0, region_factor = 1.0;
+          if (key == 91 /* GLFW_KEY_LEFT_BRACKET */) handle_factor = 1.0 / kSizeStep;
+          if (key == 93 /* GLFW_KEY_RIGHT_BRACKET */) handle_factor = kSizeStep;
+          if (key == 45 /* GLFW_KEY_MINUS */) region_factor = 1.0 / kSizeStep;
+          if (key == 61 /* GLFW_KEY_EQUAL */) region_factor = kSizeStep;
+          if (handle_factor != 1.0 || region_factor != 1.0) {
+            if (interaction.dragging()) {
+              notice.show("sizes change between drags", now());
+            } else {
+              interaction.scale_sizes(handle_factor, region_factor);
+              recorder.write_sizes(t, interaction.handle_radius(), interaction.roi_radius());
+              log.write({{"event", "sizes"},
+                         {"handle_radius", interaction.handle_radius()},
+                         {"roi_radius", interaction.roi_radius()}});
+              if (!o.quiet)
+                std::printf("pushpull review: handle radius %.0f mm, region %.0f mm\n",
+                            life.to_mm(interaction.handle_radius()), life.to_mm(interaction.roi_radius()));
+            }
+          }
           quit = quit || key == 256 /* GLFW_KEY_ESCAPE */;
           undo = undo || key == 'U';
           redo = redo || key == 'R';
@@ -238,17 +249,13 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
         }
         // Released this frame: the hand stays where the drag left it (the gesture's release reads d there).
         // Recorded as a headset frame would be: the camera as the head, the pointer as the right controller
-        // (its trigger the left button, its A and B buttons undo and redo, its stick the size keys); C is a
-        // "colour" record.
+        // (its trigger the left button, its A and B buttons undo and redo); C and the size keys are "colour"
+        // and "sizes" records.
         std::array<xr::HandInput, 2> hands_in;
         hands_in[1].T_stage_aim = pointer_pose(hand_origin, hand_direction);
         hands_in[1].trigger = p.left && held_frames == 0 ? 1.0f : 0.0f;
         hands_in[1].undo_pressed = undo && !interaction.dragging();
         hands_in[1].redo_pressed = redo && !interaction.dragging();
-        {
-          const auto [x, y] = size_keys.next(/*held=*/interaction.dragging() || press);  // no sizes mid-drag
-          hands_in[1].thumbstick = {x, y};
-        }
         recorder.write_frame_input(t, camera_pose(view), hands_in, kDesktopProfile);
         for (const InteractionEvent& e :
              interaction.update({hand_sample(hands_in[0]), hand_sample(hands_in[1])}))
@@ -260,9 +267,6 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
                                               std::pair{hands_in[1].redo_pressed, HistoryStep::Redo}})
             if (pressed) ask_history_step(step);
         }
-        // As the headset loop, after the gesture and the undo/redo: the sizes the keys steer.
-        sizes.frame(interaction, hands_in[1].thumbstick.x, hands_in[1].thumbstick.y, frame_period, true, log,
-                    life, !o.quiet);
         if (colour) {  // a "colour" record, which a replay applies at this frame
           scene.set_colour(next_colour(scene.colour()));
           recorder.write_colour(t, scene.colour());

@@ -154,6 +154,7 @@ void run_replay(const ReplayOptions& o) {
   review.fixed_method = !o.method.empty();
   if (o.method.empty()) review.method_changes = rec.method_changes;  // with --method: that one throughout
   review.colour_changes = rec.colour_changes;
+  review.size_changes = rec.size_changes;
   review.history_steps.emplace();
   for (const json& r : rec.records) {
     const std::string kind = r.value("record", "");

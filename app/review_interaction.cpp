@@ -163,6 +163,13 @@ void ReviewInteraction::scale_sizes(double handle_factor, double region_factor) 
   options_.roi_radius = std::clamp(options_.roi_radius * region_factor, lo, hi);
 }
 
+void ReviewInteraction::set_sizes(double handle_radius, double roi_radius) {
+  if (dragging() || !(handle_radius > 0.0) || !(roi_radius > 0.0)) return;
+  const double lo = 1e-3 / options_.scale, hi = 10.0 / options_.scale;
+  options_.handle_radius = std::clamp(handle_radius, lo, hi);
+  options_.roi_radius = std::clamp(roi_radius, lo, hi);
+}
+
 void ReviewInteraction::set_method(deform::Method method) {
   if (!dragging()) options_.solver.method = method;
 }

@@ -85,6 +85,9 @@ class ReviewInteraction {
   // Thumbstick between drags: scales the handle radius and the region radius by these factors (> 0), within
   // [1 mm, 10 m] at life size. Ignored while dragging (a drag keeps its setup).
   void scale_sizes(double handle_factor, double region_factor);
+  // Both radii as given (model units; a replay's recorded sizes), clamped as scale_sizes clamps; not while
+  // dragging.
+  void set_sizes(double handle_radius, double roi_radius);
   // The model was moved on the stage (grip). Takes effect for the next samples; call between drags.
   void set_placement(const StagePlacement& placement) { placement_ = placement; }
   // The method of the next drag (a drag keeps its method). Ignored while dragging.

@@ -279,6 +279,7 @@ void run_review(const ReviewCommandOptions& o) {
       recorder.write_colour(t, c);
     };
     std::size_t next_colour_change = 0;  // into o.colour_changes
+    std::size_t next_size_change = 0;    // into o.size_changes
     auto log_event = [&](const InteractionEvent& e) {
       if (e.kind == InteractionEvent::Kind::Committed) commits.expect_commit(e.request);
       log.write_interaction(e, life);
@@ -502,6 +503,13 @@ void run_review(const ReviewCommandOptions& o) {
           } else {  // let go while held (if held): nothing was pressed
             end_hold();
           }
+        }
+        // Replay: the sizes a key set, before the gesture, as the desktop window set them.
+        while (next_size_change < o.size_changes.size() &&
+               o.size_changes[next_size_change].time <= t + 0.25 / double(recording_rate_hz)) {
+          const SizeChange& c = o.size_changes[next_size_change++];
+          interaction.set_sizes(c.handle_radius, c.roi_radius);
+          recorder.write_sizes(t, interaction.handle_radius(), interaction.roi_radius());
         }
         // Input is ours only while focused (unfocused, every input reads as released): no gestures then.
         for (const InteractionEvent& e :

@@ -9,6 +9,7 @@
 #include "head_anchor.hpp"
 #include "life_size.hpp"
 #include "press_hold.hpp"
+#include "size_change.hpp"
 
 #include <functional>
 #include <optional>
@@ -66,6 +67,8 @@ struct ReviewCommandOptions {
   std::vector<std::pair<double, std::string>> method_changes;
   // Headset loop (replay): colour-map changes (recording time s, colour_name()), applied likewise.
   std::vector<std::pair<double, std::string>> colour_changes;
+  // Headset loop (replay): sizes the recorded session's keys set, applied before the gesture of their frame.
+  std::vector<SizeChange> size_changes;
   // Headset loop (replay): the undo and redo the recorded session sent ("undo"/"redo" records: time s, kind).
   // Set: an undo or redo button sends the step exactly when the recording did at that frame (live, whether it
   // is sent depends on whether the service was busy, history_steps.hpp); unset: decided live.

@@ -213,6 +213,10 @@ void SessionRecorder::write_frame_input(double t, const std::optional<XrPosef>& 
   }
 }
 
+void SessionRecorder::write_sizes(double t, double handle_radius, double roi_radius) {
+  write_record("sizes", t, {{"handle_radius", handle_radius}, {"roi_radius", roi_radius}});
+}
+
 void SessionRecorder::write_colour(double t, ReviewColour colour) {
   write_record("colour", t, {{"colour", colour_name(colour)}});
 }

@@ -13,9 +13,10 @@
 //   {"record":"anchor","time":0.0,"x":..,"z":..,"yaw":..}   the model moved in front of the reviewer's head
 //                                                            (head_anchor.hpp; T_stage_model is before it)
 //   {"record":"colour","time":..,"colour":"curvature-sign"}   the colour map shown from this frame on
+//   {"record":"sizes","time":..,"handle_radius":..,"roi_radius":..}   sizes set by a key (desktop)
 // Format 2 adds "press held" (headset recordings; the desktop shows a hold as its trigger staying released),
 // format 3 "anchor" (headset recordings), format 4 "colour" (every colour-map change; desktop recordings no
-// longer press the left menu button for the colour key, and their size keys deflect the right stick);
+// longer press the left menu button for the colour key) and "sizes" (the desktop's size keys);
 // `pushpull replay` reads 1 to 4 alike (a recording without holds is replayed as format 1 was, one without an
 // anchor keeps the header's placement, a desktop one before format 4 has its menu presses read as colour
 // changes).
@@ -96,6 +97,9 @@ class SessionRecorder {
   void write_method(double t, deform::Method method);
   // {"record":"colour","time":t,"colour":"curvature-sign"}: the colour map shown from this frame on.
   void write_colour(double t, ReviewColour colour);
+  // {"record":"sizes","time":t,"handle_radius":..,"roi_radius":..} (model units): the sizes a key set, from
+  // this frame's press on (the headset's thumbstick is replayed from its input instead).
+  void write_sizes(double t, double handle_radius, double roi_radius);
   // A runtime event at t as an xr/sim script line ({"t":..,"event":"loss"}): what the loop saw happen.
   void write_event_input(double t, const std::string& event);
   // press / release (commit or cancel) from the interaction; release carries p1 = p0 + d and d.

@@ -146,6 +146,17 @@ SessionRecording read_session_recording(const std::string& path) {
                            j["time"].is_number() && parse_colour(j["colour"].get<std::string>());
         if (!valid) corrupted(path, number, "a colour record needs \"time\" and a known \"colour\"");
         r.colour_changes.emplace_back(j["time"].get<double>(), j["colour"].get<std::string>());
+      } else if (kind == "sizes") {
+        const auto positive = [&](const char* key) {
+          return j.contains(key) && j[key].is_number() && std::isfinite(j[key].get<double>()) &&
+                 j[key].get<double>() > 0.0;
+        };
+        if (!j.contains("time") || !j["time"].is_number() || !positive("handle_radius") ||
+            !positive("roi_radius"))
+          corrupted(path, number,
+                    "a sizes record needs \"time\" and positive \"handle_radius\" and \"roi_radius\"");
+        r.size_changes.push_back(
+            {j["time"].get<double>(), j["handle_radius"].get<double>(), j["roi_radius"].get<double>()});
       } else if (kind == "press held") {
         const bool valid = j.contains("time") && j["time"].is_number() && j.contains("from") &&
                            j["from"].is_number() && j.contains("admitted") && j["admitted"].is_boolean() &&

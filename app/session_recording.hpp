@@ -11,6 +11,7 @@
 
 #include "head_anchor.hpp"
 #include "press_hold.hpp"
+#include "size_change.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -35,6 +36,7 @@ struct SessionRecording {
   std::vector<std::pair<double, std::string>> method_changes;  // "method" records: (time s, method name), in order
   std::vector<std::pair<double, std::string>>
       colour_changes;                        // "colour" records: (time s, colour map), in order
+  std::vector<SizeChange> size_changes;      // "sizes" records, in order
   std::vector<PressHold> press_holds;        // "press held" records, in order
   std::optional<HeadAnchor> anchor;          // the "anchor" record, if any (at most one)
   std::string script;                        // the complete lines before any cut, '\n'-terminated (for xr/sim)

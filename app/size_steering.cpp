@@ -28,24 +28,4 @@ double recording_frame_period_s(double rate_hz) {
   return double(std::int64_t(1e9 / rate_hz)) * 1e-9;
 }
 
-int StickPulses::frames_per_press(double dt) {
-  return int(std::lround(std::log2(kStep) / dt));
-}
-
-void StickPulses::press(int axis, int direction, double dt) {
-  int& frames = frames_[axis == 0 ? 0 : 1];
-  frames = std::clamp(frames + (direction > 0 ? 1 : -1) * frames_per_press(dt), -100000, 100000);
-}
-
-std::pair<float, float> StickPulses::next(bool held) {
-  if (held) return {0.0f, 0.0f};
-  float v[2] = {0.0f, 0.0f};
-  for (int a = 0; a < 2; ++a) {
-    if (frames_[a] == 0) continue;
-    v[a] = frames_[a] > 0 ? 1.0f : -1.0f;
-    frames_[a] -= frames_[a] > 0 ? 1 : -1;
-  }
-  return {v[0], v[1]};
-}
-
 }  // namespace pushpull::app

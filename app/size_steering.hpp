@@ -1,6 +1,5 @@
-// The handle and region sizes steered between drags by the right thumbstick (headset) or by keys that deflect
-// it (desktop: [ and ] the handle, - and = the region, each press a recorded deflection of the stick for a
-// fixed number of frames, so a replay of the recording steers the sizes bit for bit as the window did).
+// The handle and region sizes steered between drags by the right thumbstick (headset; the desktop's keys set
+// them at once, kSizeStep a press, as "sizes" records a replay sets again).
 //
 // Stick: up/down grows/shrinks the handle, right/left the region, x2 per second at full deflection; a dead
 // zone of 0.2 keeps a resting thumb from drifting them. The sizes are logged ({"event":"sizes"}) and printed
@@ -29,22 +28,7 @@ class SizeSteering {
 // steers the sizes bit for bit.
 [[nodiscard]] double recording_frame_period_s(double rate_hz);
 
-// Desktop keys as stick deflections: each press adds frames_per_press() frames of full deflection along its
-// axis (the axes deflect independently; presses against each other cancel), next() gives the stick of each
-// frame. One press scales a size by kStep.
-class StickPulses {
- public:
-  static constexpr double kStep = 1.25;
-  // Frames of full deflection for one press at frame period dt (s): round(log2(kStep) / dt).
-  [[nodiscard]] static int frames_per_press(double dt);
-  // axis 0: x (region), 1: y (handle); direction +1 grows, -1 shrinks.
-  void press(int axis, int direction, double dt);
-  // The stick for this frame (x, y), counting the frame; held (a drag in progress, when the sizes do not
-  // change): centred, and nothing counted, so the pulses go on after the drag.
-  [[nodiscard]] std::pair<float, float> next(bool held);
-
- private:
-  int frames_[2] = {0, 0};  // per axis, signed: the direction and the frames of deflection left
-};
+// One press of the desktop's size keys scales a radius by this.
+inline constexpr double kSizeStep = 1.25;
 
 }  // namespace pushpull::app
