@@ -1,11 +1,16 @@
 // `pushpull replay`: a recorded review session run again headless (replay_session.hpp).
 #include "commands.hpp"
+#include "number_checks.hpp"
 #include "replay_compare.hpp"
 #include "replay_session.hpp"
 
+#include "pushpull/deform/method.hpp"
+
 #include <CLI/CLI.hpp>
 
+#include <cstddef>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -25,8 +30,22 @@ void add_replay_command(CLI::App& root) {
   cmd->add_option("session", o->recording, "Session recording (.jsonl)")->required();
   cmd->add_option("--out", o->out, "Output folder")->required();
   cmd->add_option("--model", o->model, "The model file, when it is no longer where the recording says");
-  cmd->add_option("--method", o->method, "Replay with another method (asan, arap-s, arap-sr, arap-m, arap-n, ...)");
-  auto* mu_option = cmd->add_option("--mu", *mu, "Replay with another ASAN stiffness ratio");
+  // A method name is checked when the command line is read, before any replay runs.
+  const CLI::Validator method_name(
+      [](std::string& name) -> std::string {
+        try {
+          (void)deform::parse_method(name);
+        } catch (const std::invalid_argument& e) {
+          return e.what();
+        }
+        return "";
+      },
+      "METHOD");
+  cmd->add_option("--method", o->method,
+                  "Replay with another method (asan, arap-s, arap-sr, arap-m, arap-n, ...)")
+      ->check(method_name);
+  auto* mu_option =
+      cmd->add_option("--mu", *mu, "Replay with another ASAN stiffness ratio")->check(finite_above(1.0));
   cmd->add_option("--eye-size", o->eye_size, "Per-eye image size W H of the simulated headset")
       ->expected(2)
       ->check(CLI::Range(16, 16384))
@@ -35,9 +54,11 @@ void add_replay_command(CLI::App& root) {
       ->expected(2)
       ->check(CLI::Range(16, 16384))
       ->capture_default_str();
-  cmd->add_option("--compare", *compare,
-                  "Replay once per method (e.g. asan,arap-sr) into OUT/METHOD and write OUT/compare.html side by side")
-      ->delimiter(',');
+  cmd->add_option(
+         "--compare", *compare,
+         "Replay once per method (e.g. asan,arap-sr) into OUT/METHOD and write OUT/compare.html side by side")
+      ->delimiter(',')
+      ->check(method_name);
   cmd->add_option("--capture-every", o->capture_every,
                   "Also write both eyes every N frames into OUT/eyes (default: at each release and at the end)")
       ->check(CLI::NonNegativeNumber);
@@ -46,6 +67,11 @@ void add_replay_command(CLI::App& root) {
     if (mu_option->count() > 0) o->mu = *mu;
     if (!compare->empty()) {
       if (!o->method.empty()) throw CommandError("give --method or --compare, not both");
+      for (std::size_t i = 0; i < compare->size(); ++i)
+        for (std::size_t j = 0; j < i; ++j)
+          if ((*compare)[i] == (*compare)[j])
+            throw CommandError("--compare names " + (*compare)[i] +
+                               " twice (each method replays into its own folder)");
       run_replay_comparison(*o, *compare);
       return;
     }

@@ -1,5 +1,6 @@
 // `pushpull review`: push and pull a model in an OpenXR headset (review_loop.hpp).
 #include "commands.hpp"
+#include "number_checks.hpp"
 #include "review_loop.hpp"
 #include "solver_cpus.hpp"
 
@@ -39,20 +40,26 @@ void add_review_command(CLI::App& root) {
   cmd->add_option("--method", o->method,
                   "Deformation method (asan, arap-s, arap-sr, arap-m, arap-n, sr-arap, arap-h, arap-sr-h)")
       ->capture_default_str();
-  cmd->add_option("--mu", o->mu, "ASAN stiffness ratio")->capture_default_str();
+  cmd->add_option("--mu", o->mu, "ASAN stiffness ratio")->capture_default_str()->check(finite_above(1.0));
   cmd->add_option(
          "--handle-radius", o->handle_radius_m,
          "Handle: the surface within this distance of the hit point, along the surface (metres at life size)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(finite_above(0.0));
   cmd->add_option("--roi-radius", o->roi_radius_m,
                   "Region grown this far from the handle along the surface (metres at life size)")
-      ->capture_default_str();
-  cmd->add_option("--up", o->up, "The model's up axis X Y Z (default 0 1 0, glTF)")->expected(3);
+      ->capture_default_str()
+      ->check(finite_above(0.0));
+  cmd->add_option("--up", o->up, "The model's up axis X Y Z (default 0 1 0, glTF)")
+      ->expected(3)
+      ->check(finite_number());
   cmd->add_option("--front", o->front,
                   "The model's front axis X Y Z, turned towards you (default 0 0 1, glTF)")
-      ->expected(3);
+      ->expected(3)
+      ->check(finite_number());
   cmd->add_option("--distance", o->distance_m, "Gap between you and the model's nearest point (metres)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(finite_above(0.0, false));
   cmd->add_option("--eye-size", o->eye_size, "Per-eye image size W H (default: the runtime's recommendation)")
       ->expected(2)
       ->check(CLI::Range(16, 16384));

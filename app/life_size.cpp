@@ -1,6 +1,7 @@
 #include "life_size.hpp"
 
 #include "commands.hpp"
+#include "number_checks.hpp"
 
 #include <CLI/CLI.hpp>
 
@@ -13,11 +14,11 @@ void add_life_size_options(CLI::App& command, LifeSizeOptions& options) {
       .add_option("--scale", options.scale,
                   "Life-size factor: metres per file unit (default 1: the file is in metres, as glTF is). "
                   "Points, radii and distances on the command line are life-size metres")
-      ->check(CLI::PositiveNumber);
+      ->check(finite_above(0.0));
   command
       .add_option("--length", options.length_m,
                   "Life size: scale so the longest side of the model is this many metres (overrides --scale)")
-      ->check(CLI::PositiveNumber);
+      ->check(finite_above(0.0));
 }
 
 LifeSize::LifeSize(const LifeSizeOptions& options, const Eigen::AlignedBox3d& bounds,
@@ -30,7 +31,10 @@ LifeSize::LifeSize(const LifeSizeOptions& options, const Eigen::AlignedBox3d& bo
                          std::to_string(*options.length_m) + " m");
     scale_ = *options.length_m / longest;
   }
-  if (!(scale_ > 0.0) || !std::isfinite(scale_)) throw CommandError("--scale must be a positive number");
+  if (!(scale_ > 0.0) || !std::isfinite(scale_))
+    throw CommandError(options.length_m ? "--length " + std::to_string(*options.length_m) + " gives " +
+                                              model + " no finite positive scale"
+                                        : std::string("--scale must be a finite number > 0"));
 }
 
 std::vector<double> LifeSize::to_file_units(const std::vector<double>& metres) const {

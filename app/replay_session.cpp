@@ -196,6 +196,17 @@ void run_replay(const ReplayOptions& o) {
   const bool desktop = h.value("desktop", false);
   const double d_tolerance = 1e-9;  // model units
   const bool compare_hashes = same_solver;
+  {  // A recording from a newer version may hold records this one does not know (they are left out).
+    const std::string format = header.value("format", "");
+    const std::string prefix = "pushpull-session-";
+    if (format.rfind(prefix, 0) != 0 || format.size() == prefix.size() ||
+        format.find_first_not_of("0123456789", prefix.size()) != std::string::npos ||
+        std::stoi(format.substr(prefix.size())) > kNewestRecordingFormat)
+      std::fprintf(stderr,
+                   "pushpull replay: warning: %s is in format '%s', this version knows pushpull-session-1 to "
+                   "-%d: records it does not know are left out, so the replay may differ\n",
+                   o.recording.c_str(), format.c_str(), kNewestRecordingFormat);
+  }
   if (desktop)
     std::printf("pushpull replay: a desktop-mode recording: its mouse gestures replay as the right hand's aim ray "
                 "and trigger\n");

@@ -122,7 +122,7 @@ void SessionRecorder::write_header(const ReviewCommandOptions& o, const ReviewSe
     for (int col = 0; col < 4; ++col) T.push_back(s.placement.T_stage_model(r, col));
   const deform::DeformOptions& solver = s.interaction.solver;
   json header{{"record", "header"},
-              {"format", "pushpull-session-4"},
+              {"format", "pushpull-session-" + std::to_string(kNewestRecordingFormat)},
               {"pushpull_version", PUSHPULL_VERSION},
               {"model", fs::absolute(o.model).lexically_normal().string()},
               // Also relative to the recording's folder: a recording kept beside its model (examples/)

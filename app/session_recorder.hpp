@@ -52,6 +52,9 @@
 
 namespace pushpull::app {
 
+// The format this version writes ("pushpull-session-4") and the newest `pushpull replay` knows.
+inline constexpr int kNewestRecordingFormat = 4;
+
 struct ReviewCommandOptions;
 struct ReviewSetup;
 

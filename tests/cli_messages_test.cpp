@@ -11,6 +11,8 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace fs = std::filesystem;
 namespace pd = pushpull::deform;
@@ -82,6 +84,32 @@ TEST_F(CliMessages, AHandlePointOffTheSurfaceNamesTheNearestOneInLifeSizeMetres)
             std::string::npos)
       << life_size.output;
   EXPECT_FALSE(fs::exists(path("o.off")));
+}
+
+// Options that would start a review doomed to fail (every pull refused) or write NaN into the recording are
+// refused when the command line is read, naming the option and what it must be; so are replay options that
+// would fail only after a whole replay.
+TEST_F(CliMessages, OptionValuesThatCannotWorkAreRefusedAtOnce) {
+  const std::string model = kHemisphere.string();
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"review " + model + " --mu 0", "--mu: 0 must be a finite number > 1"},
+      {"review " + model + " --mu nan", "--mu: nan must be a finite number > 1"},
+      {"review " + model + " --handle-radius 0", "--handle-radius: 0 must be a finite number > 0"},
+      {"review " + model + " --roi-radius nan", "--roi-radius: nan must be a finite number > 0"},
+      {"review " + model + " --distance -5", "--distance: -5 must be a finite number >= 0"},
+      {"review " + model + " --up nan 1 0", "--up: nan must be a finite number"},
+      {"review " + model + " --length 0", "--length: 0 must be a finite number > 0"},
+      {"deform " + model + " --length inf --displacement 0 0 1 --out x.off --metrics m.json",
+       "--length: inf must be a finite number > 0"},
+      {"replay nothing.jsonl --out o --compare asan,bogus", "--compare: unknown deformation method 'bogus'"},
+      {"replay nothing.jsonl --out o --compare asan,asan", "--compare names asan twice"},
+      {"replay nothing.jsonl --out o --mu nan", "--mu: nan must be a finite number > 1"},
+  };
+  for (const auto& [arguments, message] : cases) {
+    const CommandResult run = run_pushpull(arguments);
+    EXPECT_NE(run.status, 0) << arguments;
+    EXPECT_NE(run.output.find(message), std::string::npos) << arguments << "\n" << run.output;
+  }
 }
 
 TEST_F(CliMessages, StoppingRulesAndTheirDefaultsAreNamed) {
