@@ -87,13 +87,17 @@ void write_replay_report(const std::string& path, const ReportSession& s, const 
   h << "<tr><th>recorded on</th><td>" << escape(s.runtime) << "</td></tr>\n";
   h << "<tr><th>method, mu</th><td>" << escape(s.method) << ", " << number(s.mu) << "</td></tr>\n";
   h << "<tr><th>result</th><td>" << escape(s.summary) << "</td></tr>\n";
+  if (!s.history.empty()) h << "<tr><th>history</th><td>" << escape(s.history) << "</td></tr>\n";
+  if (!s.final_model.empty()) h << "<tr><th>final model</th><td>" << escape(s.final_model) << "</td></tr>\n";
   if (!s.cut.empty()) h << "<tr><th>recording cut</th><td class=\"bad\">" << escape(s.cut) << "</td></tr>\n";
   h << "</table>\n";
   if (commits.empty()) h << "<p>No push/pull was committed.</p>\n";
   for (const ReportCommit& c : commits) {
     const deform::DeformationMetrics& m = c.metrics;
     const double mm = c.scale * 1000.0;
-    h << "<h2>Push/pull " << c.index << "</h2>\n<table>\n";
+    h << "<h2>Push/pull " << c.index
+      << (c.undone ? " <span class=\"bad\">(undone: not in the final model)</span>" : "")
+      << "</h2>\n<table>\n";
     h << "<tr><th>method</th><td>" << escape(c.method) << "</td></tr>\n";
     h << "<tr><th>|d|</th><td>" << number(c.d_mm, "%.1f") << " mm</td></tr>\n";
     h << "<tr><th>iterations</th><td>" << c.iterations << (c.converged ? " (converged)" : " (not converged)")
@@ -101,10 +105,15 @@ void write_replay_report(const std::string& path, const ReportSession& s, const 
     h << "<tr><th>error estimate</th><td>"
       << (c.error_estimate ? number(*c.error_estimate) + " of |d|" : std::string("not given")) << "</td></tr>\n";
     h << "<tr><th>region</th><td>" << c.region_vertices << " vertices; " << c.attached_parts
-      << " attached part(s) followed the surface</td></tr>\n";
-    h << "<tr><th>Gaussian curvature sign reversals</th><td>" << m.sign_reversals << " of "
-      << m.curvature_vertices << " vertices (" << number(100.0 * m.sign_reversal_fraction) << " %); any sign change "
-      << m.sign_flips << "</td></tr>\n";
+      << " separate part(s) near it bound to the surface (each moves where the surface under it "
+         "moved)</td></tr>\n";
+    if (m.curvature_vertices == 0)  // a strip of a region: no vertex with its whole ring inside, no measure
+      h << "<tr><th>Gaussian curvature sign reversals</th><td>not measured (no interior vertex in the region)"
+        << "</td></tr>\n";
+    else
+      h << "<tr><th>Gaussian curvature sign reversals</th><td>" << m.sign_reversals << " of "
+        << m.curvature_vertices << " vertices (" << number(100.0 * m.sign_reversal_fraction)
+        << " %); any sign change " << m.sign_flips << "</td></tr>\n";
     h << "<tr><th>displacement along d</th><td>RMS " << number(m.along_d.rms * mm) << " mm, max "
       << number(m.along_d.max * mm) << " mm</td></tr>\n";
     h << "<tr><th>displacement across d</th><td>RMS " << number(m.orthogonal.rms * mm) << " mm, max "

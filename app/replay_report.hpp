@@ -1,7 +1,8 @@
 // The HTML report of a replay (report.html beside the pictures it shows): the session (model, SHA-256,
-// method, runtime), then per push/pull: before / after pictures, displacement and curvature-sign maps, method,
-// |d| in life-size mm, iterations, converged, error estimate, curvature sign reversals and flips, displacement
-// along and across d, the section curves before and after (inline SVG), the hash check.
+// method, runtime), then per push/pull: before / after pictures, displacement and curvature-sign maps,
+// method, |d| in life-size mm, iterations, converged, error estimate, curvature sign reversals and flips,
+// displacement along and across d, the section curves before and after (inline SVG), the hash check; the
+// session's undo and redo, and which push/pulls the final model holds (an undone one is marked so).
 // Thread-safety: pure function of its arguments plus one file write.
 #pragma once
 
@@ -31,6 +32,7 @@ struct ReportCommit {
   std::string check;                 // "match", "mismatch: ...", "not compared: ..."
   std::string model_file, metrics_file;
   std::vector<std::pair<std::string, std::string>> pictures;  // caption, file name (relative to the report)
+  bool undone = false;  // taken back by the session's undo: not in the final model
 };
 
 struct ReportSession {
@@ -39,6 +41,8 @@ struct ReportSession {
   std::string cut;  // "" when the recording is complete
   std::vector<std::string> eye_images;  // file names relative to the report
   std::string summary;
+  std::string history;      // the session's push/pulls, undos and redos in order ("" when none)
+  std::string final_model;  // which push/pulls the final model is made of
 };
 
 // Writes `path` atomically; throws CommandError naming it.

@@ -408,6 +408,21 @@ void run_replay(const ReplayOptions& o) {
   session.method = review.method;
   session.mu = review.mu;
   session.cut = rec.cut.value_or("");
+  {  // What the session's undo and redo left: the report marks the push/pulls the final model does not hold.
+    const CommitHistory history = commit_history(rec);
+    const bool stepped = std::any_of(history.steps.begin(), history.steps.end(),
+                                     [](const std::string& s) { return s == "undo" || s == "redo"; });
+    if (stepped) {
+      for (std::size_t k = 0; k < history.steps.size(); ++k)
+        session.history += (k ? ", " : "") + history.steps[k];
+      session.final_model =
+          history.kept.empty() ? "the model as loaded (every push/pull undone)" : "push/pull ";
+      for (std::size_t k = 0; k < history.kept.size(); ++k)
+        session.final_model += (k ? ", " : "") + std::to_string(history.kept[k]);
+      for (ReportCommit& c : report)
+        c.undone = std::find(history.kept.begin(), history.kept.end(), c.index) == history.kept.end();
+    }
+  }
   std::set<std::string> eyes;
   for (const auto& entry : fs::directory_iterator(out / "eyes"))
     if (entry.path().extension() == ".png") eyes.insert("eyes/" + entry.path().filename().string());
@@ -418,6 +433,9 @@ void run_replay(const ReplayOptions& o) {
   bar.finish();
   std::printf("pushpull replay: %s; time: loop %.1f s, metrics and pictures %.1f s, total %.1f s\n",
               session.summary.c_str(), loop_s, seconds_since(report_start), seconds_since(start));
+  if (!session.final_model.empty())
+    std::printf("pushpull replay: final model: %s (history: %s)\n", session.final_model.c_str(),
+                session.history.c_str());
   std::printf("pushpull replay: report %s\n", (out / "report.html").c_str());
   if (rec.cut) std::printf("pushpull replay: replayed up to the cut: %s\n", rec.cut->c_str());
   if (!first_mismatch.empty()) throw CommandError(o.recording + ": replay mismatch at " + first_mismatch);

@@ -7,7 +7,9 @@
 
 #include "pushpull/deform/method.hpp"
 
+#include <cstdint>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <stdexcept>
 
@@ -198,6 +200,38 @@ SessionRecording read_session_recording(const std::string& path) {
     r.cut = "no \"end\" record after line " + std::to_string(r.lines) +
             " (the session crashed or the file was truncated)";
   return r;
+}
+
+CommitHistory commit_history(const SessionRecording& recording) {
+  // The commit each request became (a failed one never entered the history).
+  std::map<std::uint64_t, std::size_t> commit_of_request;
+  for (const nlohmann::json& r : recording.records)
+    if (r.value("record", "") == "commit" && r.contains("request") && r["request"].is_number_unsigned() &&
+        r.contains("index") && r["index"].is_number_unsigned())
+      commit_of_request[r["request"].get<std::uint64_t>()] = r["index"].get<std::size_t>();
+  CommitHistory h;
+  std::vector<std::size_t> states{0};  // 0: the model as loaded
+  std::size_t position = 0;
+  for (const nlohmann::json& r : recording.records) {
+    const std::string kind = r.value("record", "");
+    if (kind == "release" && r.value("committed", false) && r.contains("request") &&
+        r["request"].is_number_unsigned()) {
+      const auto it = commit_of_request.find(r["request"].get<std::uint64_t>());
+      if (it == commit_of_request.end()) continue;  // failed, or not landed before the end
+      states.resize(position + 1);
+      states.push_back(it->second);
+      position = states.size() - 1;
+      h.steps.push_back("push/pull " + std::to_string(it->second));
+    } else if (kind == "undo") {
+      if (position > 0) --position;
+      h.steps.push_back("undo");
+    } else if (kind == "redo") {
+      if (position + 1 < states.size()) ++position;
+      h.steps.push_back("redo");
+    }
+  }
+  h.kept.assign(states.begin() + 1, states.begin() + std::ptrdiff_t(position) + 1);
+  return h;
 }
 
 }  // namespace pushpull::app

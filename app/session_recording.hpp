@@ -50,4 +50,14 @@ struct SessionRecording {
 // Reads and checks `path`; throws CommandError naming the file (and the line) and the problem.
 [[nodiscard]] SessionRecording read_session_recording(const std::string& path);
 
+// What the recorded session's undo and redo made of its commits: the commits (their "index", 1-based) the
+// final model is made of, in order, and the session's history as text ("push/pull 1, push/pull 2, undo,
+// redo"). Replays the recorded order of commits issued (committed releases whose commit landed), undos and
+// redos on a history as deform::Service keeps it (a commit after an undo drops the undone states).
+struct CommitHistory {
+  std::vector<std::size_t> kept;
+  std::vector<std::string> steps;
+};
+[[nodiscard]] CommitHistory commit_history(const SessionRecording& recording);
+
 }  // namespace pushpull::app

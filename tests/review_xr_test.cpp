@@ -723,6 +723,14 @@ TEST(ReviewXr, UndoRestoresTheModelAndRedoReappliesIt) {
   EXPECT_EQ(recording_records(dir / "session.jsonl", "undo").size(), 2u);
   EXPECT_EQ(largest_move_from_hood(dir / "review.off"), 0.0);
   expect_replays_with_commits(dir / "session.jsonl");
+  // The report says the push/pull was taken back: the final model is the model as loaded.
+  std::ifstream report(dir / "replay" / "report.html");
+  const std::string html((std::istreambuf_iterator<char>(report)), std::istreambuf_iterator<char>());
+  EXPECT_NE(html.find("Push/pull 1 <span class=\"bad\">(undone: not in the final model)</span>"),
+            std::string::npos);
+  EXPECT_NE(html.find("<th>history</th><td>push/pull 1, undo, redo, undo</td>"), std::string::npos);
+  EXPECT_NE(html.find("<th>final model</th><td>the model as loaded (every push/pull undone)</td>"),
+            std::string::npos);
 }
 
 // hood.off's bonnet (scripts/make-example-hood.py) with nx by ny vertices, written to `path` as OFF.
