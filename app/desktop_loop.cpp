@@ -286,6 +286,11 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
         // any camera distance: a line about 3.5% of the view's height.
         std::vector<renderer::Draw> draws = scene.draws();
         {
+          hud.set_text(window_hud_lines(
+              interaction, *snapshot, life, colour_name(scene.colour()), "",
+              {"left drag: push/pull (Shift: along the normal)  right drag: turn  wheel: zoom",
+               "[ ] handle  - = region  U undo  R redo  C colour  M method  F first view  Esc end"},
+              history_text()));
           const auto& hover = interaction.hovers()[1];
           const Eigen::Vector3d camera = to_eigen(glm::vec3(glm::inverse(view.view)[3]));
           std::optional<Eigen::Vector3d> anchor;
@@ -311,14 +316,26 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
                 glm::vec4(float(anchor->x()), float(anchor->y()), float(anchor->z()), 1.0f);
             const double side = clip.w > 0.0f && clip.x / clip.w > 0.4f ? -1.0 : 1.0;
             const double half_width = 0.5 * double(cursor_label.width()) * line / 0.02;
-            cursor_label.place(*anchor + side * (half_width + line) * right + line * up, camera, line / 0.02);
+            Eigen::Vector3d at = *anchor + side * (half_width + line) * right + line * up;
+            // Inside the window and below the HUD: moved back in by what sticks out (clip y points down).
+            if (clip.w > 0.0f) {
+              const double x_per_m = 1.0 / (distance * tan_half_fov * double(aspect));  // NDC per metre
+              const double y_per_m = 1.0 / (distance * tan_half_fov);
+              const double cx = double(clip.x / clip.w) + (at - *anchor).dot(right) * x_per_m;
+              const double bottom = double(clip.y / clip.w) - (at - *anchor).dot(up) * y_per_m;
+              const double top = bottom - double(cursor_label.height()) * line / 0.02 * y_per_m;
+              const double half = half_width * x_per_m;
+              const double hud_bottom = -1.0 + 2.0 * (double(hud.height()) / 0.02 + 1.0) * 0.03;
+              double dx = 0.0, dy = 0.0;
+              if (cx + half > 0.98) dx = 0.98 - (cx + half);
+              if (cx + dx - half < -0.98) dx = -0.98 - (cx - half);
+              if (top < hud_bottom) dy = hud_bottom - top;
+              if (bottom + dy > 0.98) dy = 0.98 - bottom;
+              at += dx / x_per_m * right - dy / y_per_m * up;
+            }
+            cursor_label.place(at, camera, line / 0.02);
             if (const auto d = cursor_label.draw()) draws.push_back(*d);
           }
-          hud.set_text(window_hud_lines(
-              interaction, *snapshot, life, colour_name(scene.colour()), "",
-              {"left drag: push/pull (Shift: along the normal)  right drag: turn  wheel: zoom",
-               "[ ] handle  - = region  U undo  R redo  C colour  M method  F first view  Esc end"},
-              history_text()));
           hud.place_top_left(view, 0.03);
           if (const auto d = hud.draw()) draws.push_back(*d);
         }

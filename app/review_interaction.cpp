@@ -41,13 +41,20 @@ std::vector<std::string> readout_lines(const ReviewInteraction& interaction, con
                 solver_state(s));
   // A pull much longer than the handle is wide makes a spike, not a bulge: said while there is time to let go
   // and grow the handle.
-  const double ratio = interaction.current_d().norm() / std::max(interaction.handle_radius(), 1e-12);
+  std::vector<std::string> lines{a, b};
+  const double pull = interaction.current_d().norm();
+  const double ratio = pull / std::max(interaction.handle_radius(), 1e-12);
+  char c[96];
   if (ratio > kSteepPull) {
-    char c[96];
     std::snprintf(c, sizeof c, "steep: %.0fx the handle radius", ratio);
-    return {a, b, c};
+    lines.emplace_back(c);
   }
-  return {a, b};
+  // The surface moving much further than the hand (a narrow strip held at one end swings like a flap).
+  if (s.kind == deform::Snapshot::Kind::Preview && pull > 0.0 && s.max_displacement > kOvershoot * pull) {
+    std::snprintf(c, sizeof c, "the surface moves %.1fx the pull", s.max_displacement / pull);
+    lines.emplace_back(c);
+  }
+  return lines;
 }
 
 const char* solver_state(const deform::Snapshot& s) {

@@ -64,6 +64,9 @@ class ReviewInteraction;
 // when |d| is over kSteepPull handle radii ("steep: 7x the handle radius": a spike rather than a bulge).
 // Lengths in life-size mm.
 inline constexpr double kSteepPull = 4.0;
+// ... and a line when the surface moves over kOvershoot times |d| ("the surface moves 2.0x the pull": a
+// narrow region swinging like a flap).
+inline constexpr double kOvershoot = 1.5;
 [[nodiscard]] std::vector<std::string> readout_lines(const ReviewInteraction& interaction,
                                                      const deform::Snapshot& s, const LifeSize& life,
                                                      bool press_held = false, const std::string& notice = "");
