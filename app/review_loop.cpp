@@ -538,8 +538,12 @@ void run_review(const ReviewCommandOptions& o) {
           for (int key : mirror->poll()) {
             if (key == 'C') change_colour(next_colour(scene.colour()));
             if (key == 'V') mirror->next_mode();
-            if (key == 'M' && !interaction.dragging() && !o.fixed_method)
-              change_method(next_method(interaction.method()));
+            if (key == 'M' && !o.fixed_method) {
+              if (interaction.dragging())
+                notice.show("the method changes between drags", t);
+              else
+                change_method(next_method(interaction.method()));
+            }
             if (key == 256 /* GLFW_KEY_ESCAPE */) xr.request_exit();
           }
           if (mirror->should_close()) xr.request_exit();
@@ -614,13 +618,12 @@ void run_review(const ReviewCommandOptions& o) {
           rendered = true;
         }
         if (mirror) {
-          const std::optional<renderer::RenderPass> pass =
-              mirror->pass(last_eyes, draws,
-                           window_hud_lines(interaction, *snapshot, life, colour_name(scene.colour()),
-                                            mirror_mode_name(mirror->mode()),
-                                            {"V view  C colour  M method  Esc end"}, history_text()),
-                           scene.settings(/*legend=*/true), rendered ? &eye_targets : nullptr,
-                           xr.eye(0).transfer_source());
+          const std::optional<renderer::RenderPass> pass = mirror->pass(
+              last_eyes, draws,
+              window_hud_lines(interaction, *snapshot, life, colour_name(scene.colour()), mirror->mode_text(),
+                               {"V view  C colour  M method  Esc end"}, history_text()),
+              scene.settings(/*legend=*/true), rendered ? &eye_targets : nullptr,
+              xr.eye(0).transfer_source());
           if (pass) {
             scene.set_legend_window(pass->targets->extent.width, pass->targets->extent.height);
             passes.push_back(*pass);
@@ -631,8 +634,8 @@ void run_review(const ReviewCommandOptions& o) {
         if (mirror) {
           mirror->present();
           mirror->set_title(window_title("pushpull review", interaction.method(), interaction.dragging(),
-                                         *snapshot, life, colour_name(scene.colour()),
-                                         mirror_mode_name(mirror->mode()), history_text()));
+                                         *snapshot, life, colour_name(scene.colour()), mirror->mode_text(),
+                                         history_text()));
         }
         const double ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
         if (++stats.frames > FrameStats::kWarmUpFrames) {

@@ -45,12 +45,18 @@ std::optional<renderer::RenderPass> SupervisorMirror::pass(
   hud_.place_top_left(camera_, 0.03);
   if (const auto d = hud_.draw()) draws_.push_back(*d);
   renderer::RenderPass pass{std::span(&camera_, 1), draws_, settings, &target_->targets, target_->sync};
+  if (view_.mode() == MirrorMode::HeadsetEye && eye_targets != nullptr) last_copied_ = copy;
   if (copy) {
     pass.blit_from = &eye_targets->views[0];
     pass.blit_from_extent = eye_targets->extent;
     ++copies_;
   }
   return pass;
+}
+
+std::string SupervisorMirror::mode_text() const {
+  const std::string name = mirror_mode_name(view_.mode());
+  return view_.mode() == MirrorMode::HeadsetEye && !last_copied_ ? name + " (drawn)" : name;
 }
 
 void SupervisorMirror::present() {

@@ -37,6 +37,9 @@ class SupervisorMirror {
   [[nodiscard]] bool should_close() const { return window_.should_close(); }
   void set_orbit_bounds(const renderer::Bounds& bounds) { view_.set_orbit_bounds(bounds); }
   [[nodiscard]] MirrorMode mode() const { return view_.mode(); }
+  // The mode's name for the HUD and the title; "headset eye (drawn)" when the last frame could not copy the
+  // eye (a runtime that refuses copies) and drew the eye's view itself.
+  [[nodiscard]] std::string mode_text() const;
   void next_mode() { view_.set_mode(next_mirror_mode(view_.mode())); }
 
   // This frame's pass into the window, or nullopt (no eye pose seen yet, or no image: minimised, resized).
@@ -69,6 +72,7 @@ class SupervisorMirror {
   std::vector<renderer::Draw> draws_;  // what the pass draws: the scene's and the HUD (a copied eye: the HUD)
   std::chrono::steady_clock::time_point last_pass_;
   std::size_t frames_ = 0, copies_ = 0;
+  bool last_copied_ = true;  // the last pass in headset-eye mode copied the eye
 };
 
 }  // namespace pushpull::app
