@@ -69,6 +69,10 @@ void apply_due(const std::vector<std::pair<double, std::string>>& changes, std::
 }  // namespace
 
 void run_review(const ReviewCommandOptions& o) {
+  // The desktop window needs a display: said before the model loads (a large model takes seconds).
+  if (o.desktop && std::getenv("DISPLAY") == nullptr && std::getenv("WAYLAND_DISPLAY") == nullptr)
+    throw CommandError(
+        "desktop mode: no display (DISPLAY and WAYLAND_DISPLAY are unset; use xvfb-run without one)");
   const ReviewSetup setup = prepare_review(o);
   const LifeSize& life = setup.life;
   const assets::Model& model = setup.model;
