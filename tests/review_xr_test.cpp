@@ -306,14 +306,20 @@ TEST(ReviewXr, SessionLostMidDragLeavesTheModelAsBeforeTheDrag) {
 TEST(ReviewXr, LostSessionComesBackAndTheReviewGoesOnAndReplays) {
   const fs::path dir = test_dir();
   const std::string aim_back = R"("pose":{"p":[0.0123,0.5,-0.65],"q":[-0.70710678,0,0,0.70710678]})";
-  const std::string script = script_start() + R"({"t":0.8,"event":"loss"}
+  const std::string script = script_start() + R"({"t":0.5,"event":"capture"}
+{"t":0.8,"event":"loss"}
 {"t":1.2,"path":"/user/hand/right/input/trigger/value","value":0.0}
 {"t":1.3,"path":"/user/hand/right/input/aim/pose",)" +
                              aim_back + R"(}
+{"t":1.3,"event":"capture"}
 )" + push_pull_100mm_at(1.5) +
                              R"({"t":3.0,"event":"exit"}
 )";
   const ReviewRun run = run_review(dir, script, "--record " + (dir / "session.jsonl").string());
+  // Captures are numbered by the script's frames across the new session (they restarted from 0 and could
+  // overwrite earlier ones): t = 0.5 s and 1.3 s at 30 Hz.
+  for (const char* name : {"frame_000015_left.png", "frame_000039_left.png"})
+    EXPECT_TRUE(fs::exists(dir / "capture" / name)) << name;
   ASSERT_EQ(run.result.status, 0) << run.result.output;
   EXPECT_NE(run.result.output.find("the headset is back"), std::string::npos) << run.result.output;
   EXPECT_EQ(run.of("lost").size(), 1u);

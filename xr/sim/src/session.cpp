@@ -164,6 +164,7 @@ XrResult XRAPI_CALL begin_session(XrSession handle, const XrSessionBeginInfo* in
   s->running = true;
   s->view_configuration = vc;
   s->frames_waited = s->resume_frames;  // 0, or where a lost session of this instance stopped
+  s->frames_ended = s->resume_frames;   // so captures go on numbering the script's frames, never again from 0
   s->resume_frames = 0;
   s->last_display_time = 0;
   s->next_real_vsync = 0;
