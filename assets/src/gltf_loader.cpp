@@ -14,6 +14,7 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <cctype>
 #include <cstring>
 #include <fstream>
 #include <map>
@@ -390,6 +391,13 @@ void split_lines(const std::string& text, const std::string& prefix, std::vector
 void load_gltf(std::span<const std::uint8_t> bytes, const std::string& name, const fs::path& base_dir,
                const Limits& limits, Model& model) {
   const bool binary = looks_like_glb(bytes);
+  // A .glb that is not one (empty, cut, another format renamed) is named so, not parsed as glTF's JSON.
+  std::string extension = fs::path(name).extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (!binary && extension == ".glb")
+    throw AssetError(name + ": not a GLB file (" + std::to_string(bytes.size()) +
+                     " bytes; a GLB begins with the 12-byte header 'glTF', version 2, length)");
   std::string_view json_text;
   if (binary) {
     json_text = parse_glb(bytes, name).json;

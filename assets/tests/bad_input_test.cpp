@@ -143,6 +143,24 @@ TEST(AssetsBadInput, MalformedJsonIsRefused) {
   EXPECT_THROW((void)load_model(dir / "model.gltf"), AssetError);
 }
 
+// A .glb that is not one (empty, a few bytes, glTF JSON renamed) is named as such, not as "malformed JSON".
+TEST(AssetsBadInput, AGlbThatIsNotOneIsNamedSo) {
+  ScratchDir dir;
+  for (const std::string& text :
+       {std::string(), std::string("x"), std::string(R"({"asset":{"version":"2.0"}})")}) {
+    testing::write_text(dir / "model.GLB", text);
+    try {
+      (void)load_model(dir / "model.GLB");
+      ADD_FAILURE() << "loaded";
+    } catch (const AssetError& e) {
+      EXPECT_NE(
+          std::string(e.what()).find("model.GLB: not a GLB file (" + std::to_string(text.size()) + " bytes"),
+          std::string::npos)
+          << e.what();
+    }
+  }
+}
+
 TEST(AssetsBadInput, TruncatedBufferIsRefused) {
   ScratchDir dir;
   json document = triangle_gltf();
