@@ -11,7 +11,8 @@
 //
 // Times are seconds from the start of the session's frame clock. Poses are T_stage_device (STAGE
 // space, meters, unit quaternions x y z w) and are interpolated between samples (slerp), held before
-// the first and after the last sample. Values (bool as 0/1, float, vector2 [x, y]) hold until changed.
+// the first and after the last sample: a pose moves toward its path's next sample from the moment of the one
+// before, so holding still until a later move takes a second sample with the same pose just before it. Values (bool as 0/1, float, vector2 [x, y]) hold until changed.
 // Lines that are empty or start with '#' are skipped; other lines may carry extra keys (recordings do).
 // An InputScript is immutable after parsing; const member functions are thread-safe.
 #pragma once
