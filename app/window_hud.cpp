@@ -24,7 +24,12 @@ std::vector<std::string> window_hud_lines(const ReviewInteraction& interaction,
   } else if (!snapshot.final) {
     std::snprintf(state, sizeof state, "%s  solving  %d it", method.c_str(), snapshot.iteration);
   } else {
-    std::snprintf(state, sizeof state, "%s  ready  %s", method.c_str(), history.c_str());
+    // Just after a commit: what its own solve did (it starts cold, so it differs from the last preview's).
+    if (snapshot.kind == deform::Snapshot::Kind::Committed)
+      std::snprintf(state, sizeof state, "%s  ready  %s  (commit: %d it, %s)", method.c_str(),
+                    history.c_str(), snapshot.iteration, snapshot.converged ? "converged" : "not converged");
+    else
+      std::snprintf(state, sizeof state, "%s  ready  %s", method.c_str(), history.c_str());
   }
   std::vector<std::string> lines{state,
                                  "colour: " + colour + (view_mode.empty() ? "" : "   view: " + view_mode)};

@@ -36,7 +36,8 @@ class TimedNotice {
 [[nodiscard]] std::string history_line(const std::string& notice, const deform::Service& service);
 
 // Line 1: "asan  |d| 70.7 mm  30 it  converged" while dragging, "asan  solving  12 it" while a commit, undo
-// or redo is solved, else "asan  ready  <history>" (history: the edits, edit_counts_text(), or a notice);
+// or redo is solved, else "asan  ready  <history>" (history: the edits, edit_counts_text(), or a notice),
+// followed just after a commit by its own solve's "(commit: 16 it, converged)";
 // line 2: "colour: displacement" and, when view_mode is not empty, "   view: <view_mode>"; then `keys`, one
 // line each.
 [[nodiscard]] std::vector<std::string> window_hud_lines(const ReviewInteraction& interaction,
