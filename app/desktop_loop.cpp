@@ -129,7 +129,12 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
     auto now = [&] {
       return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     };
-    auto history_text = [&] { return history_line(notice.text(now()), service); };
+    auto history_text = [&] { return edit_counts_text(edit_counts(service)); };
+    // A key that does nothing now (mid-drag) says so: stdout, the HUD and the readout.
+    auto say = [&](const char* text) {
+      notice.show(text, now());
+      if (!o.quiet) std::printf("pushpull review: %s\n", text);
+    };
     auto ask_history_step = [&](HistoryStep step) {
       (void)take_history_step(service, step, t, now(), log, recorder, notice, !o.quiet);
     };
@@ -177,16 +182,11 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
           if (key == 61 /* GLFW_KEY_EQUAL */) region_factor = kSizeStep;
           if (handle_factor != 1.0 || region_factor != 1.0) {
             if (interaction.dragging()) {
-              notice.show("sizes change between drags", now());
+              say("sizes change between drags");
             } else {
               interaction.scale_sizes(handle_factor, region_factor);
               recorder.write_sizes(t, interaction.handle_radius(), interaction.roi_radius());
-              log.write({{"event", "sizes"},
-                         {"handle_radius", interaction.handle_radius()},
-                         {"roi_radius", interaction.roi_radius()}});
-              if (!o.quiet)
-                std::printf("pushpull review: handle radius %.0f mm, region %.0f mm\n",
-                            life.to_mm(interaction.handle_radius()), life.to_mm(interaction.roi_radius()));
+              report_sizes(interaction, log, life, !o.quiet);
             }
           }
           quit = quit || key == 256 /* GLFW_KEY_ESCAPE */;
@@ -256,6 +256,7 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
         hands_in[1].trigger = p.left && held_frames == 0 ? 1.0f : 0.0f;
         hands_in[1].undo_pressed = undo && !interaction.dragging();
         hands_in[1].redo_pressed = redo && !interaction.dragging();
+        if ((undo || redo) && interaction.dragging()) say("undo and redo act between drags");
         recorder.write_frame_input(t, camera_pose(view), hands_in, kDesktopProfile);
         for (const InteractionEvent& e :
              interaction.update({hand_sample(hands_in[0]), hand_sample(hands_in[1])}))
@@ -272,6 +273,7 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
           recorder.write_colour(t, scene.colour());
         }
         scene.set_highlight(interaction.hover_handle(1));
+        if (method && dragging && !o.fixed_method) say("the method changes between drags");
         if (method && !dragging && !o.fixed_method) {
           interaction.set_method(next_method(interaction.method()));
           recorder.write_method(t, interaction.method());
@@ -290,7 +292,7 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
               interaction, *snapshot, life, colour_name(scene.colour()), "",
               {"left drag: push/pull (Shift: along the normal)  right drag: turn  wheel: zoom",
                "[ ] handle  - = region  U undo  R redo  C colour  M method  F first view  Esc end"},
-              history_text()));
+              history_text(), notice.text(now())));
           const auto& hover = interaction.hovers()[1];
           const Eigen::Vector3d camera = to_eigen(glm::vec3(glm::inverse(view.view)[3]));
           std::optional<Eigen::Vector3d> anchor;
@@ -319,8 +321,9 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
             Eigen::Vector3d at = *anchor + side * (half_width + line) * right + line * up;
             // Inside the window and below the HUD: moved back in by what sticks out (clip y points down).
             if (clip.w > 0.0f) {
-              const double x_per_m = 1.0 / (distance * tan_half_fov * double(aspect));  // NDC per metre
-              const double y_per_m = 1.0 / (distance * tan_half_fov);
+              const double depth = double(clip.w);  // the view depth of the anchor (perspective: clip w)
+              const double x_per_m = 1.0 / (depth * tan_half_fov * double(aspect));  // NDC per metre
+              const double y_per_m = 1.0 / (depth * tan_half_fov);
               const double cx = double(clip.x / clip.w) + (at - *anchor).dot(right) * x_per_m;
               const double bottom = double(clip.y / clip.w) - (at - *anchor).dot(up) * y_per_m;
               const double top = bottom - double(cursor_label.height()) * line / 0.02 * y_per_m;
@@ -348,7 +351,7 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
         }
         const std::string text =
             window_title("pushpull review (desktop)", interaction.method(), dragging, *snapshot, life,
-                         colour_name(scene.colour()), "", history_text());
+                         colour_name(scene.colour()), "", history_text(), notice.text(now()));
         if (title != text) window.set_title(title = text);
       } catch (const std::exception& e) {
         failure = e.what();

@@ -6,8 +6,19 @@
 #include <CLI/CLI.hpp>
 
 #include <cmath>
+#include <cstdio>
+#include <string>
 
 namespace pushpull::app {
+namespace {
+
+std::string format_number(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", v);
+  return text;
+}
+
+}  // namespace
 
 void add_life_size_options(CLI::App& command, LifeSizeOptions& options) {
   command
@@ -28,12 +39,12 @@ LifeSize::LifeSize(const LifeSizeOptions& options, const Eigen::AlignedBox3d& bo
     const double longest = bounds.isEmpty() ? 0.0 : bounds.sizes().maxCoeff();
     if (!(longest > 0.0) || !std::isfinite(longest))
       throw CommandError(model + ": the model has zero size; cannot scale it to --length " +
-                         std::to_string(*options.length_m) + " m");
+                         format_number(*options.length_m) + " m");
     scale_ = *options.length_m / longest;
   }
   if (!(scale_ > 0.0) || !std::isfinite(scale_))
-    throw CommandError(options.length_m ? "--length " + std::to_string(*options.length_m) + " gives " +
-                                              model + " no finite positive scale"
+    throw CommandError(options.length_m ? "--length " + format_number(*options.length_m) + " gives " + model +
+                                              " no finite positive scale"
                                         : std::string("--scale must be a finite number > 0"));
 }
 

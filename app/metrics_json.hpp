@@ -48,7 +48,7 @@ struct DeformRunRecord {
   Eigen::Vector3d d = Eigen::Vector3d::Zero();  // push/pull displacement, model units
   long vertices = 0;                            // #V of the model
   long handle_count = 0, fixed_count = 0, free_count = 0;
-  double total_ms = 0.0;  // wall time of the command: load to write
+  double total_ms = 0.0;  // deform: wall time of the command, load to write; replay: the commit's solve
   deform::DeformResult result;
   deform::DeformationMetrics metrics;
   double dead_band_fraction = 0.0;  // the sign rule's flat band (--dead-band), dimensionless

@@ -1,7 +1,9 @@
 #include "number_checks.hpp"
 
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 
 namespace pushpull::app {
@@ -12,14 +14,14 @@ namespace {
 CLI::Validator finite_check(std::string wanted, bool bounded, double bound, bool strict) {
   return CLI::Validator(
       [bounded, bound, strict, wanted](std::string& input) -> std::string {
-        double value = 0.0;
-        std::size_t used = 0;
-        try {
-          value = std::stod(input, &used);
-        } catch (const std::exception&) {
-          return "'" + input + "' is not a number (expected " + wanted + ")";
-        }
-        if (used != input.size()) return "'" + input + "' is not a number (expected " + wanted + ")";
+        // strtod as CLI11 reads numbers: underflow is a number (0 or subnormal), overflow is too large.
+        const char* begin = input.c_str();
+        char* end = nullptr;
+        errno = 0;
+        const double value = std::strtod(begin, &end);
+        if (end == begin || *end != '\0') return "'" + input + "' is not a number (expected " + wanted + ")";
+        if (errno == ERANGE && std::abs(value) > 1.0)
+          return input + " is too large (expected " + wanted + ")";
         if (!std::isfinite(value) || (bounded && (strict ? !(value > bound) : !(value >= bound))))
           return input + " must be " + wanted;
         return "";

@@ -85,10 +85,13 @@ void run_replay_comparison(const ReplayOptions& o, const std::vector<std::string
                               std::sqrt(double(d[0]) * double(d[0]) + double(d[1]) * double(d[1]) +
                                         double(d[2]) * double(d[2]));
           row << "|d| " << number(d_mm, "%.1f") << " mm, " << j.value("iterations", 0) << " it"
-              << (j.value("converged", false) ? "" : " (not converged)") << "<br>sign reversals "
-              << j["curvature"].value("sign_reversals", 0) << " ("
-              << number(100.0 * j.value("gaussian_sign_reversal_fraction", 0.0)) << " %)<br>along d RMS "
-              << number(1000.0 * scale * j.value("along_d_norm", 0.0)) << " mm, across "
+              << (j.value("converged", false) ? "" : " (not converged)") << "<br>sign reversals ";
+          if (j["curvature"].value("evaluated_vertices", 0) == 0)
+            row << "not measured (no interior vertex)";
+          else
+            row << j["curvature"].value("sign_reversals", 0) << " ("
+                << number(100.0 * j.value("gaussian_sign_reversal_fraction", 0.0)) << " %)";
+          row << "<br>along d RMS " << number(1000.0 * scale * j.value("along_d_norm", 0.0)) << " mm, across "
               << number(1000.0 * scale * j.value("orthogonal_norm", 0.0)) << " mm";
         }
         for (const char* kind : {"displacement", "curvature"}) {

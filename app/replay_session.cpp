@@ -196,17 +196,13 @@ void run_replay(const ReplayOptions& o) {
   const bool desktop = h.value("desktop", false);
   const double d_tolerance = 1e-9;  // model units
   const bool compare_hashes = same_solver;
-  {  // A recording from a newer version may hold records this one does not know (they are left out).
-    const std::string format = header.value("format", "");
-    const std::string prefix = "pushpull-session-";
-    if (format.rfind(prefix, 0) != 0 || format.size() == prefix.size() ||
-        format.find_first_not_of("0123456789", prefix.size()) != std::string::npos ||
-        std::stoi(format.substr(prefix.size())) > kNewestRecordingFormat)
-      std::fprintf(stderr,
-                   "pushpull replay: warning: %s is in format '%s', this version knows pushpull-session-1 to "
-                   "-%d: records it does not know are left out, so the replay may differ\n",
-                   o.recording.c_str(), format.c_str(), kNewestRecordingFormat);
-  }
+  // A recording from a newer version may hold records this one does not know (they are left out).
+  if (rec.format_version == 0 || rec.format_version > kNewestRecordingFormat)
+    std::fprintf(
+        stderr,
+        "pushpull replay: warning: %s is in format '%s', this version knows pushpull-session-1 to -%d: "
+        "records it does not know are left out, so the replay may differ\n",
+        o.recording.c_str(), header.value("format", std::string("?")).c_str(), kNewestRecordingFormat);
   if (desktop)
     std::printf("pushpull replay: a desktop-mode recording: its mouse gestures replay as the right hand's aim ray "
                 "and trigger\n");
@@ -312,6 +308,7 @@ void run_replay(const ReplayOptions& o) {
     // error tolerance was met.
     record.result.stop_reason = s.converged ? deform::StopReason::ErrorTolerance : deform::StopReason::MaxIterations;
     record.result.error_estimate = s.error_estimate;
+    // The commit's own costs: setup and factorization read 0 when the drag's previews had built them.
     record.result.timing.precompute = s.setup_ms;
     record.result.timing.factorize = s.factorize_ms;
     record.result.timing.solve = s.solve_ms;
@@ -413,7 +410,16 @@ void run_replay(const ReplayOptions& o) {
   session.mu = review.mu;
   session.cut = rec.cut.value_or("");
   {  // What the session's undo and redo left: the report marks the push/pulls the final model does not hold.
-    const CommitHistory history = commit_history(rec);
+    // From the replay's own recording: its commits are the report's (with --method one may fail where the
+    // recorded one did not, and a recording cut before a commit landed has the replay make it).
+    CommitHistory history;
+    try {
+      history = commit_history(read_session_recording(review.record));
+    } catch (const std::exception& e) {
+      std::fprintf(stderr,
+                   "pushpull replay: warning: %s: %s; the report does not say which push/pulls were undone\n",
+                   review.record.c_str(), e.what());
+    }
     const bool stepped = std::any_of(history.steps.begin(), history.steps.end(),
                                      [](const std::string& s) { return s == "undo" || s == "redo"; });
     if (stepped) {

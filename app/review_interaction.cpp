@@ -42,6 +42,7 @@ std::vector<std::string> readout_lines(const ReviewInteraction& interaction, con
   // A pull much longer than the handle is wide makes a spike, not a bulge: said while there is time to let go
   // and grow the handle.
   std::vector<std::string> lines{a, b};
+  if (!notice.empty()) lines.push_back(notice);  // e.g. a key pressed mid-drag
   const double pull = interaction.current_d().norm();
   const double ratio = pull / std::max(interaction.handle_radius(), 1e-12);
   char c[96];
@@ -50,8 +51,10 @@ std::vector<std::string> readout_lines(const ReviewInteraction& interaction, con
     lines.emplace_back(c);
   }
   // The surface moving much further than the hand (a narrow strip held at one end swings like a flap).
-  if (s.kind == deform::Snapshot::Kind::Preview && pull > 0.0 && s.max_displacement > kOvershoot * pull) {
-    std::snprintf(c, sizeof c, "the surface moves %.1fx the pull", s.max_displacement / pull);
+  const double solved_pull = s.d.norm();  // the snapshot's own request (the hand may be ahead of it)
+  if (s.kind == deform::Snapshot::Kind::Preview && solved_pull > 0.0 &&
+      s.max_displacement > kOvershoot * solved_pull) {
+    std::snprintf(c, sizeof c, "the surface moves %.1fx the pull", s.max_displacement / solved_pull);
     lines.emplace_back(c);
   }
   return lines;
@@ -164,10 +167,8 @@ std::vector<InteractionEvent> ReviewInteraction::update(const std::array<HandSam
 }
 
 void ReviewInteraction::scale_sizes(double handle_factor, double region_factor) {
-  if (dragging() || !(handle_factor > 0.0) || !(region_factor > 0.0)) return;
-  const double lo = 1e-3 / options_.scale, hi = 10.0 / options_.scale;
-  options_.handle_radius = std::clamp(options_.handle_radius * handle_factor, lo, hi);
-  options_.roi_radius = std::clamp(options_.roi_radius * region_factor, lo, hi);
+  if (!(handle_factor > 0.0) || !(region_factor > 0.0)) return;
+  set_sizes(options_.handle_radius * handle_factor, options_.roi_radius * region_factor);
 }
 
 void ReviewInteraction::set_sizes(double handle_radius, double roi_radius) {

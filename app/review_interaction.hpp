@@ -60,7 +60,8 @@ class ReviewInteraction;
 // The readout shown by the hand (headset) or the cursor (desktop): while dragging "|d| 70.7 mm" and the
 // method, iterations and solver state ("asan  10 it  converged", "solving", or the error); while aiming the
 // method and the handle and region sizes, or with press_held (a press held back until the last commit lands)
-// that it waits; a notice ("nothing to undo") follows the method while aiming; a third line while dragging
+// that it waits; a notice ("nothing to undo") follows the method while aiming, and is a line of its own while
+// dragging; a further line while dragging
 // when |d| is over kSteepPull handle radii ("steep: 7x the handle radius": a spike rather than a bulge).
 // Lengths in life-size mm.
 inline constexpr double kSteepPull = 4.0;

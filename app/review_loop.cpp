@@ -253,7 +253,7 @@ void run_review(const ReviewCommandOptions& o) {
       if (take_history_step(service, step, t, t, log, recorder, notice, !o.quiet, recorded))
         commands_pending = true;
     };
-    auto history_text = [&] { return history_line(notice.text(t), service); };
+    auto history_text = [&] { return edit_counts_text(edit_counts(service)); };
     std::optional<xr::Input> input;  // per session, like the eyes
     input.emplace(xr.instance(), xr.handle(), xr.stage_space());
     FrameStats stats;
@@ -543,9 +543,10 @@ void run_review(const ReviewCommandOptions& o) {
             if (key == 'C') change_colour(next_colour(scene.colour()));
             if (key == 'V') mirror->next_mode();
             if (key == 'M' && !o.fixed_method) {
-              if (interaction.dragging())
+              if (interaction.dragging()) {
                 notice.show("the method changes between drags", t);
-              else
+                if (!o.quiet) std::printf("pushpull review: the method changes between drags\n");
+              } else
                 change_method(next_method(interaction.method()));
             }
             if (key == 256 /* GLFW_KEY_ESCAPE */) xr.request_exit();
@@ -625,7 +626,7 @@ void run_review(const ReviewCommandOptions& o) {
           const std::optional<renderer::RenderPass> pass = mirror->pass(
               last_eyes, draws,
               window_hud_lines(interaction, *snapshot, life, colour_name(scene.colour()), mirror->mode_text(),
-                               {"V view  C colour  M method  Esc end"}, history_text()),
+                               {"V view  C colour  M method  Esc end"}, history_text(), notice.text(t)),
               scene.settings(/*legend=*/true), rendered ? &eye_targets : nullptr,
               xr.eye(0).transfer_source());
           if (pass) {
@@ -639,7 +640,7 @@ void run_review(const ReviewCommandOptions& o) {
           mirror->present();
           mirror->set_title(window_title("pushpull review", interaction.method(), interaction.dragging(),
                                          *snapshot, life, colour_name(scene.colour()), mirror->mode_text(),
-                                         history_text()));
+                                         history_text(), notice.text(t)));
         }
         const double ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
         if (++stats.frames > FrameStats::kWarmUpFrames) {

@@ -3,6 +3,7 @@
 #include "commands.hpp"
 #include "review_colour.hpp"
 
+#include <charconv>
 #include <cmath>
 
 #include "pushpull/deform/method.hpp"
@@ -12,6 +13,7 @@
 #include <map>
 #include <sstream>
 #include <stdexcept>
+#include <string_view>
 
 namespace pushpull::app {
 namespace {
@@ -112,11 +114,19 @@ SessionRecording read_session_recording(const std::string& path) {
         if (!ok) corrupted(path, 1, std::string("header option \"") + key + "\" is not [x, y, z]");
       }
       r.header = j;
-      const std::string format = j.value("format", "");
+      const std::string format =
+          j.contains("format") && j["format"].is_string() ? j["format"].get<std::string>() : std::string();
+      const std::string_view prefix = "pushpull-session-";
+      if (format.size() > prefix.size() && format.compare(0, prefix.size(), prefix) == 0) {
+        int version = 0;
+        const char* first = format.data() + prefix.size();
+        const char* last = format.data() + format.size();
+        const auto [end, error] = std::from_chars(first, last, version);
+        if (error == std::errc() && end == last && version > 0) r.format_version = version;
+      }
       if (options->contains("desktop") && !(*options)["desktop"].is_boolean())
         corrupted(path, 1, "header option \"desktop\" is not true or false");
-      legacy_desktop = options->value("desktop", false) && format.size() == 18 &&
-                       format.compare(0, 16, "pushpull-session") == 0 && format[17] < '4';
+      legacy_desktop = options->value("desktop", false) && r.format_version > 0 && r.format_version < 4;
       if (const nlohmann::json* colour = options->contains("colour") ? &(*options)["colour"] : nullptr;
           colour != nullptr && colour->is_string())
         legacy_colour = parse_colour(colour->get<std::string>()).value_or(legacy_colour);

@@ -31,6 +31,7 @@ struct RecordedCommit {
 struct SessionRecording {
   std::string path;
   nlohmann::json header;                     // line 1
+  int format_version = 0;  // N of the header's "pushpull-session-N"; 0 when it says something else
   std::vector<nlohmann::json> records;       // every derived record, in order, with "line" added
   std::vector<RecordedCommit> commits;       // the commit records, in commit order
   std::vector<std::pair<double, std::string>> method_changes;  // "method" records: (time s, method name), in order

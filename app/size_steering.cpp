@@ -15,13 +15,17 @@ void SizeSteering::frame(ReviewInteraction& interaction, float x, float y, doubl
   changed_ = changed_ || interaction.handle_radius() + interaction.roi_radius() != before;
   if (changed_ && std::abs(x) < 0.2f && std::abs(y) < 0.2f) {
     changed_ = false;
-    log.write({{"event", "sizes"},
-               {"handle_radius", interaction.handle_radius()},
-               {"roi_radius", interaction.roi_radius()}});
-    if (print)
-      std::printf("pushpull review: handle radius %.0f mm, region %.0f mm\n",
-                  life.to_mm(interaction.handle_radius()), life.to_mm(interaction.roi_radius()));
+    report_sizes(interaction, log, life, print);
   }
+}
+
+void report_sizes(const ReviewInteraction& interaction, EventLog& log, const LifeSize& life, bool print) {
+  log.write({{"event", "sizes"},
+             {"handle_radius", interaction.handle_radius()},
+             {"roi_radius", interaction.roi_radius()}});
+  if (print)
+    std::printf("pushpull review: handle radius %.0f mm, region %.0f mm\n",
+                life.to_mm(interaction.handle_radius()), life.to_mm(interaction.roi_radius()));
 }
 
 double recording_frame_period_s(double rate_hz) {

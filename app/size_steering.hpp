@@ -28,6 +28,9 @@ class SizeSteering {
 // steers the sizes bit for bit.
 [[nodiscard]] double recording_frame_period_s(double rate_hz);
 
+// The sizes as they now are: an {"event":"sizes"} line in the log and, with print, a line on stdout.
+void report_sizes(const ReviewInteraction& interaction, EventLog& log, const LifeSize& life, bool print);
+
 // One press of the desktop's size keys scales a radius by this.
 inline constexpr double kSizeStep = 1.25;
 

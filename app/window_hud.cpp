@@ -6,14 +6,11 @@
 
 namespace pushpull::app {
 
-std::string history_line(const std::string& notice, const deform::Service& service) {
-  return notice.empty() ? edit_counts_text(edit_counts(service)) : notice;
-}
-
 std::vector<std::string> window_hud_lines(const ReviewInteraction& interaction,
                                           const deform::Snapshot& snapshot, const LifeSize& life,
                                           const std::string& colour, const std::string& view_mode,
-                                          const std::vector<std::string>& keys, const std::string& history) {
+                                          const std::vector<std::string>& keys, const std::string& history,
+                                          const std::string& notice) {
   const std::string method(deform::method_name(interaction.method()));
   char state[160];
   if (snapshot.kind == deform::Snapshot::Kind::Error) {
@@ -25,13 +22,19 @@ std::vector<std::string> window_hud_lines(const ReviewInteraction& interaction,
     std::snprintf(state, sizeof state, "%s  solving  %d it", method.c_str(), snapshot.iteration);
   } else {
     // Just after a commit: what its own solve did (it starts cold, so it differs from the last preview's).
+    const std::string& said = notice.empty() ? history : notice;
     if (snapshot.kind == deform::Snapshot::Kind::Committed)
-      std::snprintf(state, sizeof state, "%s  ready  %s  (commit: %d it, %s)", method.c_str(),
-                    history.c_str(), snapshot.iteration, snapshot.converged ? "converged" : "not converged");
+      std::snprintf(state, sizeof state, "%s  ready  %s  (commit: %d it, %s)", method.c_str(), said.c_str(),
+                    snapshot.iteration, snapshot.converged ? "converged" : "not converged");
     else
-      std::snprintf(state, sizeof state, "%s  ready  %s", method.c_str(), history.c_str());
+      std::snprintf(state, sizeof state, "%s  ready  %s", method.c_str(), said.c_str());
   }
-  std::vector<std::string> lines{state,
+  std::string first = state;
+  // A notice shows in every state (e.g. a key pressed mid-drag: "the method changes between drags").
+  if (!notice.empty() &&
+      (interaction.dragging() || !snapshot.final || snapshot.kind == deform::Snapshot::Kind::Error))
+    first += "  " + notice;
+  std::vector<std::string> lines{first,
                                  "colour: " + colour + (view_mode.empty() ? "" : "   view: " + view_mode)};
   lines.insert(lines.end(), keys.begin(), keys.end());
   return lines;
@@ -39,7 +42,8 @@ std::vector<std::string> window_hud_lines(const ReviewInteraction& interaction,
 
 std::string window_title(const std::string& name, deform::Method method, bool dragging,
                          const deform::Snapshot& snapshot, const LifeSize& life, const std::string& colour,
-                         const std::string& view_mode, const std::string& history) {
+                         const std::string& view_mode, const std::string& history,
+                         const std::string& notice) {
   char text[320];
   if (dragging)
     std::snprintf(text, sizeof text, "%s | %s (dragging) | |d| %.1f mm | %d it %s | %s", name.c_str(),
@@ -47,8 +51,11 @@ std::string window_title(const std::string& name, deform::Method method, bool dr
                   snapshot.iteration, snapshot.converged ? "converged" : "not converged", colour.c_str());
   else
     std::snprintf(text, sizeof text, "%s | %s | %s | %s", name.c_str(),
-                  std::string(deform::method_name(method)).c_str(), history.c_str(), colour.c_str());
-  return view_mode.empty() ? std::string(text) : std::string(text) + " | " + view_mode;
+                  std::string(deform::method_name(method)).c_str(),
+                  (notice.empty() ? history : notice).c_str(), colour.c_str());
+  std::string title = text;
+  if (dragging && !notice.empty()) title += " | " + notice;
+  return view_mode.empty() ? title : title + " | " + view_mode;
 }
 
 }  // namespace pushpull::app

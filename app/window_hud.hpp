@@ -31,28 +31,22 @@ class TimedNotice {
   double until_ = -1.0;
 };
 
-// What the HUD and the title say of the history between drags: the notice while it shows, else the edits
-// ("2 edits, 1 undone").
-[[nodiscard]] std::string history_line(const std::string& notice, const deform::Service& service);
-
 // Line 1: "asan  |d| 70.7 mm  30 it  converged" while dragging, "asan  solving  12 it" while a commit, undo
-// or redo is solved, else "asan  ready  <history>" (history: the edits, edit_counts_text(), or a notice),
-// followed just after a commit by its own solve's "(commit: 16 it, converged)";
-// line 2: "colour: displacement" and, when view_mode is not empty, "   view: <view_mode>"; then `keys`, one
-// line each.
-[[nodiscard]] std::vector<std::string> window_hud_lines(const ReviewInteraction& interaction,
-                                                        const deform::Snapshot& snapshot,
-                                                        const LifeSize& life, const std::string& colour,
-                                                        const std::string& view_mode,
-                                                        const std::vector<std::string>& keys,
-                                                        const std::string& history);
+// or redo is solved, else "asan  ready  <history>" (history: the edits, edit_counts_text(); a notice in its
+// place while it shows), followed just after a commit by its own solve's "(commit: 16 it, converged)"; a
+// notice follows the other states' line (a key pressed mid-drag); line 2: "colour: displacement" and, when
+// view_mode is not empty, "   view: <view_mode>"; then `keys`, one line each.
+[[nodiscard]] std::vector<std::string> window_hud_lines(
+    const ReviewInteraction& interaction, const deform::Snapshot& snapshot, const LifeSize& life,
+    const std::string& colour, const std::string& view_mode, const std::vector<std::string>& keys,
+    const std::string& history, const std::string& notice);
 
 // The window title with the same state: "<name> | asan (dragging) | |d| 70.7 mm | 30 it converged |
-// displacement" while dragging, "<name> | asan | <history> | displacement" otherwise, and " | <view_mode>"
-// when it is not empty.
+// displacement" while dragging (then " | <notice>" while one shows), "<name> | asan | <history or notice> |
+// displacement" otherwise, and " | <view_mode>" when it is not empty.
 [[nodiscard]] std::string window_title(const std::string& name, deform::Method method, bool dragging,
                                        const deform::Snapshot& snapshot, const LifeSize& life,
                                        const std::string& colour, const std::string& view_mode,
-                                       const std::string& history);
+                                       const std::string& history, const std::string& notice);
 
 }  // namespace pushpull::app
