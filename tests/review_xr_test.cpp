@@ -69,6 +69,16 @@ std::string push_pull_100mm_at(double t) {
 )";
 }
 
+// script_start()'s pull (the hand 100 mm towards the reviewer by 1.0 s), released at 1.5 s; the session ends
+// at exit_t.
+std::string pull_released_then_exit(double exit_t) {
+  return script_start() + R"({"t":1.4,"path":"/user/hand/right/input/trigger/value","value":1.0}
+{"t":1.5,"path":"/user/hand/right/input/trigger/value","value":0.0}
+{"t":)" + std::to_string(exit_t) +
+         R"(,"event":"exit"}
+)";
+}
+
 struct ReviewRun {
   pushpull::testing::CommandResult result;
   std::vector<nlohmann::json> events;
@@ -258,11 +268,7 @@ TEST(ReviewXr, DragCommitsWhatDeformComputesForTheSameP0AndD) {
 // a list the process cannot use is refused before the session starts, naming the CPU.
 TEST(ReviewXr, TheSolverOnCpusOfItsOwnCommitsTheSameModel) {
   const fs::path dir = test_dir();
-  const std::string script =
-      script_start() + R"({"t":1.4,"path":"/user/hand/right/input/trigger/value","value":1.0}
-{"t":1.5,"path":"/user/hand/right/input/trigger/value","value":0.0}
-{"t":2.0,"event":"exit"}
-)";
+  const std::string script = pull_released_then_exit(2.0);
   const ReviewRun shared = run_review(dir, script, "--out " + (dir / "shared.off").string());
   ASSERT_EQ(shared.result.status, 0) << shared.result.output;
   const ReviewRun split = run_review(dir, script, "--solver-cpus auto --out " + (dir / "split.off").string());
@@ -393,11 +399,7 @@ TEST(ReviewXr, RecentringMidDragCancelsTheDrag) {
 TEST(ReviewXr, AHeadsetThatJoinsLateIsWaitedFor) {
   const fs::path dir = test_dir();
   const ReviewRun run =
-      run_review(dir, script_start() + R"({"t":1.4,"path":"/user/hand/right/input/trigger/value","value":1.0}
-{"t":1.5,"path":"/user/hand/right/input/trigger/value","value":0.0}
-{"t":2.0,"event":"exit"}
-)",
-                 "", "PUSHPULL_XR_SIM_HEADSET_AFTER_MS=700");
+      run_review(dir, pull_released_then_exit(2.0), "", "PUSHPULL_XR_SIM_HEADSET_AFTER_MS=700");
   ASSERT_EQ(run.result.status, 0) << run.result.output;
   EXPECT_NE(run.result.output.find("has no headset yet; waiting up to 3 s"), std::string::npos)
       << run.result.output;
@@ -683,13 +685,8 @@ TEST(ReviewXr, ARuntimeFailureEndsTheReviewAndKeepsTheCommittedWork) {
 // runtime's instance, --validation fails the run on any message) see a whole push/pull without complaint.
 TEST(ReviewXr, ValidationLayersReportNothingForAPushPull) {
   const fs::path dir = test_dir();
-  const ReviewRun run = run_review(dir,
-                                   script_start() +
-                                       R"({"t":1.4,"path":"/user/hand/right/input/trigger/value","value":1.0}
-{"t":1.5,"path":"/user/hand/right/input/trigger/value","value":0.0}
-{"t":2.0,"event":"exit"}
-)",
-                                   "--validation", "XR_ENABLE_API_LAYERS=XR_APILAYER_LUNARG_core_validation");
+  const ReviewRun run = run_review(dir, pull_released_then_exit(2.0), "--validation",
+                                   "XR_ENABLE_API_LAYERS=XR_APILAYER_LUNARG_core_validation");
   ASSERT_EQ(run.result.status, 0) << run.result.output;
   EXPECT_EQ(run.of("commit").size(), 1u) << run.result.output;
   EXPECT_NE(run.result.output.find("Core Validation"), std::string::npos)
@@ -1004,11 +1001,7 @@ TEST(ReviewXr, MenuPanelChoosesTheMethodOfTheNextPushPullAndReadoutsShow) {
 TEST(ReviewXrWindow, MirrorWindowPresentsFramesAndLeavesTheCommitUnchanged) {
   if (std::getenv("DISPLAY") == nullptr) GTEST_SKIP() << "no DISPLAY (ctest runs this under xvfb-run)";
   const fs::path dir = test_dir();
-  const std::string script =
-      script_start() + R"({"t":1.4,"path":"/user/hand/right/input/trigger/value","value":1.0}
-{"t":1.5,"path":"/user/hand/right/input/trigger/value","value":0.0}
-{"t":2.5,"event":"exit"}
-)";
+  const std::string script = pull_released_then_exit(2.5);
   const ReviewRun plain = run_review(dir, script, "--out " + (dir / "plain.off").string());
   ASSERT_EQ(plain.result.status, 0) << plain.result.output;
   const ReviewRun mirrored = run_review(
