@@ -24,7 +24,8 @@ struct ReportCommit {
   bool converged = false;
   std::optional<double> error_estimate;
   std::size_t region_vertices = 0;   // the solved region (handle, free and fixed border)
-  std::size_t attached_parts = 0;    // separate parts that followed the surface (lamps, glass, trims)
+  std::size_t attached_parts = 0;    // separate parts bound to the surface (lamps, glass, trims)
+  std::size_t attached_moved = 0;    // those of them the commit moved
   deform::DeformationMetrics metrics;  // with sections (plotted before / after)
   Eigen::Vector3d d = Eigen::Vector3d::Zero();  // model units: the sections' planes are perpendicular to it
   double scale = 1.0;  // metres per model unit (metrics lengths are model units)

@@ -316,6 +316,19 @@ void run_replay(const ReplayOptions& o) {
     record.total_ms = s.setup_ms + s.factorize_ms + s.solve_ms;  // the commit's solve (no file reading here)
     record.dead_band_fraction = deform::MetricsOptions{}.flat_band;  // the band the metrics below use
     record.result.warnings = s.warnings;
+    if (s.energy_trace) record.result.energy_trace = *s.energy_trace;
+    record.result.initial_energy = s.initial_energy;
+    // The parts bound to the surface, each with how far it moved (as `pushpull deform` reports them).
+    for (const deform::AttachedPart& part : s.attached) {
+      double moved = 0.0;
+      for (const int v : part.vertices)
+        if (v < before_mesh.V.rows() && v < s.positions->rows())
+          moved = std::max(moved, (s.positions->row(v) - before_mesh.V.row(v)).norm());
+      if (!part.vertices.empty())
+        record.attached.push_back({part.component, static_cast<long>(part.vertices.size()),
+                                   part.vertices.front(), part.rest_gap, moved});
+    }
+    record.attach_reach = s.attach_reach;
     record.life_size_scale = scale;
     ReportCommit rc;
     if (s.d.norm() > 0.0 && !roi.empty()) {
@@ -343,6 +356,9 @@ void run_replay(const ReplayOptions& o) {
     rc.error_estimate = s.error_estimate;
     rc.region_vertices = roi.size();
     rc.attached_parts = s.attached_parts;
+    rc.attached_moved =
+        std::size_t(std::count_if(record.attached.begin(), record.attached.end(),
+                                  [](const AttachedPartRecord& a) { return a.max_displacement > 0.0; }));
     rc.metrics = record.metrics;
     rc.d = s.d;
     rc.scale = scale;

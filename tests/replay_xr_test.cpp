@@ -335,6 +335,17 @@ TEST(ReplayXr, BundledPaperSessionReplaysWithTheRecordedHashes) {
   for (const char* d : {"|d| 100.0 mm", "|d| 55.0 mm", "|d| 110.0 mm"})
     EXPECT_NE(r.output.find(d), std::string::npos) << d << "\n" << r.output;
   EXPECT_TRUE(fs::exists(dir / "out" / "final.glb"));
+  // Each commit's METRICS.json has what `pushpull deform` writes for the same pull: the energy after every
+  // iteration, and the parts bound to the surface with how far each moved (windshield: 6 bound, 4 moved).
+  std::ifstream in(dir / "out" / "commit-02.metrics.json");
+  const nlohmann::json metrics = nlohmann::json::parse(in);
+  EXPECT_EQ(metrics.at("energy_trace").size(), std::size_t(metrics.at("iterations").get<int>()));
+  EXPECT_GT(metrics.at("initial_energy").get<double>(), 0.0);
+  const auto& parts = metrics.at("attached_parts").at("parts");
+  EXPECT_EQ(parts.size(), 6u);
+  EXPECT_EQ(std::count_if(parts.begin(), parts.end(),
+                          [](const nlohmann::json& p) { return p.at("max_displacement") > 0.0; }),
+            4);
 }
 
 }  // namespace

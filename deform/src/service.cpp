@@ -311,6 +311,12 @@ struct Service::Impl {
     if (r.cancelled) return;  // only when the service is being destroyed
     Snapshot s = result_snapshot(p, a, r, Snapshot::Kind::Committed);
     s.setup_ms = setup_ms;
+    s.energy_trace = std::make_shared<const std::vector<double>>(r.energy_trace);
+    s.initial_energy = r.initial_energy;
+    if (a.parts) {
+      s.attached = a.parts->parts();
+      s.attach_reach = a.parts->reach();
+    }
     s.latency_ms = ms_between(issued, Clock::now());
     auto next = std::make_shared<Mesh>();
     next->V = *s.positions;  // with the attached parts

@@ -119,6 +119,13 @@ struct Snapshot {
   double latency_ms = 0.0;        // from submit() (or the command call) to this publication
   std::string error;              // Kind::Error: what went wrong
   std::vector<std::string> warnings;
+  // Kind::Committed only (empty otherwise): the commit's solve, its energy before the first iteration and
+  // after each, and the separate parts bound to the surface (attached_parts.hpp) with the reach that chose
+  // them.
+  std::shared_ptr<const std::vector<double>> energy_trace;
+  double initial_energy = 0.0;
+  std::vector<AttachedPart> attached;
+  double attach_reach = 0.0;
 };
 
 // One entry of the history that commit/undo/redo walk.
