@@ -31,21 +31,15 @@ bool take_history_step(deform::Service& service, HistoryStep step, double t, dou
                        SessionRecorder& recorder, TimedNotice& notice, bool print,
                        std::optional<bool> recorded) {
   const char* name = step == HistoryStep::Undo ? "undo" : "redo";
-  if (recorded && *recorded) {
-    if (step == HistoryStep::Undo)
-      service.undo();
-    else
-      service.redo();
-  }
+  if (recorded && *recorded) send_history_step(service, step);
   if (recorded ? *recorded : request_history_step(service, step)) {
     log.write({{"event", name}});
     recorder.write_record(name, t);
     if (print) std::printf("pushpull review: %s\n", name);
     return true;
   }
-  notice.show(nothing_to(step), notice_now);
+  announce(notice, nothing_to(step), notice_now, print);
   log.write({{"event", nothing_to(step)}});
-  if (print) std::printf("pushpull review: %s\n", nothing_to(step));
   return false;
 }
 

@@ -131,10 +131,7 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
     };
     auto history_text = [&] { return edit_counts_text(edit_counts(service)); };
     // A key that does nothing now (mid-drag) says so: stdout, the HUD and the readout.
-    auto say = [&](const char* text) {
-      notice.show(text, now());
-      if (!o.quiet) std::printf("pushpull review: %s\n", text);
-    };
+    auto say = [&](const char* text) { announce(notice, text, now(), !o.quiet); };
     auto ask_history_step = [&](HistoryStep step) {
       (void)take_history_step(service, step, t, now(), log, recorder, notice, !o.quiet);
     };

@@ -8,11 +8,15 @@ bool request_history_step(deform::Service& service, HistoryStep step) {
     if (step == HistoryStep::Undo && counts.undone == counts.edits) return false;
     if (step == HistoryStep::Redo && counts.undone == 0) return false;
   }
+  send_history_step(service, step);
+  return true;
+}
+
+void send_history_step(deform::Service& service, HistoryStep step) {
   if (step == HistoryStep::Undo)
     service.undo();
   else
     service.redo();
-  return true;
 }
 
 const char* nothing_to(HistoryStep step) {

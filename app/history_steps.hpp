@@ -18,6 +18,8 @@ enum class HistoryStep { Undo, Redo };
 // false). While the service is busy a commit may still be on its way into the history, so the step is sent
 // (the service ignores it at an end of the history).
 bool request_history_step(deform::Service& service, HistoryStep step);
+// Sends the step as it is (a replay's recorded decision).
+void send_history_step(deform::Service& service, HistoryStep step);
 
 // "nothing to undo" / "nothing to redo".
 [[nodiscard]] const char* nothing_to(HistoryStep step);

@@ -155,12 +155,7 @@ void run_replay(const ReplayOptions& o) {
   if (o.method.empty()) review.method_changes = rec.method_changes;  // with --method: that one throughout
   review.colour_changes = rec.colour_changes;
   review.size_changes = rec.size_changes;
-  review.history_steps.emplace();
-  for (const json& r : rec.records) {
-    const std::string kind = r.value("record", "");
-    if ((kind == "undo" || kind == "redo") && r.contains("time") && r["time"].is_number())
-      review.history_steps->emplace_back(r["time"].get<double>(), kind);
-  }
+  review.history_steps = rec.history_steps;
   review.mu = o.mu.value_or(h.at("mu").get<double>());
   review.handle_radius_m = h.at("handle_radius_m");
   review.roi_radius_m = h.at("roi_radius_m");

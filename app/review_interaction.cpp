@@ -37,14 +37,12 @@ std::vector<std::string> readout_lines(const ReviewInteraction& interaction, con
   std::snprintf(a, sizeof a, "|d| %.1f mm", life.to_mm(interaction.current_d().norm()));
   if (s.kind == deform::Snapshot::Kind::Error)
     return {a, method + "  error: " + s.error.substr(0, 40)};
-  std::snprintf(b, sizeof b, "%s  %d it  %s", method.c_str(), s.iteration,
-                solver_state(s));
-  // A pull much longer than the handle is wide makes a spike, not a bulge: said while there is time to let go
-  // and grow the handle.
+  std::snprintf(b, sizeof b, "%s  %d it  %s", method.c_str(), s.iteration, solver_state(s));
   std::vector<std::string> lines{a, b};
   if (!notice.empty()) lines.push_back(notice);  // e.g. a key pressed mid-drag
-  const double pull = interaction.current_d().norm();
-  const double ratio = pull / std::max(interaction.handle_radius(), 1e-12);
+  // A pull much longer than the handle is wide makes a spike, not a bulge: said while there is time to let go
+  // and grow the handle.
+  const double ratio = interaction.current_d().norm() / std::max(interaction.handle_radius(), 1e-12);
   char c[96];
   if (ratio > kSteepPull) {
     std::snprintf(c, sizeof c, "steep: %.0fx the handle radius", ratio);

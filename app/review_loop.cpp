@@ -59,11 +59,18 @@ double heading(const HandSample& s) {
   return std::atan2(-h.x(), -h.z());
 }
 
-// Replay: the recorded changes (time s, name) due by `until`, from `next` on, each given to apply in order.
-template <class Apply>
-void apply_due(const std::vector<std::pair<double, std::string>>& changes, std::size_t& next, double until,
-               Apply apply) {
-  while (next < changes.size() && changes[next].first <= until) apply(changes[next++].second);
+// The recording's time of a replayed change.
+double change_time(const std::pair<double, std::string>& change) {
+  return change.first;
+}
+double change_time(const SizeChange& change) {
+  return change.time;
+}
+
+// Replay: the recorded changes due by `until`, from `next` on, each given to apply in order.
+template <class Change, class Apply>
+void apply_due(const std::vector<Change>& changes, std::size_t& next, double until, Apply apply) {
+  while (next < changes.size() && change_time(changes[next]) <= until) apply(changes[next++]);
 }
 
 }  // namespace
@@ -509,12 +516,12 @@ void run_review(const ReviewCommandOptions& o) {
           }
         }
         // Replay: the sizes a key set, before the gesture, as the desktop window set them.
-        while (next_size_change < o.size_changes.size() &&
-               o.size_changes[next_size_change].time <= t + 0.25 / double(recording_rate_hz)) {
-          const SizeChange& c = o.size_changes[next_size_change++];
+        // (A recorded change applies at the frame within a quarter frame of its time.)
+        const double due_until = t + 0.25 / double(recording_rate_hz);
+        apply_due(o.size_changes, next_size_change, due_until, [&](const SizeChange& c) {
           interaction.set_sizes(c.handle_radius, c.roi_radius);
           recorder.write_sizes(t, interaction.handle_radius(), interaction.roi_radius());
-        }
+        });
         // Input is ours only while focused (unfocused, every input reads as released): no gestures then.
         for (const InteractionEvent& e :
              xr.focused() ? interaction.update(hands) : std::vector<InteractionEvent>{}) {
@@ -535,28 +542,26 @@ void run_review(const ReviewCommandOptions& o) {
           if (in.redo_pressed) ask_history_step(HistoryStep::Redo);
         }
         // Replay: the method changes the recording made with a key, at the frames it made them.
-        apply_due(o.method_changes, next_method_change, t + 0.25 / double(recording_rate_hz),
-                  [&](const std::string& name) { change_method(deform::parse_method(name)); });
+        apply_due(o.method_changes, next_method_change, due_until,
+                  [&](const auto& change) { change_method(deform::parse_method(change.second)); });
         // The mirror's keys, where a replay applies the method and colour changes they made.
         if (mirror) {
           for (int key : mirror->poll()) {
             if (key == 'C') change_colour(next_colour(scene.colour()));
             if (key == 'V') mirror->next_mode();
             if (key == 'M' && !o.fixed_method) {
-              if (interaction.dragging()) {
-                notice.show("the method changes between drags", t);
-                if (!o.quiet) std::printf("pushpull review: the method changes between drags\n");
-              } else
+              if (interaction.dragging())
+                announce(notice, "the method changes between drags", t, !o.quiet);
+              else
                 change_method(next_method(interaction.method()));
             }
             if (key == 256 /* GLFW_KEY_ESCAPE */) xr.request_exit();
           }
           if (mirror->should_close()) xr.request_exit();
         }
-        apply_due(o.colour_changes, next_colour_change, t + 0.25 / double(recording_rate_hz),
-                  [&](const std::string& name) {
-                    if (const auto c = parse_colour(name)) change_colour(*c);
-                  });
+        apply_due(o.colour_changes, next_colour_change, due_until, [&](const auto& change) {
+          if (const auto c = parse_colour(change.second)) change_colour(*c);
+        });
         // Right thumbstick between drags: the handle and region sizes (size_steering.hpp).
         {
           const XrVector2f stick = input->hand(xr::Hand::Right).thumbstick;

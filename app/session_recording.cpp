@@ -153,6 +153,11 @@ SessionRecording read_session_recording(const std::string& path) {
                            j["time"].is_number() && is_method_name(j["method"].get<std::string>());
         if (!valid) corrupted(path, number, "a method record needs \"time\" and a known \"method\"");
         r.method_changes.emplace_back(j["time"].get<double>(), j["method"].get<std::string>());
+      } else if (kind == "undo" || kind == "redo") {
+        if (!j.contains("time") || !j["time"].is_number())
+          corrupted(path, number,
+                    std::string(kind == "undo" ? "an undo" : "a redo") + " record needs \"time\"");
+        r.history_steps.emplace_back(j["time"].get<double>(), kind);
       } else if (kind == "colour") {
         const bool valid = j.contains("colour") && j["colour"].is_string() && j.contains("time") &&
                            j["time"].is_number() && parse_colour(j["colour"].get<std::string>());

@@ -1,6 +1,5 @@
 #include "size_steering.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>

@@ -1,10 +1,13 @@
 #include "window_hud.hpp"
 
-#include "history_steps.hpp"
-
 #include <cstdio>
 
 namespace pushpull::app {
+
+void announce(TimedNotice& notice, const std::string& text, double now, bool print) {
+  notice.show(text, now);
+  if (print) std::printf("pushpull review: %s\n", text.c_str());
+}
 
 std::vector<std::string> window_hud_lines(const ReviewInteraction& interaction,
                                           const deform::Snapshot& snapshot, const LifeSize& life,

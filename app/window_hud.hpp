@@ -31,6 +31,9 @@ class TimedNotice {
   double until_ = -1.0;
 };
 
+// Shows `text` by `notice` from `now` on and, with print, says it on stdout ("pushpull review: <text>").
+void announce(TimedNotice& notice, const std::string& text, double now, bool print);
+
 // Line 1: "asan  |d| 70.7 mm  30 it  converged" while dragging, "asan  solving  12 it" while a commit, undo
 // or redo is solved, else "asan  ready  <history>" (history: the edits, edit_counts_text(); a notice in its
 // place while it shows), followed just after a commit by its own solve's "(commit: 16 it, converged)"; a

@@ -79,6 +79,16 @@ std::string pull_released_then_exit(double exit_t) {
 )";
 }
 
+// script_start()'s drag broken at 0.8 s by a runtime `event` ("loss", "recenter"), the trigger let go at 1.2
+// s, then push_pull_100mm_at(1.5); the session ends at 3 s.
+std::string drag_broken_by(const std::string& event) {
+  return script_start() + R"({"t":0.8,"event":")" + event + R"("}
+{"t":1.2,"path":"/user/hand/right/input/trigger/value","value":0.0}
+)" + push_pull_100mm_at(1.5) +
+         R"({"t":3.0,"event":"exit"}
+)";
+}
+
 struct ReviewRun {
   pushpull::testing::CommandResult result;
   std::vector<nlohmann::json> events;
@@ -380,11 +390,7 @@ TEST(ReviewXr, AControllerOutOfTrackingHoldsTheDragWhereItWasLastSeen) {
 // and the recording (which carries the event) replays with the same commits.
 TEST(ReviewXr, RecentringMidDragCancelsTheDrag) {
   const fs::path dir = test_dir();
-  const std::string script = script_start() + R"({"t":0.8,"event":"recenter"}
-{"t":1.2,"path":"/user/hand/right/input/trigger/value","value":0.0}
-)" + push_pull_100mm_at(1.5) +
-                             R"({"t":3.0,"event":"exit"}
-)";
+  const std::string script = drag_broken_by("recenter");
   const ReviewRun run = run_review(dir, script, "--record " + (dir / "session.jsonl").string());
   ASSERT_EQ(run.result.status, 0) << run.result.output;
   EXPECT_EQ(run.of("press").size(), 2u) << run.result.output;
@@ -530,11 +536,7 @@ TEST(ReviewXr, EyesTakeTheRuntimesFirstSrgbFormatAndLookTheSame) {
 // session and commits.
 TEST(ReviewXr, ARuntimeWithOtherRulesStillReviewsAndReconnects) {
   const fs::path dir = test_dir();
-  const std::string script = script_start() + R"({"t":0.8,"event":"loss"}
-{"t":1.2,"path":"/user/hand/right/input/trigger/value","value":0.0}
-)" + push_pull_100mm_at(1.5) +
-                             R"({"t":3.0,"event":"exit"}
-)";
+  const std::string script = drag_broken_by("loss");
   const ReviewRun run =
       run_review(dir, script, "", "PUSHPULL_XR_SIM_QUIRKS=eyes-differ,requirements-per-session,haptics-fail");
   ASSERT_EQ(run.result.status, 0) << run.result.output;

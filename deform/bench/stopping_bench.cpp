@@ -26,6 +26,7 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -78,6 +79,19 @@ const pd::DeformResult& reference_of(const Problem& p, pd::Method method, Refere
   return it->second;
 }
 
+// The default solve of `method` on p, or nullopt with `refusal` set when the method refuses the problem
+// (arap-s may: its energy is not PSD).
+std::optional<pd::DeformResult> default_solve(const Problem& p, pd::Method method, std::string& refusal) {
+  pd::DeformOptions options;
+  options.method = method;
+  try {
+    return pd::deform(p.mesh, p.roi, p.d, options);
+  } catch (const std::exception& error) {
+    refusal = error.what();
+    return std::nullopt;
+  }
+}
+
 int run(const Problem& p, References& references) {
   int failures = 0;
   std::printf("\n%s: %ld vertices, region %zu, |d| = %g\n", p.name.c_str(),
@@ -85,16 +99,17 @@ int run(const Problem& p, References& references) {
   std::printf("%-9s | %6s %9s %9s %9s %6s | %-28s | %s\n", "method", "iters", "ms", "estimate", "true",
               "ratio", "reference (1e-9): iters, est", "paper (50 plain): true error");
   for (const pd::Method method : g_methods) {
-    pd::DeformOptions options;
-    options.method = method;
-    pd::DeformResult r;
-    try {
-      r = pd::deform(p.mesh, p.roi, p.d, options);
-    } catch (const std::exception& error) {  // arap-s may refuse: its energy is not PSD
-      std::printf("%-9s | refused: %.90s...\n", std::string(pd::method_name(method)).c_str(), error.what());
+    std::string refusal;
+    const std::optional<pd::DeformResult> solved = default_solve(p, method, refusal);
+    if (!solved) {
+      std::printf("%-9s | refused: %.90s...\n", std::string(pd::method_name(method)).c_str(),
+                  refusal.c_str());
       std::fflush(stdout);
       continue;
     }
+    const pd::DeformResult& r = *solved;
+    pd::DeformOptions options;
+    options.method = method;
     const pd::DeformResult& reference = reference_of(p, method, references);
     const pd::DeformResult paper = pd::deform(p.mesh, p.roi, p.d, pd::paper_iterations(options));
     const double truth = true_error(r.V, reference.V, p.d);
@@ -195,16 +210,14 @@ int run_random_pulls(int per_model, const std::vector<pd::Method>& methods) {
       ++pull;
       References references;
       for (const pd::Method method : methods) {
-        pd::DeformOptions options;
-        options.method = method;
-        pd::DeformResult r;
-        try {
-          r = pd::deform(p.mesh, p.roi, p.d, options);
-        } catch (const std::exception& error) {
+        std::string refusal;
+        const std::optional<pd::DeformResult> solved = default_solve(p, method, refusal);
+        if (!solved) {
           std::printf("%-22s %5d %6zu %-8s | refused: %.60s\n", path.filename().c_str(), pull, p.roi.size(),
-                      std::string(pd::method_name(method)).c_str(), error.what());
+                      std::string(pd::method_name(method)).c_str(), refusal.c_str());
           continue;
         }
+        const pd::DeformResult& r = *solved;
         const pd::DeformResult& reference = reference_of(p, method, references);
         if (!reference.converged) continue;  // no truth to compare with
         const double truth = true_error(r.V, reference.V, p.d);
@@ -213,7 +226,7 @@ int run_random_pulls(int per_model, const std::vector<pd::Method>& methods) {
         ++runs;
         iterations += r.iterations;
         optimistic += dishonest ? 1 : 0;
-        beyond += r.converged && truth > 2.0 * options.tolerance ? 1 : 0;
+        beyond += r.converged && truth > 2.0 * pd::DeformOptions{}.tolerance ? 1 : 0;
         std::printf("%-22s %5d %6zu %-8s | %5d%s %9.1e %9.1e %6.2f%s\n", path.filename().c_str(), pull,
                     p.roi.size(), std::string(pd::method_name(method)).c_str(), r.iterations,
                     r.converged ? " " : "*", estimate, truth, truth / estimate,
