@@ -7,15 +7,19 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "helper_thread.hpp"
+
 namespace pushpull::deform::detail {
 
 class Anderson {
  public:
   Anderson(int window, Eigen::Index dimension);
   // x: current iterate, g = G(x). Returns the accelerated next iterate (g itself for the first call after
-  // construction or reset).
+  // construction or reset). The vectors' two halves are processed and their dot products summed separately
+  // (on two threads when `threads` is given; the same results either way).
   [[nodiscard]] Eigen::VectorXd step(const Eigen::Ref<const Eigen::VectorXd>& x,
-                                     const Eigen::Ref<const Eigen::VectorXd>& g);
+                                     const Eigen::Ref<const Eigen::VectorXd>& g,
+                                     HelperThread* threads = nullptr);
   void reset() { count_ = 0; }
 
  private:

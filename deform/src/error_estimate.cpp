@@ -16,7 +16,7 @@ ContractionEstimate::ContractionEstimate(int window, Eigen::Index dimension, Pol
       xg_(Eigen::MatrixXd::Zero(window, window)) {}
 
 void ContractionEstimate::add(const Eigen::Ref<const Eigen::VectorXd>& x,
-                              const Eigen::Ref<const Eigen::VectorXd>& g) {
+                              const Eigen::Ref<const Eigen::VectorXd>& g, HelperThread* threads) {
   if (!has_previous_) {
     previous_x_ = x;
     previous_g_ = g;
@@ -24,17 +24,36 @@ void ContractionEstimate::add(const Eigen::Ref<const Eigen::VectorXd>& x,
     return;
   }
   const int column = pairs_ % window_;
-  dX_.col(column) = x - previous_x_;
-  dG_.col(column) = g - previous_g_;
-  previous_x_ = x;
-  previous_g_ = g;
   ++pairs_;
-  // Gram matrices dX^T dX and dX^T dG, one row and column refreshed per pair (O(window n) per call).
+  // The new secant pair, and the Gram matrices dX^T dX and dX^T dG with one row and column refreshed per
+  // pair (O(window n) per call), over the two halves of the vectors.
   const int m = std::min(pairs_, window_);
+  const Eigen::Index n = x.size(), half = n / 2;
+  Eigen::MatrixXd partial = Eigen::MatrixXd::Zero(3 * m, 2);
+  auto part = [&](int p) {
+    const Eigen::Index begin = p == 0 ? 0 : half, size = p == 0 ? half : n - half;
+    auto dx = dX_.col(column).segment(begin, size);
+    auto dg = dG_.col(column).segment(begin, size);
+    dx = x.segment(begin, size) - previous_x_.segment(begin, size);
+    dg = g.segment(begin, size) - previous_g_.segment(begin, size);
+    previous_x_.segment(begin, size) = x.segment(begin, size);
+    previous_g_.segment(begin, size) = g.segment(begin, size);
+    for (int k = 0; k < m; ++k) {
+      partial(3 * k, p) = dx.dot(dX_.col(k).segment(begin, size));
+      partial(3 * k + 1, p) = dx.dot(dG_.col(k).segment(begin, size));
+      partial(3 * k + 2, p) = dX_.col(k).segment(begin, size).dot(dg);
+    }
+  };
+  if (threads) {
+    threads->run_both(part);
+  } else {
+    part(0);
+    part(1);
+  }
   for (int k = 0; k < m; ++k) {
-    xx_(column, k) = xx_(k, column) = dX_.col(column).dot(dX_.col(k));
-    xg_(column, k) = dX_.col(column).dot(dG_.col(k));
-    xg_(k, column) = dX_.col(k).dot(dG_.col(column));
+    xx_(column, k) = xx_(k, column) = partial(3 * k, 0) + partial(3 * k, 1);
+    xg_(column, k) = partial(3 * k + 1, 0) + partial(3 * k + 1, 1);
+    xg_(k, column) = partial(3 * k + 2, 0) + partial(3 * k + 2, 1);
   }
   if (pairs_ < window_) return;
   // C = argmin |dX C - dG| through the normal equations (regularised: dX may be nearly rank deficient once

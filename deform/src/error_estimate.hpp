@@ -32,14 +32,19 @@
 #include <array>
 #include <optional>
 
+#include "helper_thread.hpp"
+
 namespace pushpull::deform::detail {
 
 class ContractionEstimate {
  public:
   enum class Policy { Recent, Cautious };
   ContractionEstimate(int window, Eigen::Index dimension, Policy policy = Policy::Recent);
-  // x: the iterate, g = G(x). Call once per iteration.
-  void add(const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Ref<const Eigen::VectorXd>& g);
+  // x: the iterate, g = G(x). Call once per iteration. The vectors' two halves are updated and their dot
+  // products summed separately (the halves on two threads when `threads` is given; the same sums either
+  // way, so results do not depend on it).
+  void add(const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Ref<const Eigen::VectorXd>& g,
+           HelperThread* threads = nullptr);
   // The estimated rate in [0, kMaxRate] (Cautious: [0, kCautiousMaxRate]), once `window` estimates have been
   // made (Cautious: 10); before that, with a floor (Recent only), the floor or the estimates so far if
   // larger. Cautious: empty while a recent Ritz value says the iterates move away (>= 1).

@@ -110,7 +110,7 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
     if (anderson) {
       const Eigen::Map<const Eigen::VectorXd> x_vec(X.data(), 3 * n_free);
       const Eigen::Map<const Eigen::VectorXd> g_vec(G.data(), 3 * n_free);
-      const Eigen::VectorXd next = anderson->step(x_vec, g_vec);
+      const Eigen::VectorXd next = anderson->step(x_vec, g_vec, threads);
       accelerated = !next.isApprox(g_vec, 0.0) && next.allFinite();
       X_next.leftCols(n_free) = accelerated ? Eigen::Map<const Eigen::Matrix3Xd>(next.data(), 3, n_free) : G;
     } else {
@@ -132,7 +132,7 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
     const double move = std::sqrt(largest_move2) / reference;
     // Distance to the minimiser: |x - x*| <= |G(x) - x| / (1 - rho) (error_estimate.hpp).
     contraction.add(Eigen::Map<const Eigen::VectorXd>(X.data(), 3 * n_free),
-                    Eigen::Map<const Eigen::VectorXd>(G.data(), 3 * n_free));
+                    Eigen::Map<const Eigen::VectorXd>(G.data(), 3 * n_free), threads);
     std::optional<double> error;
     const std::optional<double> rate = contraction.rate();
     if (rate) error = move / (1.0 - *rate);

@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <array>
 #include <cstddef>
+#include <cstdint>
 
 #include "deformer_impl.hpp"
 #include "rotation.hpp"
+#include "rotation_batch.hpp"
 
 namespace pushpull::deform {
 namespace {
@@ -107,14 +109,10 @@ double Deformer::Impl::local_step(const Eigen::Matrix3Xd& X, std::vector<Eigen::
     auto part = [&](int p) {
       const int c0 = p == 0 ? 0 : split_cluster, c1 = p == 0 ? split_cluster : clusters;
       double sum = 0.0;
-      for (int c = c0; c < c1; ++c) {
-        const Eigen::Matrix3d A = covariance(x, g, vertex, start[c], start[c + 1]);
-        Eigen::Matrix3d& Rc = R[static_cast<std::size_t>(c)];
-        Rc = c < m.rank_one_begin ? detail::closest_rotation(A, q[static_cast<std::size_t>(c)], 20, accept)
-                                  : detail::rotation_onto(A, m.rank_one_axis.col(c - m.rank_one_begin),
-                                                          q[static_cast<std::size_t>(c)]);
+      // Cluster c's share of the coupling and of the right-hand side, once R_c is known.
+      auto finish = [&](int c, const Eigen::Matrix3d& A, const Eigen::Matrix3d& Rc) {
         sum += (Rc.array() * A.array()).sum();
-        if (!b) continue;
+        if (!b) return;
         for (int t = start[c]; t < start[c + 1]; ++t) {
           const int v = vertex[t];
           if (v >= n_free) continue;
@@ -122,6 +120,45 @@ double Deformer::Impl::local_step(const Eigen::Matrix3Xd& X, std::vector<Eigen::
           double* target = slot < 0 ? b + 3 * static_cast<std::ptrdiff_t>(v) : shared.data() + 3 * slot;
           add_rotated(target, Rc, g + 3 * static_cast<std::ptrdiff_t>(t));
         }
+      };
+      // Polar rotations kRotationLanes clusters at a time: the first step of closest_rotation for all of
+      // them at once (rotation_batch.hpp); a cluster that needs more goes on alone from there.
+      constexpr int kLanes = detail::kRotationLanes;
+      const int batched_end = std::min(c1, m.rank_one_begin);
+      detail::RotationLanes lanes;
+      std::array<Eigen::Matrix3d, kLanes> A;
+      for (int c = c0; c < batched_end; c += kLanes) {
+        const int count = std::min(kLanes, batched_end - c);
+        for (int l = 0; l < kLanes; ++l) {
+          if (l < count) {
+            A[static_cast<std::size_t>(l)] = covariance(x, g, vertex, start[c + l], start[c + l + 1]);
+          } else {
+            A[static_cast<std::size_t>(l)].setIdentity();
+          }
+          const Eigen::Quaterniond& ql =
+              l < count ? q[static_cast<std::size_t>(c + l)] : Eigen::Quaterniond::Identity();
+          for (int k = 0; k < 9; ++k) lanes.a[k][l] = A[static_cast<std::size_t>(l)](k / 3, k % 3);
+          for (int k = 0; k < 4; ++k) lanes.q[k][l] = ql.coeffs()[k];  // x, y, z, w
+        }
+        const std::uint32_t finished = detail::closest_rotation_step(lanes, accept);
+        for (int l = 0; l < count; ++l) {
+          Eigen::Quaterniond& qc = q[static_cast<std::size_t>(c + l)];
+          for (int k = 0; k < 4; ++k) qc.coeffs()[k] = lanes.q[k][l];
+          Eigen::Matrix3d& Rc = R[static_cast<std::size_t>(c + l)];
+          if ((finished >> l) & 1u) {
+            for (int k = 0; k < 9; ++k) Rc(k / 3, k % 3) = lanes.r[k][l];
+          } else {
+            Rc = detail::closest_rotation(A[static_cast<std::size_t>(l)], qc, 19, accept);
+          }
+          finish(c + l, A[static_cast<std::size_t>(l)], Rc);
+        }
+      }
+      for (int c = std::max(c0, batched_end); c < c1; ++c) {  // arap-h's rank-one bending clusters
+        const Eigen::Matrix3d Ac = covariance(x, g, vertex, start[c], start[c + 1]);
+        Eigen::Matrix3d& Rc = R[static_cast<std::size_t>(c)];
+        Rc = detail::rotation_onto(Ac, m.rank_one_axis.col(c - m.rank_one_begin),
+                                   q[static_cast<std::size_t>(c)]);
+        finish(c, Ac, Rc);
       }
       coupling[static_cast<std::size_t>(p)] = sum;
       if (need_quadratic) {
