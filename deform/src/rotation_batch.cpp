@@ -25,8 +25,10 @@ inline void rotation_of(double x, double y, double z, double w, double* r) {
 
 }  // namespace
 
-// The clones differ only in vector width; no FMA is enabled in any of them (see the header).
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(__SANITIZE_ADDRESS__)
+// The clones differ only in vector width; no FMA is enabled in any of them (see the header). Not under the
+// sanitizers: their run-time is not set up yet when the loader calls the clones' resolver (a crash at start).
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(__SANITIZE_ADDRESS__) && \
+    !defined(__SANITIZE_THREAD__)
 __attribute__((target_clones("avx512f", "avx2", "default")))
 #endif
 std::uint32_t
