@@ -184,13 +184,15 @@ void run_replay(const ReplayOptions& o) {
     };
   const std::string ext = model_extension(model_path);
   review.out = (out / ("final" + ext)).string();
-  const bool same_solver = lower(review.method) == lower(header.at("options").at("method").get<std::string>()) &&
-                           review.mu == header.at("options").at("mu").get<double>();
+  // Hashes are compared for the commits solved as they were recorded: the same method as that commit's (a
+  // session may switch methods on the way, and --method replays every commit with one) and the same mu.
+  const bool same_mu = review.mu == header.at("options").at("mu").get<double>();
   // Desktop recordings replay the same way: the desktop loop fed its mouse gesture through the float aim pose
   // it recorded (hand_sample.hpp), so p0, d and the commits are bit-identical here too.
   const bool desktop = h.value("desktop", false);
   const double d_tolerance = 1e-9;  // model units
-  const bool compare_hashes = same_solver;
+  // Metres per model unit as the review had it (from --length, or --scale), for lengths printed at life size.
+  const double life_size_scale = header.value("life_size_scale", h.value("scale", 1.0));
   // A recording from a newer version may hold records this one does not know (they are left out).
   if (rec.format_version == 0 || rec.format_version > kNewestRecordingFormat)
     std::fprintf(
@@ -223,7 +225,9 @@ void run_replay(const ReplayOptions& o) {
     } else {
       const json& r = rec.commits[c.index - 1].record;
       const std::size_t line = rec.commits[c.index - 1].line;
-      if (compare_hashes) {
+      const std::string recorded_method =
+          r.value("method", header.at("options").at("method").get<std::string>());
+      if (same_mu && lower(recorded_method) == lower(std::string(deform::method_name(c.snapshot->method)))) {
         check = r.at("hash") == hash_text(c.hash) ? "match" : "MISMATCH";
         if (check != "match" && first_mismatch.empty())
           first_mismatch = "commit " + std::to_string(c.index) + " (recording line " + std::to_string(line) +
@@ -244,10 +248,11 @@ void run_replay(const ReplayOptions& o) {
     }
     checks.push_back(check);
     char line[320];
-    std::snprintf(line, sizeof line, "pushpull replay: commit %zu/%zu  |d| %.1f mm  %d it  %s  hash %s  %s  (%.1f s)",
-                  c.index, recorded, 1000.0 * h.value("scale", 1.0) * c.snapshot->d.norm(), c.snapshot->iteration,
-                  c.snapshot->converged ? "converged" : "not converged", hash_text(c.hash).c_str(), check.c_str(),
-                  seconds_since(start));
+    std::snprintf(line, sizeof line,
+                  "pushpull replay: commit %zu/%zu  |d| %.1f mm  %d it  %s  hash %s  %s  (%.1f s)", c.index,
+                  recorded, 1000.0 * life_size_scale * c.snapshot->d.norm(), c.snapshot->iteration,
+                  c.snapshot->converged ? "converged" : "not converged", hash_text(c.hash).c_str(),
+                  check.c_str(), seconds_since(start));
     bar.print(line);
   };
   // The bar follows the recording's virtual clock through the loop, then the report's commits.
@@ -268,7 +273,7 @@ void run_replay(const ReplayOptions& o) {
 
   // Metrics, pictures and the report.
   const auto report_start = Clock::now();
-  const double scale = header.value("life_size_scale", 1.0);
+  const double scale = life_size_scale;
   std::vector<ReportCommit> report;
   for (const CommitRecord& c : commits) {
     bar.update(double(c.index - 1) / double(commits.size()),

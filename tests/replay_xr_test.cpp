@@ -196,6 +196,58 @@ TEST(ReplayXr, AnotherMethodComparesDInsteadOfHashes) {
   EXPECT_NE(file_bytes(dir / "arap" / "commit-01.metrics.json").find("\"arap-sr\""), std::string::npos);
 }
 
+// A session that switched methods on the way (the headset's menu panel between its two push/pulls), replayed
+// with --method asan: the commit made with asan is compared by hash, the one made with the other method by d,
+// and the replay passes (it used to compare every commit with the header's method and fail on the second).
+TEST(ReplayXr, AMethodSwitchedMidSessionIsComparedPerCommit) {
+  const fs::path dir = test_dir();
+  const std::string aim = R"("pose":{"p":[0.0123,0.5,-0.65],"q":[-0.70710678,0,0,0.70710678]})";
+  std::ofstream(dir / "script.jsonl")
+      << R"({"t":0.0,"path":"/user/head","pose":{"p":[0,1.0,0],"q":[-0.32557,0,0,0.94552]}}
+{"t":0.0,"path":"/user/hand/right/input/aim/pose",)"
+      << aim << R"(}
+{"t":0.0,"path":"/user/hand/right/input/trigger/value","value":0.0}
+{"t":0.3,"path":"/user/hand/right/input/trigger/value","value":1.0}
+{"t":0.8,"path":"/user/hand/right/input/aim/pose","pose":{"p":[0.0123,0.5,-0.55],"q":[-0.70710678,0,0,0.70710678]}}
+{"t":0.9,"path":"/user/hand/right/input/trigger/value","value":0.0}
+{"t":1.2,"path":"/user/hand/left/input/menu/click","value":1.0}
+{"t":1.3,"path":"/user/hand/left/input/menu/click","value":0.0}
+{"t":1.4,"path":"/user/hand/right/input/thumbstick","value":[0.0,1.0]}
+{"t":1.5,"path":"/user/hand/right/input/thumbstick","value":[0.0,0.0]}
+{"t":1.6,"path":"/user/hand/right/input/trigger/value","value":1.0}
+{"t":1.7,"path":"/user/hand/right/input/trigger/value","value":0.0}
+{"t":1.8,"path":"/user/hand/left/input/menu/click","value":1.0}
+{"t":1.9,"path":"/user/hand/left/input/menu/click","value":0.0}
+{"t":2.0,"path":"/user/hand/right/input/aim/pose","pose":{"p":[0.1123,0.5,-0.95],"q":[-0.70710678,0.02,0,0.70710678]}}
+{"t":2.2,"path":"/user/hand/right/input/trigger/value","value":1.0}
+{"t":2.6,"path":"/user/hand/right/input/aim/pose","pose":{"p":[0.1123,0.46,-0.95],"q":[-0.70710678,0.02,0,0.70710678]}}
+{"t":2.7,"path":"/user/hand/right/input/trigger/value","value":0.0}
+{"t":3.4,"event":"exit"}
+)";
+  const auto recorded =
+      run_command(sim_env() + " PUSHPULL_XR_SIM_INPUT=" + (dir / "script.jsonl").string() +
+                  " PUSHPULL_XR_SIM_WIDTH=64 PUSHPULL_XR_SIM_HEIGHT=64 PUSHPULL_XR_SIM_RATE=30"
+                  " PUSHPULL_XR_SIM_PACE=1"
+                  " PUSHPULL_XR_SIM_PROFILE=/interaction_profiles/oculus/touch_controller " +
+                  PUSHPULL_EXECUTABLE + " review " + kHood + kPlacement + " --record " +
+                  (dir / "session.jsonl").string());
+  ASSERT_EQ(recorded.status, 0) << recorded.output;
+  const auto commits = records(read_lines(dir / "session.jsonl"), "commit");
+  ASSERT_EQ(commits.size(), 2u) << recorded.output;
+  ASSERT_EQ(commits[0].at("method"), "asan");
+  ASSERT_NE(commits[1].at("method"), "asan") << "the panel did not switch the method";
+
+  const auto r = replay(dir / "session.jsonl", dir / "fixed", "--method asan --no-pictures");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("commit 1/2"), std::string::npos) << r.output;
+  const std::size_t second = r.output.find("commit 2/2");
+  ASSERT_NE(second, std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("match (d)", second), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("MISMATCH"), std::string::npos) << r.output;
+  // The first commit, made with asan, is still held to its hash.
+  EXPECT_NE(r.output.substr(0, second).find("  match  "), std::string::npos) << r.output;
+}
+
 TEST(ReplayXr, CompareReplaysEachMethodAndPutsThemSideBySide) {
   const fs::path dir = test_dir();
   const auto r = replay(record_session(dir), dir / "cmp", "--compare asan,arap-sr --no-pictures");
