@@ -104,6 +104,11 @@ class ReviewInteraction {
   // Drops a drag in progress (session lost, focus lost): the service shows the committed state again. A trigger
   // still held afterwards does not start another drag: each hand's trigger must be seen released first.
   std::optional<InteractionEvent> cancel();
+  // Between drags: a trigger pulled now must be let go before it presses (the grip or the menu panel had it,
+  // and gives it back still pulled). No effect on a trigger already released.
+  void require_release() {
+    if (drag_hand_ < 0) armed_ = {false, false};
+  }
   // The committed shape changed (newest snapshot's rest): refits the BVH when its revision is new.
   void sync_committed(const deform::Snapshot& snapshot);
 

@@ -211,6 +211,7 @@ void run_review(const ReviewCommandOptions& o) {
     bool commands_pending = false;       // a commit, undo or redo was issued and the service may still run it
     long held_frames = 0;                // frames a press has been held back (press_hold.hpp); 0: none held
     double hold_from = 0.0;              // the frame it has been held since
+    bool trigger_was_taken = false;      // the grip or the menu panel had the triggers last frame
     std::size_t next_hold = 0;           // replay: into o.press_holds
     long recording_rate_hz = 0;          // the headset's display rate, whole Hz (0 before the first frame)
     std::int64_t recording_frames = 0;   // frames the loop has read input for
@@ -489,6 +490,11 @@ void run_review(const ReviewCommandOptions& o) {
           if (choice.colour) change_colour(*choice.colour);
           for (auto& hand : hands) hand.trigger = 0.0f;
         }
+        // A trigger the grip or the panel had stays theirs until it is let go: a reviewer who squeezes grip
+        // and trigger together to carry the car, then lets go of the grip first, does not push or pull.
+        const bool trigger_taken = grab.grabbing() || menu.is_open();
+        if (trigger_was_taken && !trigger_taken) interaction.require_release();
+        trigger_was_taken = trigger_taken;
         // A press while a commit, undo or redo is still being solved would hit the surface the reviewer no
         // longer sees: it is held back (the triggers read as released) until the service is idle, and the
         // frame goes on. The hold is recorded, so a replay holds the same press over the same frames.

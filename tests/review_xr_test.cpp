@@ -898,6 +898,39 @@ TEST(ReviewXr, GripMovesTheModelAndLaterPushPullsFollowIt) {
   EXPECT_NEAR(d[1], -0.1, 1e-5);
 }
 
+// Grip and trigger squeezed together to carry the model, the grip let go first: the trigger, still pulled,
+// does not push or pull (it belonged to the grip); let go and pulled again, it does.
+TEST(ReviewXr, ATriggerStillPulledWhenTheGripIsLetGoDoesNotPushOrPull) {
+  const fs::path dir = test_dir();
+  const std::string down = R"("q":[-0.70710678,0,0,0.70710678])";
+  const std::string aim = "/user/hand/right/input/aim/pose", trigger = "/user/hand/right/input/trigger/value",
+                    grip = "/user/hand/right/input/squeeze/value";
+  auto pose = [&](double t, double y) {
+    return R"({"t":)" + number(t) + R"(,"path":")" + aim + R"(","pose":{"p":[0.0123,)" + number(y) +
+           ",-0.65]," + down + "}}\n";
+  };
+  auto value = [&](double t, const std::string& path, double v) {
+    return R"({"t":)" + number(t) + R"(,"path":")" + path + R"(","value":)" + number(v) + "}\n";
+  };
+  const std::string script =
+      R"({"t":0.0,"path":"/user/head","pose":{"p":[0,1.0,0],"q":[-0.32557,0,0,0.94552]}}
+)" + pose(0.0, 0.5) +
+      value(0.0, trigger, 0.0) + value(0.0, grip, 0.0) + value(0.3, grip, 1.0) + value(0.5, trigger, 1.0) +
+      pose(0.6, 0.5) + value(0.8, grip, 0.0) + pose(0.9, 0.5) + pose(1.4, 0.6) + value(1.5, trigger, 0.0) +
+      pose(1.8, 0.6) + value(2.0, trigger, 1.0) + pose(2.1, 0.6) + pose(2.5, 0.65) +
+      value(2.6, trigger, 0.0) +
+      R"({"t":3.2,"event":"exit"}
+)";
+  const ReviewRun run = run_review(dir, script, "");
+  ASSERT_EQ(run.result.status, 0) << run.result.output;
+  // The second pull only: 50 mm up, not the 100 mm the hand moved with the trigger still held from the grip.
+  ASSERT_EQ(run.of("press").size(), 1u) << run.result.output;
+  ASSERT_EQ(run.of("commit").size(), 1u) << run.result.output;
+  const std::vector<double> d = run.of("commit")[0].at("d");
+  EXPECT_NEAR(d[2], 0.05, 1e-5) << "the bonnet is Z-up: the hand's 50 mm up is model z";
+  EXPECT_NEAR(std::hypot(d[0], d[1]), 0.0, 1e-5);
+}
+
 // Both grips scale the model with the distance between the hands (0.4 m -> 0.8 m: twice life size).
 TEST(ReviewXr, TwoGripsScaleTheModel) {
   const fs::path dir = test_dir();
