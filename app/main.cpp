@@ -7,6 +7,9 @@
 #include <exception>
 
 int main(int argc, char** argv) {
+  // Line by line also into a file or a pipe (a review's log survives a kill; its lines interleave with
+  // stderr's in the order they happened).
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);
   CLI::App root{
       "pushpull: push and pull a tessellated design model with As-Stiff-As-Needed deformation\n"
       "(Le Vaou et al., Computer-Aided Design 121, 2020) and the ARAP family it is compared with."};

@@ -112,6 +112,9 @@ void run_replay(const ReplayOptions& o) {
   if (!fs::exists(model_path))
     throw CommandError(model_path + ": the recorded model file does not exist (recording " + o.recording +
                        "); pass --model FILE");
+  if (fs::is_directory(model_path))
+    throw CommandError(model_path + ": is a folder, not the recorded model file (recording " + o.recording +
+                       ")");
   const std::string sha = sha256_file_hex(model_path);
   if (sha != header.at("model_sha256").get<std::string>())
     throw CommandError(model_path + ": SHA-256 " + sha + " differs from the recording's " +

@@ -21,7 +21,11 @@ void finish_review(std::optional<std::string>& failure, SessionRecorder& recorde
                {"commits", service.history_position()}});
   });
   if (!out.empty()) {
-    write_review_model(out, model, current.state->V);
+    try {
+      write_review_model(out, model, current.state->V);
+    } catch (const CommandError& e) {  // the recording still holds the work: say so
+      throw CommandError(e.what() + kept_work_note("", recorder));
+    }
     if (print_out || failure)
       std::printf("pushpull review: wrote %s (%zu committed push/pull(s))\n", out.c_str(),
                   service.history_position());

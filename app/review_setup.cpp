@@ -27,8 +27,20 @@ std::string lower_extension(const std::string& path) {
 
 ReviewSetup prepare_review(const ReviewCommandOptions& o) {
   if (!fs::exists(o.model)) throw CommandError(o.model + ": model file does not exist");
+  std::error_code ec;
+  if (!o.out.empty() && fs::is_directory(o.out, ec))
+    throw CommandError(o.out + ": --out is a folder; name the file to write");
   if (!o.out.empty() && !deform::mesh_format_from_path(o.out) && lower_extension(o.out) != ".glb")
     throw CommandError(o.out + ": unsupported output format (expected .glb, .off, .obj or .ply)");
+  if (!o.out.empty()) {  // found out now, not after the session (its folder is made as --record's is)
+    const fs::path folder = fs::path(o.out).parent_path();
+    if (!folder.empty() && !fs::is_directory(folder, ec)) {
+      fs::create_directories(folder, ec);
+      if (ec || !fs::is_directory(folder))
+        throw CommandError(o.out + ": cannot make its folder " + folder.string() +
+                           (ec ? " (" + ec.message() + ")" : std::string()));
+    }
+  }
   ReviewSetup s;
   try {
     s.model = assets::load_model(o.model);
@@ -82,7 +94,8 @@ void write_review_model(const std::string& path, const assets::Model& model, con
       deform::write_mesh(path, deform::Mesh{V, model.deform_mesh.F});
     }
   } catch (const std::exception& e) {
-    throw CommandError(path + ": " + e.what());
+    const std::string what = e.what();
+    throw CommandError(what.rfind(path, 0) == 0 ? what : path + ": " + what);  // the path once
   }
 }
 

@@ -931,6 +931,31 @@ TEST(ReviewXr, ATriggerStillPulledWhenTheGripIsLetGoDoesNotPushOrPull) {
   EXPECT_NEAR(std::hypot(d[0], d[1]), 0.0, 1e-5);
 }
 
+// --out is settled before the session: its missing folder is made (as --record's is), a folder or an
+// unwritable place is refused at once instead of after the whole session.
+TEST(ReviewXr, TheOutFolderIsSettledBeforeTheSession) {
+  const fs::path dir = test_dir();
+  const fs::path out = dir / "new" / "folder" / "reviewed.off";
+  const ReviewRun made = run_review(dir, pull_released_then_exit(2.5), "--out " + out.string());
+  ASSERT_EQ(made.result.status, 0) << made.result.output;
+  EXPECT_TRUE(fs::exists(out)) << made.result.output;
+  const ReviewRun folder = run_review(dir, pull_released_then_exit(2.5), "--out " + dir.string());
+  EXPECT_NE(folder.result.status, 0);
+  EXPECT_NE(folder.result.output.find("--out is a folder"), std::string::npos) << folder.result.output;
+  EXPECT_EQ(folder.result.output.find("press at"), std::string::npos) << "the session ran";
+  std::ofstream(dir / "a_file") << "x";
+  const ReviewRun blocked =
+      run_review(dir, pull_released_then_exit(2.5), "--out " + (dir / "a_file" / "reviewed.off").string());
+  EXPECT_NE(blocked.result.status, 0);
+  EXPECT_NE(blocked.result.output.find("cannot make its folder"), std::string::npos) << blocked.result.output;
+  EXPECT_EQ(blocked.result.output.find("press at"), std::string::npos) << "the session ran";
+  // A folder given as the model is named as one.
+  const ReviewRun model_folder = run_review(dir, pull_released_then_exit(2.5), "", "", dir.string());
+  EXPECT_NE(model_folder.result.status, 0);
+  EXPECT_NE(model_folder.result.output.find("is a folder, not a model file"), std::string::npos)
+      << model_folder.result.output;
+}
+
 // Both grips scale the model with the distance between the hands (0.4 m -> 0.8 m: twice life size).
 TEST(ReviewXr, TwoGripsScaleTheModel) {
   const fs::path dir = test_dir();

@@ -171,6 +171,10 @@ Model model_from_mesh(const deform::Mesh& mesh, const std::string& name) {
 
 Model load_model(const fs::path& path, const LoadOptions& options) {
   const std::string extension = lower_extension(path);
+  std::error_code ec;
+  if (fs::is_directory(path, ec))
+    throw AssetError(path.string() +
+                     ": is a folder, not a model file (.gltf, .glb, .drc, .off, .obj or .ply)");
   if (!is_supported_model_path(path))
     throw AssetError(path.string() + ": unsupported model format '" + extension +
                      "' (expected .gltf, .glb, .drc, .off, .obj or .ply)");
