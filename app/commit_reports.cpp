@@ -5,11 +5,12 @@
 namespace pushpull::app {
 
 void take_commits(CommitWatch& commits, SessionRecorder& recorder, double t,
-                  const std::function<void(const CommitRecord&)>& on_commit) {
+                  const std::function<void(const CommitRecord&)>& on_commit,
+                  const std::function<void(const FailedCommit&)>& on_failed, bool quiet) {
   for (const CommitRecord& c : commits.take()) {
     recorder.write_commit(t, c);
     const deform::Snapshot& s = *c.snapshot;
-    if (!s.converged) {
+    if (!s.converged && !quiet) {
       char estimate[96] = "the solver has no estimate of its distance to the minimiser";
       if (s.error_estimate)
         std::snprintf(estimate, sizeof estimate, "estimated %.1e |d| from the minimiser", *s.error_estimate);
@@ -21,9 +22,12 @@ void take_commits(CommitWatch& commits, SessionRecorder& recorder, double t,
     if (on_commit) on_commit(c);
   }
   for (const FailedCommit& f : commits.take_failed()) {
-    std::fprintf(stderr, "pushpull review: the push/pull was not committed (the model stays as it was): %s\n",
-                 f.error.c_str());
+    if (!quiet)
+      std::fprintf(stderr,
+                   "pushpull review: the push/pull was not committed (the model stays as it was): %s\n",
+                   f.error.c_str());
     recorder.write_record("commit failed", t, {{"request", f.request}, {"error", f.error}});
+    if (on_failed) on_failed(f);
   }
 }
 

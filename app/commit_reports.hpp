@@ -18,8 +18,10 @@
 
 namespace pushpull::app {
 
+// quiet (a replay, which says each commit its own way): no live reviewer's advice on stderr.
 void take_commits(CommitWatch& commits, SessionRecorder& recorder, double t,
-                  const std::function<void(const CommitRecord&)>& on_commit);
+                  const std::function<void(const CommitRecord&)>& on_commit,
+                  const std::function<void(const FailedCommit&)>& on_failed, bool quiet);
 
 // An undo or redo asked for at time t (the recording's clock): sent to the service, logged ("undo"), recorded
 // and, with print, said on stdout; or, when there is nothing to step to (request_history_step), logged

@@ -121,7 +121,9 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
       log.write_interaction(e, life);
       recorder.write_interaction(t, e, interaction.handle_radius(), interaction.roi_radius());
     };
-    auto take_commits = [&] { app::take_commits(commits, recorder, t, o.on_commit); };
+    auto take_commits = [&] {
+      app::take_commits(commits, recorder, t, o.on_commit, o.on_failed_commit, o.quiet);
+    };
     // "nothing to undo", for a while in the HUD and the readout, on the wall clock (t, the recording's, runs
     // at 90 frames a second whatever the window's frame rate).
     TimedNotice notice;

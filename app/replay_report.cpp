@@ -89,9 +89,17 @@ void write_replay_report(const std::string& path, const ReportSession& s, const 
   h << "<tr><th>result</th><td>" << escape(s.summary) << "</td></tr>\n";
   if (!s.history.empty()) h << "<tr><th>history</th><td>" << escape(s.history) << "</td></tr>\n";
   if (!s.final_model.empty()) h << "<tr><th>final model</th><td>" << escape(s.final_model) << "</td></tr>\n";
+  if (!s.not_committed.empty()) {
+    h << "<tr><th>not committed</th><td class=\"bad\">" << s.not_committed.size()
+      << " push/pull(s) the solver could not commit (the model stayed as it was):<ul>";
+    for (const std::string& error : s.not_committed) h << "<li>" << escape(error) << "</li>";
+    h << "</ul></td></tr>\n";
+  }
   if (!s.cut.empty()) h << "<tr><th>recording cut</th><td class=\"bad\">" << escape(s.cut) << "</td></tr>\n";
   h << "</table>\n";
-  if (commits.empty()) h << "<p>No push/pull was committed.</p>\n";
+  if (commits.empty())
+    h << "<p>No push/pull was committed" << (s.not_committed.empty() ? "" : " (see \"not committed\" above)")
+      << ".</p>\n";
   for (const ReportCommit& c : commits) {
     const deform::DeformationMetrics& m = c.metrics;
     const double mm = c.scale * 1000.0;

@@ -44,6 +44,7 @@ struct ReportSession {
   std::string summary;
   std::string history;      // the session's push/pulls, undos and redos in order ("" when none)
   std::string final_model;  // which push/pulls the final model is made of
+  std::vector<std::string> not_committed;  // the errors of push/pulls the solver could not commit, in order
 };
 
 // Writes `path` atomically; throws CommandError naming it.

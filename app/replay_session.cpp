@@ -218,16 +218,40 @@ void run_replay(const ReplayOptions& o) {
   std::vector<std::string> checks;  // per commit: how it compared with the recording
   std::string first_mismatch;
   const std::size_t recorded = rec.commits.size();
+  // The recorded commit of a replayed one: every released push/pull ends as a commit or a failed commit, in
+  // release order, in the recording as in the replay; the k-th outcome of the replay pairs with the k-th
+  // recorded one (so a push/pull another --method could not commit shifts no later pairing).
+  std::vector<std::optional<std::size_t>>
+      recorded_outcomes;  // per outcome: its index in rec.commits, or none
+  for (std::size_t k = 0; const json& r : rec.records) {
+    const std::string kind = r.value("record", "");
+    if (kind == "commit") recorded_outcomes.push_back(k++);
+    if (kind == "commit failed") recorded_outcomes.push_back(std::nullopt);
+  }
+  std::size_t outcomes = 0;  // the replay's so far
+  std::vector<char> paired(recorded, 0);
+  auto recorded_for = [&]() -> std::optional<std::size_t> {
+    const std::size_t k = outcomes++;
+    return k < recorded_outcomes.size() ? recorded_outcomes[k] : std::nullopt;
+  };
+  std::vector<std::optional<std::size_t>> pairs;  // per replayed commit: its recorded commit
   review.on_commit = [&](const CommitRecord& c) {
     commits.push_back(c);
     const fs::path file = out / ("commit-" + two_digits(c.index) + ext);
     write_model(file, model, *c.snapshot->positions);
     std::string check;
-    if (c.index > recorded) {
-      check = "not compared (after the end of the recording)";
+    const std::optional<std::size_t> pair = recorded_for();
+    pairs.push_back(pair);
+    if (!pair) {
+      const bool beyond = outcomes > recorded_outcomes.size();
+      check = beyond ? "not compared (after the end of the recording)"
+                     : "not compared (the recording could not commit this push/pull)";
+      if (!beyond && o.method.empty() && same_mu && first_mismatch.empty())
+        first_mismatch = "commit " + std::to_string(c.index) + " was not committed in the recording";
     } else {
-      const json& r = rec.commits[c.index - 1].record;
-      const std::size_t line = rec.commits[c.index - 1].line;
+      paired[*pair] = 1;
+      const json& r = rec.commits[*pair].record;
+      const std::size_t line = rec.commits[*pair].line;
       const std::string recorded_method =
           r.value("method", header.at("options").at("method").get<std::string>());
       if (same_mu && lower(recorded_method) == lower(std::string(deform::method_name(c.snapshot->method)))) {
@@ -258,6 +282,16 @@ void run_replay(const ReplayOptions& o) {
                   check.c_str(), seconds_since(start));
     bar.print(line);
   };
+  // Push/pulls the solver could not commit: each is said, and the replay must fail as many as the recording.
+  std::vector<std::string> not_committed;
+  std::size_t recorded_failures = 0;
+  for (const json& r : rec.records)
+    if (r.value("record", "") == "commit failed") ++recorded_failures;
+  review.on_failed_commit = [&](const FailedCommit& f) {
+    ++outcomes;
+    not_committed.push_back(f.error);
+    bar.print("pushpull replay: a push/pull not committed (the model stays as it was): " + f.error);
+  };
   // The bar follows the recording's virtual clock through the loop, then the report's commits.
   const double total_s = std::max(rec.last_input_time, 1e-9);
   review.on_frame = [&](double t) {
@@ -269,10 +303,21 @@ void run_replay(const ReplayOptions& o) {
   const auto loop_start = Clock::now();
   run_review(review);
   const double loop_s = seconds_since(loop_start);
-  if (commits.size() < recorded && first_mismatch.empty())
-    first_mismatch = "commit " + std::to_string(commits.size() + 1) + " (recording line " +
-                     std::to_string(rec.commits[commits.size()].line) + ") was not reproduced (the replay made " +
+  // (Compared when every push/pull is solved as recorded: another --method or --mu may fail others.)
+  if (o.method.empty() && same_mu && not_committed.size() != recorded_failures && first_mismatch.empty() &&
+      !rec.cut)
+    first_mismatch = std::to_string(not_committed.size()) +
+                     " push/pull(s) could not be committed in the replay, " +
+                     std::to_string(recorded_failures) + " in the recording";
+  // Every recorded commit reproduced; with another --method or --mu, those it could not commit excepted.
+  const std::size_t unpaired = std::size_t(std::count(paired.begin(), paired.end(), 0));
+  const bool same_solver = o.method.empty() && same_mu;
+  if (unpaired > (same_solver ? 0 : not_committed.size()) && first_mismatch.empty()) {
+    const std::size_t k = std::size_t(std::find(paired.begin(), paired.end(), 0) - paired.begin());
+    first_mismatch = "commit " + std::to_string(k + 1) + " (recording line " +
+                     std::to_string(rec.commits[k].line) + ") was not reproduced (the replay made " +
                      std::to_string(commits.size()) + " of " + std::to_string(recorded) + " commits)";
+  }
 
   // Metrics, pictures and the report.
   const auto report_start = Clock::now();
@@ -366,7 +411,7 @@ void run_replay(const ReplayOptions& o) {
     rc.d = s.d;
     rc.scale = scale;
     rc.hash = hash_text(c.hash);
-    if (c.index <= recorded) rc.recorded_hash = rec.commits[c.index - 1].record.at("hash");
+    if (const auto pair = pairs.at(c.index - 1)) rc.recorded_hash = rec.commits[*pair].record.at("hash");
     rc.check = checks.at(c.index - 1);
     if (rc.check == "match") rc.check = "match: bit-identical to the recording";
     rc.model_file = stem + ext;
@@ -456,8 +501,14 @@ void run_replay(const ReplayOptions& o) {
   for (const auto& entry : fs::directory_iterator(out / "eyes"))
     if (entry.path().extension() == ".png") eyes.insert("eyes/" + entry.path().filename().string());
   session.eye_images.assign(eyes.begin(), eyes.end());
-  session.summary = std::to_string(commits.size()) + " commit(s) replayed of " + std::to_string(recorded) +
-                    " recorded; " + (first_mismatch.empty() ? "all checks passed" : "first mismatch: " + first_mismatch);
+  session.not_committed = not_committed;
+  session.summary =
+      std::to_string(commits.size()) + " commit(s) replayed of " + std::to_string(recorded) + " recorded" +
+      (not_committed.empty()
+           ? std::string()
+           : ", " + std::to_string(not_committed.size()) +
+                 " push/pull(s) not committed (recorded: " + std::to_string(recorded_failures) + ")") +
+      "; " + (first_mismatch.empty() ? "all checks passed" : "first mismatch: " + first_mismatch);
   write_replay_report((out / "report.html").string(), session, report);
   bar.finish();
   std::printf("pushpull replay: %s; time: loop %.1f s, metrics and pictures %.1f s, total %.1f s\n",

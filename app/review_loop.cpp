@@ -243,7 +243,9 @@ void run_review(const ReviewCommandOptions& o) {
       if (held_frames > 0) recorder.write_record("press held", t, {{"from", hold_from}, {"admitted", false}});
       held_frames = 0;
     };
-    auto take_commits = [&] { app::take_commits(commits, recorder, t, o.on_commit); };
+    auto take_commits = [&] {
+      app::take_commits(commits, recorder, t, o.on_commit, o.on_failed_commit, o.quiet);
+    };
     TimedNotice notice;  // "nothing to undo", for a while by the hand and in the mirror's HUD
     std::size_t next_history_step = 0;  // replay: into o.history_steps
     auto ask_history_step = [&](HistoryStep step) {
@@ -464,8 +466,9 @@ void run_review(const ReviewCommandOptions& o) {
               for (int c = 0; c < 4; ++c) T.push_back(grab.placement().T_stage_model(r, c));
             log.write(
                 {{"event", "placement"}, {"T_stage_model", T}, {"relative_scale", grab.relative_scale()}});
-            std::printf("pushpull review: model moved (%.0f%% of life size)\n",
-                        100.0 * grab.relative_scale());
+            if (!o.quiet)
+              std::printf("pushpull review: model moved (%.0f%% of life size)\n",
+                          100.0 * grab.relative_scale());
           }
           if (grab.grabbing())
             for (auto& hand : hands) hand.trigger = 0.0f;  // no push/pull while holding the model

@@ -59,6 +59,8 @@ struct ReviewCommandOptions {
   // Called on the loop's thread for every commit the service finished, in order, as soon as the loop sees it
   // (and the last ones after the service went idle at the end). Used by `pushpull replay`.
   std::function<void(const CommitRecord&)> on_commit;
+  // Likewise for every push/pull the service could not commit (the model stayed as it was).
+  std::function<void(const FailedCommit&)> on_failed_commit;
   // Headset loop: called once per frame with the recording's time of the frame (s), after its input was read
   // (`pushpull replay`'s progress bar).
   std::function<void(double t)> on_frame;

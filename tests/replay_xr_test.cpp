@@ -378,6 +378,29 @@ TEST(ReplayXr, AMalformedOrSecondAnchorRecordIsNamedByItsLine) {
 
 // The bundled session (examples/sessions): the paper's three push/pulls on the bundled car replay with the
 // recorded hashes (a change to the solver that moves them means recording it again: see its README).
+// Another --method may fail a push/pull the recording committed (arap-s's energy goes negative under the
+// bundled session's wheel-housing pull): the replay says so, pairs the other commits with theirs by request
+// and compares them by d, and the report lists what was not committed.
+TEST(ReplayXr, APushPullAnotherMethodCannotCommitIsSaidAndTheRestCompared) {
+  const fs::path dir = test_dir();
+  const auto r = replay(fs::path(PUSHPULL_SOURCE_DIR) / "examples/sessions/paper_scenarios.jsonl",
+                        dir / "out", "--method arap-s --no-pictures");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(
+      r.output.find("a push/pull not committed (the model stays as it was): deformer: arap-s: the energy "
+                    "went negative"),
+      std::string::npos)
+      << r.output;
+  EXPECT_NE(
+      r.output.find("2 commit(s) replayed of 3 recorded, 1 push/pull(s) not committed (recorded: 0); all "
+                    "checks passed"),
+      std::string::npos)
+      << r.output;
+  const std::string report = file_bytes(dir / "out" / "report.html");
+  EXPECT_NE(report.find("<th>not committed</th>"), std::string::npos);
+  EXPECT_NE(report.find("1 push/pull(s) the solver could not commit"), std::string::npos);
+}
+
 TEST(ReplayXr, BundledPaperSessionReplaysWithTheRecordedHashes) {
   const fs::path dir = test_dir();
   const auto r = replay(fs::path(PUSHPULL_SOURCE_DIR) / "examples/sessions/paper_scenarios.jsonl", dir / "out",
