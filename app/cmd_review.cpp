@@ -29,7 +29,7 @@ void add_review_command(CLI::App& root) {
       "Y/B (touch), B (index), right menu (simple, vive, motion); "
       "menu (touch) / thumbstick or trackpad click = the method and colour-map panel;\n"
       "grip = grab and move the model "
-      "(both grips: scale; undo while gripping: back to the start placement);\n"
+      "(both grips: scale, on the floor; undo while gripping: back to the session's first placement);\n"
       "right thumbstick between drags: handle radius (up/down) and region (left/right).\n"
       "It ends with Esc in the mirror or desktop window, the runtime's exit, or Ctrl-C (the committed work "
       "is "

@@ -21,7 +21,8 @@ double heading(const Eigen::Vector3d& v) { return std::atan2(-v.x(), -v.z()); } 
 
 }  // namespace
 
-GrabPlacement::GrabPlacement(StagePlacement initial) : initial_(initial), current_(initial) {}
+GrabPlacement::GrabPlacement(StagePlacement initial, bool scale_on_floor)
+    : initial_(initial), current_(initial), scale_on_floor_(scale_on_floor) {}
 
 double GrabPlacement::relative_scale() const {
   return current_.T_stage_model.topLeftCorner<3, 3>().col(0).norm() /
@@ -60,8 +61,17 @@ bool GrabPlacement::update(const std::array<std::optional<GrabHand>, 2>& hands) 
     const double d0 = (b0 - a0).norm(), d = (b - a).norm();
     const double s = d0 > 1e-3 ? std::clamp(d / d0, 0.05, 20.0) : 1.0;
     const double yaw = heading(b - a) - heading(b0 - a0);
-    last_pivot_ = 0.5 * (a + b);
-    M = about(0.5 * (a0 + b0), last_pivot_, yaw, s);
+    // Scaled about the point of the model's base plane (where its wheels stood) below the hands' midpoint, so
+    // the model stays on its floor as it grows or shrinks; both hands raised or lowered together lift it.
+    const Eigen::Vector3d mid0 = 0.5 * (a0 + b0), mid = 0.5 * (a + b);
+    Eigen::Vector3d from = mid0;
+    last_pivot_ = mid;
+    if (scale_on_floor_) {
+      const double base = (T_at_grab_ * initial_.T_stage_model.inverse() * Eigen::Vector4d(0, 0, 0, 1)).y();
+      from.y() = base;
+      last_pivot_.y() = base + (mid.y() - mid0.y());
+    }
+    M = about(from, last_pivot_, yaw, s);
   } else {
     const int h = held[0] ? 0 : 1;
     last_pivot_ = hands[size_t(h)]->position;

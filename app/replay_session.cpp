@@ -159,6 +159,7 @@ void run_replay(const ReplayOptions& o) {
   review.colour_changes = rec.colour_changes;
   review.size_changes = rec.size_changes;
   review.history_steps = rec.history_steps;
+  if (rec.format_version > 0) review.behaviour_of_format = rec.format_version;
   review.mu = o.mu.value_or(h.at("mu").get<double>());
   review.handle_radius_m = h.at("handle_radius_m");
   review.roi_radius_m = h.at("roi_radius_m");

@@ -268,7 +268,8 @@ void run_review(const ReviewCommandOptions& o) {
     input.emplace(xr.instance(), xr.handle(), xr.stage_space());
     FrameStats stats;
     SizeSteering sizes;
-    GrabPlacement grab(placement);
+    const bool format_6 = o.behaviour_of_format >= 6;
+    GrabPlacement grab(placement, /*scale_on_floor=*/format_6);
     AnchorSchedule anchor_schedule(o.recorded_anchor);  // when the model moves in front of the reviewer
     ReviewMenu menu;
     WorldLabel hand_label(renderer, 0.02f, 600), menu_label(renderer, 0.03f, 1500);
@@ -433,7 +434,7 @@ void run_review(const ReviewCommandOptions& o) {
               if (interaction.dragging())
                 if (const auto e = interaction.cancel()) log_event(*e);
               const StagePlacement at_head = anchored(placement, *anchor);
-              grab = GrabPlacement(at_head);
+              grab = GrabPlacement(at_head, /*scale_on_floor=*/format_6);
               place_model(at_head);
               recorder.write_record("anchor", t, {{"x", anchor->x}, {"z", anchor->z}, {"yaw", anchor->yaw}});
             }
@@ -496,7 +497,7 @@ void run_review(const ReviewCommandOptions& o) {
         // A trigger the grip or the panel had stays theirs until it is let go: a reviewer who squeezes grip
         // and trigger together to carry the car, then lets go of the grip first, does not push or pull.
         const bool trigger_taken = grab.grabbing() || menu.is_open();
-        if (trigger_was_taken && !trigger_taken) interaction.require_release();
+        if (trigger_was_taken && !trigger_taken && format_6) interaction.require_release();
         trigger_was_taken = trigger_taken;
         // A press while a commit, undo or redo is still being solved would hit the surface the reviewer no
         // longer sees: it is held back (the triggers read as released) until the service is idle, and the
@@ -541,7 +542,7 @@ void run_review(const ReviewCommandOptions& o) {
         if (interaction.dragging()) recorder.write_drag(t, interaction.current_d());
         for (int h = 0; h < 2 && !interaction.dragging(); ++h) {
           const xr::HandInput& in = input->hand(xr::Hand(h));
-          if (in.undo_pressed && grab.grabbing()) {  // undo while holding the model: back to life size
+          if (in.undo_pressed && grab.grabbing()) {  // undo while holding it: the session's first placement
             grab.reset();
             place_model(grab.placement());
             log.write({{"event", "placement reset"}});

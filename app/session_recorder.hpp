@@ -1,7 +1,7 @@
 // The review's session recording (`pushpull review --record FILE`): JSON Lines, written as the session goes
 // and flushed after every line, so a crash keeps everything up to the crash.
 //
-//   {"record":"header","format":"pushpull-session-5","model":..,"model_sha256":..,"T_stage_model":[16],..}
+//   {"record":"header","format":"pushpull-session-6","model":..,"model_sha256":..,"T_stage_model":[16],..}
 //   {"t":0.0,"path":"/user/head","pose":{"p":[x,y,z],"q":[x,y,z,w]}}              input, xr/sim script format
 //   {"t":0.0,"path":"/user/hand/right/input/trigger/value","value":0.0}
 //   {"record":"press","time":0.5,"hand":"right","face":12,"p0":[..],"handle_radius":..,"roi_radius":..}
@@ -16,10 +16,10 @@
 //   {"record":"sizes","time":..,"handle_radius":..,"roi_radius":..}   sizes set by a key (desktop)
 // Format 2 adds "press held" (headset recordings; the desktop shows a hold as its trigger staying released),
 // format 3 "anchor" (headset recordings), format 4 "colour" (every colour-map change; desktop recordings no
-// longer press the left menu button for the colour key), format 5 "sizes" (the desktop's size keys);
-// `pushpull replay` reads 1 to 5 alike (a recording without holds is replayed as format 1 was, one without an
-// anchor keeps the header's placement, a desktop one before format 4 has its menu presses read as colour
-// changes).
+// longer press the left menu button for the colour key), format 5 "sizes" (the desktop's size keys), format 6
+// no record but two-grip scaling on the floor; `pushpull replay` reads 1 to 6 alike (a recording without
+// holds is replayed as format 1 was, one without an anchor keeps the header's placement, a desktop one before
+// format 4 has its menu presses read as colour changes, one before format 6 scales about the hands).
 //   {"record":"end","time":..,"commits":n,"hash":".."}
 //
 // Input lines carry "t" and an OpenXR path. t counts the loop's frames: frame n at n / rate (the "clock"
@@ -52,8 +52,10 @@
 
 namespace pushpull::app {
 
-// The format this version writes ("pushpull-session-5") and the newest `pushpull replay` knows.
-inline constexpr int kNewestRecordingFormat = 5;
+// The format this version writes ("pushpull-session-6") and the newest `pushpull replay` knows. Format 6:
+// two-grip scaling keeps the model on its floor (grab_placement.hpp); a replay of format 1-5 scales about
+// the hands' midpoint, as those reviews did.
+inline constexpr int kNewestRecordingFormat = 6;
 
 struct ReviewCommandOptions;
 struct ReviewSetup;

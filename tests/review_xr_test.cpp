@@ -22,6 +22,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -979,6 +980,14 @@ TEST(ReviewXr, TwoGripsScaleTheModel) {
   const auto moved = run.of("placement");
   ASSERT_EQ(moved.size(), 1u) << run.result.output;
   EXPECT_NEAR(double(moved[0].at("relative_scale")), 2.0, 1e-4);
+  // Scaled on its floor: the bonnet's lowest point is still at the stage floor (y = 0), not pulled under it
+  // by scaling about the hands 1 m up.
+  const std::vector<double> T = moved[0].at("T_stage_model");  // row-major
+  const auto hood = pushpull::deform::read_mesh(kHood);
+  double lowest = std::numeric_limits<double>::infinity();
+  for (Eigen::Index v = 0; v < hood.V.rows(); ++v)
+    lowest = std::min(lowest, T[4] * hood.V(v, 0) + T[5] * hood.V(v, 1) + T[6] * hood.V(v, 2) + T[7]);
+  EXPECT_NEAR(lowest, 0.0, 1e-5);
 }
 
 TEST(ReviewXr, ThumbstickBetweenDragsScalesHandleAndRegion) {
@@ -1395,7 +1404,7 @@ wait $pid
     std::ifstream in(recording);
     std::ofstream o(legacy);
     for (std::string line; std::getline(in, line);) {
-      if (const auto at = line.find("pushpull-session-5"); at != std::string::npos) line[at + 17] = '3';
+      if (const auto at = line.find("pushpull-session-6"); at != std::string::npos) line[at + 17] = '3';
       if (line.find("\"record\":\"colour\"") == std::string::npos) {
         o << line << "\n";
         continue;
