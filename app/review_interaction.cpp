@@ -35,8 +35,7 @@ std::vector<std::string> readout_lines(const ReviewInteraction& interaction, con
     return {a, b};
   }
   std::snprintf(a, sizeof a, "|d| %.1f mm", life.to_mm(interaction.current_d().norm()));
-  if (s.kind == deform::Snapshot::Kind::Error)
-    return {a, method + "  error: " + s.error.substr(0, 40)};
+  if (s.kind == deform::Snapshot::Kind::Error) return {a, method + "  error:", error_gist(s.error)};
   std::snprintf(b, sizeof b, "%s  %d it  %s", method.c_str(), s.iteration, solver_state(s));
   std::vector<std::string> lines{a, b};
   if (!notice.empty()) lines.push_back(notice);  // e.g. a key pressed mid-drag

@@ -9,6 +9,7 @@
 // Ownership: borrows the Service (outlives this). Thread-safety: one thread (the frame loop).
 #pragma once
 
+#include "error_gist.hpp"
 #include "life_size.hpp"
 #include "stage_placement.hpp"
 

@@ -132,8 +132,9 @@ void EventLog::write_interaction(const InteractionEvent& e, const LifeSize& life
   if (e.kind == InteractionEvent::Kind::Committed) line["request"] = e.request;
   write(line);
   if (print_)
-    std::printf("pushpull review: %s at p0 = (%.4f, %.4f, %.4f), |d| = %.1f mm\n", names[int(e.kind)], e.p0.x(),
-              e.p0.y(), e.p0.z(), life.to_mm(e.d.norm()));
+    std::printf("pushpull review: %s at p0 = (%.4f, %.4f, %.4f) m (model axes, life size), |d| = %.1f mm\n",
+                names[int(e.kind)], life.scale() * e.p0.x(), life.scale() * e.p0.y(), life.scale() * e.p0.z(),
+                life.to_mm(e.d.norm()));
 }
 
 }  // namespace pushpull::app

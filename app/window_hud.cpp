@@ -17,7 +17,7 @@ std::vector<std::string> window_hud_lines(const ReviewInteraction& interaction,
   const std::string method(deform::method_name(interaction.method()));
   char state[160];
   if (snapshot.kind == deform::Snapshot::Kind::Error) {
-    std::snprintf(state, sizeof state, "%s  error", method.c_str());
+    std::snprintf(state, sizeof state, "%s  error: %s", method.c_str(), error_gist(snapshot.error).c_str());
   } else if (interaction.dragging()) {
     std::snprintf(state, sizeof state, "%s  |d| %.1f mm  %d it  %s", method.c_str(),
                   life.to_mm(interaction.current_d().norm()), snapshot.iteration, solver_state(snapshot));
