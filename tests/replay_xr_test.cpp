@@ -71,8 +71,8 @@ std::vector<nlohmann::json> records(const std::vector<nlohmann::json>& lines, co
 // Records kScript with `pushpull review --record dir/session.jsonl`, its frames paced in real time as a
 // headset's are: the second press comes 0.4 s after the first release, time enough for the commit to land
 // (unpaced, the loop's virtual clock outruns the solver, and the press is held back for the whole drag).
-fs::path record_session(const fs::path& dir) {
-  std::ofstream(dir / "script.jsonl") << kScript;
+fs::path record_script(const fs::path& dir, const std::string& script) {
+  std::ofstream(dir / "script.jsonl") << script;
   const auto r = run_command(sim_env() + " PUSHPULL_XR_SIM_INPUT=" + (dir / "script.jsonl").string() +
                              " PUSHPULL_XR_SIM_WIDTH=64 PUSHPULL_XR_SIM_HEIGHT=64 PUSHPULL_XR_SIM_RATE=30"
                              " PUSHPULL_XR_SIM_PACE=1"
@@ -81,6 +81,9 @@ fs::path record_session(const fs::path& dir) {
                              (dir / "session.jsonl").string());
   EXPECT_EQ(r.status, 0) << r.output;
   return dir / "session.jsonl";
+}
+fs::path record_session(const fs::path& dir) {
+  return record_script(dir, kScript);
 }
 
 pushpull::testing::CommandResult replay(const fs::path& recording, const fs::path& out,
@@ -202,10 +205,10 @@ TEST(ReplayXr, AnotherMethodComparesDInsteadOfHashes) {
 TEST(ReplayXr, AMethodSwitchedMidSessionIsComparedPerCommit) {
   const fs::path dir = test_dir();
   const std::string aim = R"("pose":{"p":[0.0123,0.5,-0.65],"q":[-0.70710678,0,0,0.70710678]})";
-  std::ofstream(dir / "script.jsonl")
-      << R"({"t":0.0,"path":"/user/head","pose":{"p":[0,1.0,0],"q":[-0.32557,0,0,0.94552]}}
-{"t":0.0,"path":"/user/hand/right/input/aim/pose",)"
-      << aim << R"(}
+  const fs::path recording =
+      record_script(dir, R"({"t":0.0,"path":"/user/head","pose":{"p":[0,1.0,0],"q":[-0.32557,0,0,0.94552]}}
+{"t":0.0,"path":"/user/hand/right/input/aim/pose",)" +
+                             aim + R"(}
 {"t":0.0,"path":"/user/hand/right/input/trigger/value","value":0.0}
 {"t":0.3,"path":"/user/hand/right/input/trigger/value","value":1.0}
 {"t":0.8,"path":"/user/hand/right/input/aim/pose","pose":{"p":[0.0123,0.5,-0.55],"q":[-0.70710678,0,0,0.70710678]}}
@@ -223,21 +226,13 @@ TEST(ReplayXr, AMethodSwitchedMidSessionIsComparedPerCommit) {
 {"t":2.6,"path":"/user/hand/right/input/aim/pose","pose":{"p":[0.1123,0.46,-0.95],"q":[-0.70710678,0.02,0,0.70710678]}}
 {"t":2.7,"path":"/user/hand/right/input/trigger/value","value":0.0}
 {"t":3.4,"event":"exit"}
-)";
-  const auto recorded =
-      run_command(sim_env() + " PUSHPULL_XR_SIM_INPUT=" + (dir / "script.jsonl").string() +
-                  " PUSHPULL_XR_SIM_WIDTH=64 PUSHPULL_XR_SIM_HEIGHT=64 PUSHPULL_XR_SIM_RATE=30"
-                  " PUSHPULL_XR_SIM_PACE=1"
-                  " PUSHPULL_XR_SIM_PROFILE=/interaction_profiles/oculus/touch_controller " +
-                  PUSHPULL_EXECUTABLE + " review " + kHood + kPlacement + " --record " +
-                  (dir / "session.jsonl").string());
-  ASSERT_EQ(recorded.status, 0) << recorded.output;
-  const auto commits = records(read_lines(dir / "session.jsonl"), "commit");
-  ASSERT_EQ(commits.size(), 2u) << recorded.output;
+)");
+  const auto commits = records(read_lines(recording), "commit");
+  ASSERT_EQ(commits.size(), 2u);
   ASSERT_EQ(commits[0].at("method"), "asan");
   ASSERT_NE(commits[1].at("method"), "asan") << "the panel did not switch the method";
 
-  const auto r = replay(dir / "session.jsonl", dir / "fixed", "--method asan --no-pictures");
+  const auto r = replay(recording, dir / "fixed", "--method asan --no-pictures");
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("commit 1/2"), std::string::npos) << r.output;
   const std::size_t second = r.output.find("commit 2/2");

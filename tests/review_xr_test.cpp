@@ -862,20 +862,25 @@ TEST(ReviewXr, APressStillHeldWhenTheReviewEndsIsRecordedAndReplaysWithoutAPress
   }
 }
 
+// Script lines for the grip tests: the right hand aiming straight down from (0.0123, y, z), and an input
+// path's value.
+const std::string kRightTrigger = "/user/hand/right/input/trigger/value";
+const std::string kRightGrip = "/user/hand/right/input/squeeze/value";
+std::string right_aim_down(double t, double y, double z) {
+  return R"({"t":)" + number(t) + R"(,"path":"/user/hand/right/input/aim/pose","pose":{"p":[0.0123,)" +
+         number(y) + "," + number(z) + R"(],"q":[-0.70710678,0,0,0.70710678]}})" + "\n";
+}
+std::string input_value(double t, const std::string& path, double v) {
+  return R"({"t":)" + number(t) + R"(,"path":")" + path + R"(","value":)" + number(v) + "}\n";
+}
+
 // Grip moves the model: 0.5 m towards the reviewer; a later push/pull aimed at where the bonnet's front now
 // is grabs the same model point as before the move and moves it by the same model-space d.
 TEST(ReviewXr, GripMovesTheModelAndLaterPushPullsFollowIt) {
   const fs::path dir = test_dir();
-  const std::string down = R"("q":[-0.70710678,0,0,0.70710678])";
-  const std::string aim = "/user/hand/right/input/aim/pose", trigger = "/user/hand/right/input/trigger/value",
-                    grip = "/user/hand/right/input/squeeze/value";
-  auto pose = [&](double t, double z) {
-    return R"({"t":)" + number(t) + R"(,"path":")" + aim + R"(","pose":{"p":[0.0123,0.5,)" + number(z) +
-           "]," + down + "}}\n";
-  };
-  auto value = [&](double t, const std::string& path, double v) {
-    return R"({"t":)" + number(t) + R"(,"path":")" + path + R"(","value":)" + number(v) + "}\n";
-  };
+  const std::string &trigger = kRightTrigger, &grip = kRightGrip;
+  auto pose = [](double t, double z) { return right_aim_down(t, 0.5, z); };
+  const auto value = input_value;
   const std::string script =
       R"({"t":0.0,"path":"/user/head","pose":{"p":[0,1.0,0],"q":[-0.32557,0,0,0.94552]}}
 )" + pose(0.0, -0.65) +
@@ -903,16 +908,9 @@ TEST(ReviewXr, GripMovesTheModelAndLaterPushPullsFollowIt) {
 // does not push or pull (it belonged to the grip); let go and pulled again, it does.
 TEST(ReviewXr, ATriggerStillPulledWhenTheGripIsLetGoDoesNotPushOrPull) {
   const fs::path dir = test_dir();
-  const std::string down = R"("q":[-0.70710678,0,0,0.70710678])";
-  const std::string aim = "/user/hand/right/input/aim/pose", trigger = "/user/hand/right/input/trigger/value",
-                    grip = "/user/hand/right/input/squeeze/value";
-  auto pose = [&](double t, double y) {
-    return R"({"t":)" + number(t) + R"(,"path":")" + aim + R"(","pose":{"p":[0.0123,)" + number(y) +
-           ",-0.65]," + down + "}}\n";
-  };
-  auto value = [&](double t, const std::string& path, double v) {
-    return R"({"t":)" + number(t) + R"(,"path":")" + path + R"(","value":)" + number(v) + "}\n";
-  };
+  const std::string &trigger = kRightTrigger, &grip = kRightGrip;
+  auto pose = [](double t, double y) { return right_aim_down(t, y, -0.65); };
+  const auto value = input_value;
   const std::string script =
       R"({"t":0.0,"path":"/user/head","pose":{"p":[0,1.0,0],"q":[-0.32557,0,0,0.94552]}}
 )" + pose(0.0, 0.5) +
