@@ -42,7 +42,11 @@ bool GrabPlacement::update(const std::array<std::optional<GrabHand>, 2>& hands) 
       grabbed_ = held;
       const double s = relative_scale();
       if (s != 1.0 && std::abs(s - 1.0) < 0.1) {  // near life size: snap to it, about the last grab point
-        current_ = placement_from(about(last_pivot_, last_pivot_, 0.0, 1.0 / s) * current_.T_stage_model);
+        Eigen::Vector3d pivot = last_pivot_;
+        if (scale_on_floor_)  // (on the base plane below it, whichever hands grabbed last)
+          pivot.y() =
+              (current_.T_stage_model * initial_.T_stage_model.inverse() * Eigen::Vector4d(0, 0, 0, 1)).y();
+        current_ = placement_from(about(pivot, pivot, 0.0, 1.0 / s) * current_.T_stage_model);
         return true;
       }
       return false;

@@ -22,6 +22,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <limits>
+#include <map>
 #include <set>
 
 namespace pushpull::app {
@@ -159,7 +160,10 @@ void run_replay(const ReplayOptions& o) {
   review.colour_changes = rec.colour_changes;
   review.size_changes = rec.size_changes;
   review.history_steps = rec.history_steps;
-  if (rec.format_version > 0) review.behaviour_of_format = rec.format_version;
+  // How the recorded review behaved: its format's, or what a replay of an older one wrote down.
+  if (rec.format_version > 0)
+    review.behaviour_of_format =
+        header.value("behaviour_format", std::min(rec.format_version, kNewestRecordingFormat));
   review.mu = o.mu.value_or(h.at("mu").get<double>());
   review.handle_radius_m = h.at("handle_radius_m");
   review.roi_radius_m = h.at("roi_radius_m");
@@ -219,17 +223,42 @@ void run_replay(const ReplayOptions& o) {
   std::vector<std::string> checks;  // per commit: how it compared with the recording
   std::string first_mismatch;
   const std::size_t recorded = rec.commits.size();
-  // The recorded commit of a replayed one: every released push/pull ends as a commit or a failed commit, in
+  // The recorded commit of a replayed one: every committed release ends as a commit or a failed commit, in
   // release order, in the recording as in the replay; the k-th outcome of the replay pairs with the k-th
-  // recorded one (so a push/pull another --method could not commit shifts no later pairing).
+  // recorded one (so a push/pull another --method could not commit shifts no later pairing). A recorded
+  // release's outcome is the commit record of its request; none is a failed commit (recordings before the
+  // "commit failed" record have them too), unless the recording was cut before it could say.
   std::vector<std::optional<std::size_t>>
-      recorded_outcomes;  // per outcome: its index in rec.commits, or none
-  for (std::size_t k = 0; const json& r : rec.records) {
-    const std::string kind = r.value("record", "");
-    if (kind == "commit") recorded_outcomes.push_back(k++);
-    if (kind == "commit failed") recorded_outcomes.push_back(std::nullopt);
+      recorded_outcomes;  // per release: its index in rec.commits, or none
+  std::size_t recorded_failures = 0;
+  {
+    std::map<std::uint64_t, std::size_t> commit_of_request;
+    for (std::size_t k = 0; k < recorded; ++k)
+      if (const json& r = rec.commits[k].record; r.contains("request") && r["request"].is_number_unsigned())
+        commit_of_request.emplace(r["request"].get<std::uint64_t>(), k);
+    for (const json& r : rec.records) {
+      if (r.value("record", "") != "release" || !r.value("committed", false) || !r.contains("request") ||
+          !r["request"].is_number_unsigned())
+        continue;
+      const auto found = commit_of_request.find(r["request"].get<std::uint64_t>());
+      recorded_outcomes.push_back(found == commit_of_request.end() ? std::nullopt
+                                                                   : std::optional(found->second));
+      if (found == commit_of_request.end()) ++recorded_failures;
+    }
+    // A cut recording's last releases may have lost their commit records: unknown, as after its end.
+    if (rec.cut) {
+      recorded_failures = 0;
+      while (!recorded_outcomes.empty() && !recorded_outcomes.back()) recorded_outcomes.pop_back();
+    }
+    // Recordings whose releases carry no requests pair commits by index.
+    if (recorded_outcomes.empty())
+      for (std::size_t k = 0; k < recorded; ++k) recorded_outcomes.push_back(k);
   }
   std::size_t outcomes = 0;  // the replay's so far
+  // Hashes are compared while the replay's model is the recorded one: every commit before was solved with
+  // its recorded method and mu and matched, and every push/pull the recording committed was committed.
+  bool on_recorded_path = true;
+  std::size_t failed_where_committed = 0;  // replay failures whose recorded push/pull was committed
   std::vector<char> paired(recorded, 0);
   auto recorded_for = [&]() -> std::optional<std::size_t> {
     const std::size_t k = outcomes++;
@@ -249,28 +278,34 @@ void run_replay(const ReplayOptions& o) {
                      : "not compared (the recording could not commit this push/pull)";
       if (!beyond && o.method.empty() && same_mu && first_mismatch.empty())
         first_mismatch = "commit " + std::to_string(c.index) + " was not committed in the recording";
+      on_recorded_path = false;
     } else {
       paired[*pair] = 1;
       const json& r = rec.commits[*pair].record;
       const std::size_t line = rec.commits[*pair].line;
       const std::string recorded_method =
           r.value("method", header.at("options").at("method").get<std::string>());
-      if (same_mu && lower(recorded_method) == lower(std::string(deform::method_name(c.snapshot->method)))) {
+      const bool as_recorded =
+          same_mu && lower(recorded_method) == lower(std::string(deform::method_name(c.snapshot->method)));
+      if (as_recorded && on_recorded_path) {
         check = r.at("hash") == hash_text(c.hash) ? "match" : "MISMATCH";
+        on_recorded_path = check == "match";
         if (check != "match" && first_mismatch.empty())
           first_mismatch = "commit " + std::to_string(c.index) + " (recording line " + std::to_string(line) +
                            "): hash " + hash_text(c.hash) + " differs from the recorded " +
                            r.at("hash").get<std::string>() + " (tolerance: bit-identical positions)";
       } else {
+        on_recorded_path = false;
         const double gap = r.contains("d") ? (vec3(r["d"]) - c.snapshot->d).norm() : 0.0;
         check = gap <= d_tolerance ? "match (d)" : "MISMATCH (d)";
         if (gap > d_tolerance && first_mismatch.empty()) {
           char text[160];
           std::snprintf(text, sizeof text, "d differs from the recorded one by %.3g model units (tolerance %.3g)",
                         gap, d_tolerance);
-          first_mismatch = "commit " + std::to_string(c.index) + " (recording line " + std::to_string(line) +
-                           "): " + text +
-                           "; hashes are not compared with another method or mu";
+          first_mismatch =
+              "commit " + std::to_string(c.index) + " (recording line " + std::to_string(line) +
+              "): " + text +
+              "; hashes are compared only for commits solved as recorded from the recorded model";
         }
       }
     }
@@ -285,11 +320,12 @@ void run_replay(const ReplayOptions& o) {
   };
   // Push/pulls the solver could not commit: each is said, and the replay must fail as many as the recording.
   std::vector<std::string> not_committed;
-  std::size_t recorded_failures = 0;
-  for (const json& r : rec.records)
-    if (r.value("record", "") == "commit failed") ++recorded_failures;
   review.on_failed_commit = [&](const FailedCommit& f) {
-    ++outcomes;
+    const std::size_t k = outcomes++;
+    if (k < recorded_outcomes.size() && recorded_outcomes[k]) {
+      ++failed_where_committed;
+      on_recorded_path = false;
+    }
     not_committed.push_back(f.error);
     bar.print("pushpull replay: a push/pull not committed (the model stays as it was): " + f.error);
   };
@@ -313,7 +349,7 @@ void run_replay(const ReplayOptions& o) {
   // Every recorded commit reproduced; with another --method or --mu, those it could not commit excepted.
   const std::size_t unpaired = std::size_t(std::count(paired.begin(), paired.end(), 0));
   const bool same_solver = o.method.empty() && same_mu;
-  if (unpaired > (same_solver ? 0 : not_committed.size()) && first_mismatch.empty()) {
+  if (unpaired > (same_solver ? 0 : failed_where_committed) && first_mismatch.empty()) {
     const std::size_t k = std::size_t(std::find(paired.begin(), paired.end(), 0) - paired.begin());
     first_mismatch = "commit " + std::to_string(k + 1) + " (recording line " +
                      std::to_string(rec.commits[k].line) + ") was not reproduced (the replay made " +

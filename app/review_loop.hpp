@@ -63,7 +63,7 @@ struct ReviewCommandOptions {
   // Before format 6 two-grip scaling was about the hands' midpoint, and a trigger the grip or the menu panel
   // gave back still pulled could press at once.
   int behaviour_of_format = 6;
-  // Likewise for every push/pull the service could not commit (the model stayed as it was).
+  // Called like on_commit for every push/pull the service could not commit (the model stayed as it was).
   std::function<void(const FailedCommit&)> on_failed_commit;
   // Headset loop: called once per frame with the recording's time of the frame (s), after its input was read
   // (`pushpull replay`'s progress bar).

@@ -32,20 +32,21 @@ ReviewSetup prepare_review(const ReviewCommandOptions& o) {
     throw CommandError(o.out + ": --out is a folder; name the file to write");
   if (!o.out.empty() && !deform::mesh_format_from_path(o.out) && lower_extension(o.out) != ".glb")
     throw CommandError(o.out + ": unsupported output format (expected .glb, .off, .obj or .ply)");
-  if (!o.out.empty()) {  // found out now, not after the session (its folder is made as --record's is)
-    const fs::path folder = fs::path(o.out).parent_path();
-    if (!folder.empty() && !fs::is_directory(folder, ec)) {
-      fs::create_directories(folder, ec);
-      if (ec || !fs::is_directory(folder))
-        throw CommandError(o.out + ": cannot make its folder " + folder.string() +
-                           (ec ? " (" + ec.message() + ")" : std::string()));
-    }
-  }
   ReviewSetup s;
   try {
     s.model = assets::load_model(o.model);
   } catch (const std::exception& e) {
     throw CommandError(e.what());
+  }
+  if (!o.out.empty()) {  // found out now, not after the session (its folder is made as --record's is)
+    const fs::path folder = fs::path(o.out).parent_path();
+    if (!folder.empty() && !fs::is_directory(folder, ec)) {
+      fs::create_directories(folder, ec);
+      std::error_code made;
+      if (ec || !fs::is_directory(folder, made))
+        throw CommandError(o.out + ": cannot make its folder " + folder.string() +
+                           (ec ? " (" + ec.message() + ")" : std::string()));
+    }
   }
   s.life = LifeSize(o.life_size, s.model.bounds, o.model);
   {

@@ -7,6 +7,7 @@
 
 #include "pushpull/deform/method.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <ctime>
@@ -123,6 +124,9 @@ void SessionRecorder::write_header(const ReviewCommandOptions& o, const ReviewSe
   const deform::DeformOptions& solver = s.interaction.solver;
   json header{{"record", "header"},
               {"format", "pushpull-session-" + std::to_string(kNewestRecordingFormat)},
+              // A replay of an older recording behaves as that format's review did (review_loop.hpp), and so
+              // does a replay of this replay's recording.
+              {"behaviour_format", std::min(o.behaviour_of_format, kNewestRecordingFormat)},
               {"pushpull_version", PUSHPULL_VERSION},
               {"model", fs::absolute(o.model).lexically_normal().string()},
               // Also relative to the recording's folder: a recording kept beside its model (examples/)

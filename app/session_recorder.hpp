@@ -53,8 +53,11 @@
 namespace pushpull::app {
 
 // The format this version writes ("pushpull-session-6") and the newest `pushpull replay` knows. Format 6:
-// two-grip scaling keeps the model on its floor (grab_placement.hpp); a replay of format 1-5 scales about
-// the hands' midpoint, as those reviews did.
+// two-grip scaling keeps the model on its floor (grab_placement.hpp), and a trigger the grip or the menu
+// panel gives back still pulled must be let go before it presses; a replay of format 1-5 scales about the
+// hands' midpoint and lets such a trigger press at once, as those reviews did. The header's
+// "behaviour_format" says which behaviour the recorded review had (a replay of an older recording writes
+// the older number), and a replay follows it.
 inline constexpr int kNewestRecordingFormat = 6;
 
 struct ReviewCommandOptions;

@@ -202,6 +202,7 @@ TEST(ReplayXr, AnotherMethodComparesDInsteadOfHashes) {
 // A session that switched methods on the way (the headset's menu panel between its two push/pulls), replayed
 // with --method asan: the commit made with asan is compared by hash, the one made with the other method by d,
 // and the replay passes (it used to compare every commit with the header's method and fail on the second).
+// Replayed with the other method, both are compared by d (the second starts from a model solved otherwise).
 TEST(ReplayXr, AMethodSwitchedMidSessionIsComparedPerCommit) {
   const fs::path dir = test_dir();
   const std::string aim = R"("pose":{"p":[0.0123,0.5,-0.65],"q":[-0.70710678,0,0,0.70710678]})";
@@ -241,6 +242,13 @@ TEST(ReplayXr, AMethodSwitchedMidSessionIsComparedPerCommit) {
   EXPECT_EQ(r.output.find("MISMATCH"), std::string::npos) << r.output;
   // The first commit, made with asan, is still held to its hash.
   EXPECT_NE(r.output.substr(0, second).find("  match  "), std::string::npos) << r.output;
+  // With the second commit's method throughout, the first is solved otherwise, so the second starts from
+  // another model than it did: compared by d too, not by a hash it cannot have.
+  const auto other = replay(recording, dir / "other",
+                            "--method " + commits[1].at("method").get<std::string>() + " --no-pictures");
+  ASSERT_EQ(other.status, 0) << other.output;
+  EXPECT_EQ(other.output.find("MISMATCH"), std::string::npos) << other.output;
+  EXPECT_EQ(other.output.find("  match  "), std::string::npos) << other.output;
 }
 
 TEST(ReplayXr, CompareReplaysEachMethodAndPutsThemSideBySide) {
@@ -374,8 +382,8 @@ TEST(ReplayXr, AMalformedOrSecondAnchorRecordIsNamedByItsLine) {
 // The bundled session (examples/sessions): the paper's three push/pulls on the bundled car replay with the
 // recorded hashes (a change to the solver that moves them means recording it again: see its README).
 // Another --method may fail a push/pull the recording committed (arap-s's energy goes negative under the
-// bundled session's wheel-housing pull): the replay says so, pairs the other commits with theirs by request
-// and compares them by d, and the report lists what was not committed.
+// bundled session's wheel-housing pull): the replay says so, pairs the other commits with theirs by release
+// order and compares them by d, and the report lists what was not committed.
 TEST(ReplayXr, APushPullAnotherMethodCannotCommitIsSaidAndTheRestCompared) {
   const fs::path dir = test_dir();
   const auto r = replay(fs::path(PUSHPULL_SOURCE_DIR) / "examples/sessions/paper_scenarios.jsonl",

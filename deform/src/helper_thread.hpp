@@ -1,6 +1,6 @@
 // Private: one persistent helper thread for splitting a loop in two fixed halves ("part 0" on the calling
-// thread, "part 1" on the helper). Used by the solver's local step; no dependency beyond the standard
-// library.
+// thread, "part 1" on the helper). Used by the solver's local step, triangular solves, Anderson acceleration
+// and error estimate; no dependency beyond the standard library.
 //
 // Contract: run_both(job) calls job(0) on the calling thread and job(1) on the helper, and returns once
 // both have returned; writes made by job(1) happen-before run_both returns. The job must not throw (an

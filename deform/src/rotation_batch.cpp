@@ -43,7 +43,7 @@ closest_rotation_step(RotationLanes& lanes, double accept_step) {
       m = magnitude > m ? magnitude : m;
       total += magnitude;
     }
-    const bool valid = (m > 0.0) & (total <= DBL_MAX);  // false for NaN and infinity too
+    const bool valid = (m > 0.0) & (m <= DBL_MAX) & (total == total);  // false for a NaN or infinite entry
     const double inv = 1.0 / (valid ? m : 1.0);
     double b[9];
     for (int k = 0; k < 9; ++k) b[k] = lanes.a[k][l] * inv;

@@ -21,7 +21,9 @@ struct RotationLanes {
 };
 
 // One Newton (or gradient) step of closest_rotation from each lane's q, with the same rules: the step is
-// taken where A is finite and nonzero and the gradient is not ~0; q is updated and r is its rotation.
+// taken where A is finite and nonzero and the gradient is not ~0; q is updated and r is its rotation. A lane
+// whose A has a NaN or infinite entry, or is zero, keeps its q (finished, r = R(q)). Pure and re-entrant:
+// it reads and writes `lanes` only.
 // Returns a bit mask of the lanes that are finished (as closest_rotation would have returned after this
 // step: a Newton step shorter than accept_step, already at the maximum, or A ~ 0). The other lanes must go
 // on with closest_rotation from their updated q (more steps, or the SVD at a saddle).

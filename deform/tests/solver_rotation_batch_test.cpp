@@ -102,6 +102,26 @@ TEST(SolverRotationBatch, OneStepIsTheScalarStep) {
   }
 }
 
+TEST(SolverRotationBatch, EveryLaneGivesTheSameBits) {
+  // The same cluster in all 8 lanes: each lane computes it alone, in the same order (a replay's hashes rest
+  // on it), whichever vector width the clone uses.
+  std::mt19937 rng(5);
+  std::normal_distribution<double> normal;
+  for (int k = 0; k < 200; ++k) {
+    Eigen::Matrix3d A;
+    for (int i = 0; i < 9; ++i) A(i) = normal(rng);
+    const Eigen::Quaterniond q = Eigen::Quaterniond::UnitRandom();
+    RotationLanes lanes;
+    for (int l = 0; l < kRotationLanes; ++l) put(lanes, l, A, q);
+    const std::uint32_t finished = closest_rotation_step(lanes, 1e-2);
+    EXPECT_TRUE(finished == 0u || finished == (1u << kRotationLanes) - 1u) << k;
+    for (int l = 1; l < kRotationLanes; ++l) {
+      for (int i = 0; i < 4; ++i) EXPECT_EQ(lanes.q[i][l], lanes.q[i][0]) << k << " lane " << l;
+      for (int i = 0; i < 9; ++i) EXPECT_EQ(lanes.r[i][l], lanes.r[i][0]) << k << " lane " << l;
+    }
+  }
+}
+
 TEST(SolverRotationBatch, DegenerateLanesKeepTheirWarmStart) {
   RotationLanes lanes;
   const Eigen::Quaterniond warm(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ()));
