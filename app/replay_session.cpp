@@ -22,7 +22,6 @@
 #include <cstdlib>
 #include <filesystem>
 #include <limits>
-#include <map>
 #include <set>
 
 namespace pushpull::app {
@@ -195,6 +194,7 @@ void run_replay(const ReplayOptions& o) {
   // Hashes are compared for the commits solved as they were recorded: the same method as that commit's (a
   // session may switch methods on the way, and --method replays every commit with one) and the same mu.
   const bool same_mu = review.mu == header.at("options").at("mu").get<double>();
+  const bool same_solver = o.method.empty() && same_mu;  // every push/pull solved as recorded
   // Desktop recordings replay the same way: the desktop loop fed its mouse gesture through the float aim pose
   // it recorded (hand_sample.hpp), so p0, d and the commits are bit-identical here too.
   const bool desktop = h.value("desktop", false);
@@ -228,59 +228,38 @@ void run_replay(const ReplayOptions& o) {
   // recorded one (so a push/pull another --method could not commit shifts no later pairing). A recorded
   // release's outcome is the commit record of its request; none is a failed commit (recordings before the
   // "commit failed" record have them too), unless the recording was cut before it could say.
-  std::vector<std::optional<std::size_t>>
-      recorded_outcomes;  // per release: its index in rec.commits, or none
-  std::size_t recorded_failures = 0;
-  {
-    std::map<std::uint64_t, std::size_t> commit_of_request;
-    for (std::size_t k = 0; k < recorded; ++k)
-      if (const json& r = rec.commits[k].record; r.contains("request") && r["request"].is_number_unsigned())
-        commit_of_request.emplace(r["request"].get<std::uint64_t>(), k);
-    for (const json& r : rec.records) {
-      if (r.value("record", "") != "release" || !r.value("committed", false) || !r.contains("request") ||
-          !r["request"].is_number_unsigned())
-        continue;
-      const auto found = commit_of_request.find(r["request"].get<std::uint64_t>());
-      recorded_outcomes.push_back(found == commit_of_request.end() ? std::nullopt
-                                                                   : std::optional(found->second));
-      if (found == commit_of_request.end()) ++recorded_failures;
-    }
-    // A cut recording's last releases may have lost their commit records: unknown, as after its end.
-    if (rec.cut) {
-      recorded_failures = 0;
-      while (!recorded_outcomes.empty() && !recorded_outcomes.back()) recorded_outcomes.pop_back();
-    }
-    // Recordings whose releases carry no requests pair commits by index.
-    if (recorded_outcomes.empty())
-      for (std::size_t k = 0; k < recorded; ++k) recorded_outcomes.push_back(k);
-  }
+  std::vector<std::optional<std::size_t>> recorded_outcomes = release_outcomes(rec);
+  // A cut recording's last releases may have lost their commit records: unknown, as after its end.
+  if (rec.cut)
+    while (!recorded_outcomes.empty() && !recorded_outcomes.back()) recorded_outcomes.pop_back();
+  const std::size_t recorded_failures =
+      rec.cut ? 0 : std::size_t(std::count(recorded_outcomes.begin(), recorded_outcomes.end(), std::nullopt));
+  // Recordings whose releases carry no requests pair commits by index.
+  if (recorded_outcomes.empty())
+    for (std::size_t k = 0; k < recorded; ++k) recorded_outcomes.push_back(k);
   std::size_t outcomes = 0;  // the replay's so far
   // Hashes are compared while the replay's model is the recorded one: every commit before was solved with
   // its recorded method and mu and matched, and every push/pull the recording committed was committed.
   bool on_recorded_path = true;
-  std::size_t failed_where_committed = 0;  // replay failures whose recorded push/pull was committed
-  std::vector<char> paired(recorded, 0);
-  auto recorded_for = [&]() -> std::optional<std::size_t> {
-    const std::size_t k = outcomes++;
-    return k < recorded_outcomes.size() ? recorded_outcomes[k] : std::nullopt;
-  };
+  std::size_t failed_where_committed = 0;         // replay failures whose recorded push/pull was committed
   std::vector<std::optional<std::size_t>> pairs;  // per replayed commit: its recorded commit
   review.on_commit = [&](const CommitRecord& c) {
     commits.push_back(c);
     const fs::path file = out / ("commit-" + two_digits(c.index) + ext);
     write_model(file, model, *c.snapshot->positions);
     std::string check;
-    const std::optional<std::size_t> pair = recorded_for();
+    const std::size_t slot = outcomes++;
+    const std::optional<std::size_t> pair =
+        slot < recorded_outcomes.size() ? recorded_outcomes[slot] : std::nullopt;
     pairs.push_back(pair);
     if (!pair) {
       const bool beyond = outcomes > recorded_outcomes.size();
       check = beyond ? "not compared (after the end of the recording)"
                      : "not compared (the recording could not commit this push/pull)";
-      if (!beyond && o.method.empty() && same_mu && first_mismatch.empty())
+      if (!beyond && same_solver && first_mismatch.empty())
         first_mismatch = "commit " + std::to_string(c.index) + " was not committed in the recording";
       on_recorded_path = false;
     } else {
-      paired[*pair] = 1;
       const json& r = rec.commits[*pair].record;
       const std::size_t line = rec.commits[*pair].line;
       const std::string recorded_method =
@@ -341,14 +320,15 @@ void run_replay(const ReplayOptions& o) {
   run_review(review);
   const double loop_s = seconds_since(loop_start);
   // (Compared when every push/pull is solved as recorded: another --method or --mu may fail others.)
-  if (o.method.empty() && same_mu && not_committed.size() != recorded_failures && first_mismatch.empty() &&
-      !rec.cut)
+  if (same_solver && not_committed.size() != recorded_failures && first_mismatch.empty() && !rec.cut)
     first_mismatch = std::to_string(not_committed.size()) +
                      " push/pull(s) could not be committed in the replay, " +
                      std::to_string(recorded_failures) + " in the recording";
   // Every recorded commit reproduced; with another --method or --mu, those it could not commit excepted.
+  std::vector<char> paired(recorded, 0);
+  for (const auto& pair : pairs)
+    if (pair) paired[*pair] = 1;
   const std::size_t unpaired = std::size_t(std::count(paired.begin(), paired.end(), 0));
-  const bool same_solver = o.method.empty() && same_mu;
   if (unpaired > (same_solver ? 0 : failed_where_committed) && first_mismatch.empty()) {
     const std::size_t k = std::size_t(std::find(paired.begin(), paired.end(), 0) - paired.begin());
     first_mismatch = "commit " + std::to_string(k + 1) + " (recording line " +

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string_view>
@@ -217,26 +218,49 @@ SessionRecording read_session_recording(const std::string& path) {
   return r;
 }
 
-CommitHistory commit_history(const SessionRecording& recording) {
-  // The commit each request became (a failed one never entered the history).
+namespace {
+
+bool is_committed_release(const nlohmann::json& r) {
+  return r.value("record", "") == "release" && r.value("committed", false) && r.contains("request") &&
+         r["request"].is_number_unsigned();
+}
+
+}  // namespace
+
+std::vector<std::optional<std::size_t>> release_outcomes(const SessionRecording& recording) {
   std::map<std::uint64_t, std::size_t> commit_of_request;
-  for (const nlohmann::json& r : recording.records)
-    if (r.value("record", "") == "commit" && r.contains("request") && r["request"].is_number_unsigned() &&
-        r.contains("index") && r["index"].is_number_unsigned())
-      commit_of_request[r["request"].get<std::uint64_t>()] = r["index"].get<std::size_t>();
+  for (std::size_t k = 0; k < recording.commits.size(); ++k)
+    if (const nlohmann::json& r = recording.commits[k].record;
+        r.contains("request") && r["request"].is_number_unsigned())
+      commit_of_request.emplace(r["request"].get<std::uint64_t>(), k);
+  std::vector<std::optional<std::size_t>> outcomes;
+  for (const nlohmann::json& r : recording.records) {
+    if (!is_committed_release(r)) continue;
+    const auto it = commit_of_request.find(r["request"].get<std::uint64_t>());
+    outcomes.push_back(it == commit_of_request.end() ? std::nullopt : std::optional(it->second));
+  }
+  return outcomes;
+}
+
+CommitHistory commit_history(const SessionRecording& recording) {
+  const std::vector<std::optional<std::size_t>> outcomes = release_outcomes(recording);
+  std::size_t release = 0;
   CommitHistory h;
   std::vector<std::size_t> states{0};  // 0: the model as loaded
   std::size_t position = 0;
   for (const nlohmann::json& r : recording.records) {
     const std::string kind = r.value("record", "");
-    if (kind == "release" && r.value("committed", false) && r.contains("request") &&
-        r["request"].is_number_unsigned()) {
-      const auto it = commit_of_request.find(r["request"].get<std::uint64_t>());
-      if (it == commit_of_request.end()) continue;  // failed, or not landed before the end
+    if (is_committed_release(r)) {
+      const std::optional<std::size_t> commit = outcomes[release++];
+      if (!commit) continue;  // failed, or not landed before the end (never entered the history)
+      const nlohmann::json& c = recording.commits[*commit].record;
+      const std::size_t index = c.contains("index") && c["index"].is_number_unsigned()
+                                    ? c["index"].get<std::size_t>()
+                                    : *commit + 1;
       states.resize(position + 1);
-      states.push_back(it->second);
+      states.push_back(index);
       position = states.size() - 1;
-      h.steps.push_back("push/pull " + std::to_string(it->second));
+      h.steps.push_back("push/pull " + std::to_string(index));
     } else if (kind == "undo") {
       if (position > 0) --position;
       h.steps.push_back("undo");

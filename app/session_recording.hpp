@@ -52,6 +52,11 @@ struct SessionRecording {
 // Reads and checks `path`; throws CommandError naming the file (and the line) and the problem.
 [[nodiscard]] SessionRecording read_session_recording(const std::string& path);
 
+// What each committed release of the recording became, in release order: its commit (the position in
+// `recording.commits` of the commit record with the release's request), or none (the commit failed, or had
+// not landed when the recording ended). Releases without a request number are left out.
+[[nodiscard]] std::vector<std::optional<std::size_t>> release_outcomes(const SessionRecording& recording);
+
 // What the recorded session's undo and redo made of its commits: the commits (their "index", 1-based) the
 // final model is made of, in order, and the session's history as text ("push/pull 1, push/pull 2, undo,
 // redo"). Replays the recorded order of commits issued (committed releases whose commit landed), undos and
