@@ -78,7 +78,14 @@ void ContractionEstimate::add(const Eigen::Ref<const Eigen::VectorXd>& x,
     whole_solve_ = std::max(whole_solve_, std::min(largest, kCautiousMaxRate));
     rate_ = whole_solve_;
   } else {
-    rate_ = std::min(recent_largest, kMaxRate);
+    // The largest of the later half of the solve's estimates [estimates_ / 2, estimates_), and at least the
+    // last 10: a sliding maximum (indices of decreasing values; both window ends only move forward).
+    const long index = estimates_ - 1;
+    while (!later_.empty() && later_.back().second <= largest) later_.pop_back();
+    later_.emplace_back(index, largest);
+    while (later_.front().first < estimates_ / 2) later_.pop_front();
+    rate_ = std::min(std::max(later_.front().second, recent_largest), kMaxRate);
+    recent_only_ = std::min(recent_largest, kMaxRate);
   }
 }
 
@@ -91,6 +98,12 @@ std::optional<double> ContractionEstimate::rate() const {
     return any ? std::max(rate_, *floor_) : *floor_;
   }
   return floor_ ? std::max(rate_, *floor_) : rate_;
+}
+
+std::optional<double> ContractionEstimate::recent_rate() const {
+  const std::optional<double> all = rate();
+  if (!all || policy_ == Policy::Cautious || pairs_ < window_ || estimates_ < window_) return all;
+  return floor_ ? std::max(recent_only_, *floor_) : recent_only_;
 }
 
 void ContractionEstimate::set_floor(double rate) {

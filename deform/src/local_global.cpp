@@ -9,6 +9,7 @@
 
 #include "deformer_impl.hpp"
 #include "error_estimate.hpp"
+#include "rate_probe.hpp"
 
 namespace pushpull::deform {
 namespace {
@@ -103,7 +104,52 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
   detail::ContractionEstimate contraction(kRateWindow, 3 * n_free,
                                           triangle_rotations ? detail::ContractionEstimate::Policy::Cautious
                                                              : detail::ContractionEstimate::Policy::Recent);
-  if (rate_hint && initial_guess.size() != 0) contraction.set_floor(*rate_hint);
+  const bool hinted = rate_hint && initial_guess.size() != 0;
+  if (hinted) contraction.set_floor(*rate_hint);
+  // The rate probe (rate_probe.hpp) checks the first candidate stop within the first kProbeBefore
+  // iterations, unless a warm start brought the rate of a nearby solve (already probed or long-run).
+  constexpr int kProbeBefore = 4 * kRateWindow;
+  constexpr int kProbeSteps = 20;
+  bool probe_pending = !hinted;
+  // J v of the plain map at X by a finite difference: (G(X + h v) - G(X)) / h, with the rotations
+  // warm-started from those of G(X) (one Newton step from the optimum is exact to first order) and h a
+  // 1e-6 |d| move of the largest entry.
+  auto probe_at = [&](const Eigen::Matrix3Xd& X_at) {
+    std::vector<Eigen::Matrix3d> R0 = R;
+    std::vector<Eigen::Quaterniond> q0 = q;
+    Eigen::Matrix3Xd B0(3, n_free), G0(3, n_free), Bv(3, n_free), Gv(3, n_free), Y = X_at;
+    double unused = 0.0;
+    (void)local_step(X_at, R0, q0, true, sweeps, std::nullopt, &B0, threads);
+    global_step(B0, rhs_c, constrained_quadratic, G0, unused, threads);
+    const Eigen::Index N = 3 * static_cast<Eigen::Index>(n_free);
+    auto jacobian = [&](const Eigen::VectorXd& v, Eigen::VectorXd& out) {
+      const double largest = v.cwiseAbs().maxCoeff();
+      const double h = largest > 0.0 ? 1e-6 * reference / largest : 0.0;
+      Y.leftCols(n_free) =
+          X_at.leftCols(n_free) + h * Eigen::Map<const Eigen::Matrix3Xd>(v.data(), 3, n_free);
+      std::vector<Eigen::Matrix3d> Rv = R0;
+      std::vector<Eigen::Quaterniond> qv = q0;
+      (void)local_step(Y, Rv, qv, true, sweeps, std::nullopt, &Bv, threads);
+      global_step(Bv, rhs_c, constrained_quadratic, Gv, unused, threads);
+      out =
+          (Eigen::Map<const Eigen::VectorXd>(Gv.data(), N) - Eigen::Map<const Eigen::VectorXd>(G0.data(), N));
+      out /= h > 0.0 ? h : 1.0;
+    };
+    // Q_ff v over the free block of Q (both triangles stored).
+    auto metric = [&](const Eigen::VectorXd& v, Eigen::VectorXd& out) {
+      out.setZero(N);
+      const Eigen::SparseMatrix<double>& Q = model.Q;
+      for (int j = 0; j < n_free; ++j) {
+        for (int p = Q.outerIndexPtr()[j]; p < Q.outerIndexPtr()[j + 1]; ++p) {
+          const int i = Q.innerIndexPtr()[p];
+          if (i < n_free) out.segment<3>(3 * j) += Q.valuePtr()[p] * v.segment<3>(3 * i);
+        }
+      }
+    };
+    const detail::RateProbe found = detail::probe_rate(N, kProbeSteps, jacobian, metric);
+    result.probe_evaluations += found.evaluations + 1;
+    return found.rate;
+  };
 
   Eigen::Matrix3Xd X_next =
       X;  // its constrained columns stay X's; the free ones are rewritten each iteration
@@ -143,7 +189,7 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
     const std::optional<double> rate = contraction.rate();
     if (rate) error = move / (1.0 - *rate);
     result.error_estimate = error;
-    result.contraction_rate = rate;
+    result.contraction_rate = contraction.recent_rate();
     X.swap(X_next);
     result.energy_trace.push_back(next_energy);
     result.iterations = iteration;
@@ -151,8 +197,12 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
     energy = next_energy;
 
     if (progress) {
-      const IterationReport report{iteration, energy, move,
-                                   error,     rate,   std::make_shared<const Eigen::MatrixXd>(to_full(X))};
+      const IterationReport report{iteration,
+                                   energy,
+                                   move,
+                                   error,
+                                   result.contraction_rate,
+                                   std::make_shared<const Eigen::MatrixXd>(to_full(X))};
       if (!progress(report)) {
         result.cancelled = true;
         result.stop_reason = StopReason::Cancelled;
@@ -160,6 +210,18 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
       }
     }
     if (options.tolerance > 0.0 && error && *error <= options.tolerance) {
+      if (probe_pending && iteration <= kProbeBefore) {
+        probe_pending = false;
+        const double probed = probe_at(X);
+        result.probe_rate = probed;
+        contraction.set_floor(probed);  // a floor from now on, and under the rate handed to warm starts
+        result.contraction_rate = contraction.recent_rate();
+        if (probed > *rate) {  // a slower mode than the iterates have shown: it bounds the error
+          const std::optional<double> raised = contraction.rate();
+          if (raised) result.error_estimate = move / (1.0 - *raised);
+          if (!raised || *result.error_estimate > options.tolerance) continue;
+        }
+      }
       result.stop_reason = StopReason::ErrorTolerance;
       break;
     }
@@ -177,7 +239,8 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
       result.stop_reason == StopReason::ErrorTolerance || result.stop_reason == StopReason::EnergyTolerance;
   result.V = to_full(X);
   result.timing.solve = ms_since(solve_start);
-  result.timing.per_iteration = result.iterations > 0 ? result.timing.solve / result.iterations : 0.0;
+  const int evaluations = result.iterations + result.probe_evaluations;
+  result.timing.per_iteration = evaluations > 0 ? result.timing.solve / evaluations : 0.0;
   if (!result.V.allFinite()) {
     throw std::runtime_error("deformer: the solve produced non-finite positions (please report this mesh)");
   }

@@ -108,7 +108,7 @@ struct IterationReport {
   // DeformOptions::tolerance); empty for the first few iterations, until the contraction rate is known, and
   // while the iterates move away from a fixed point (a saddle of a non-convex energy such as arap-h's).
   std::optional<double> error_estimate;
-  // The contraction rate behind error_estimate (see DeformResult::contraction_rate).
+  // The contraction rate to carry to a warm start from these positions (see DeformResult::contraction_rate).
   std::optional<double> contraction_rate;
   // #V by 3 full-mesh positions after this iteration: an immutable copy the receiver may keep (e.g. publish
   // as a preview snapshot to another thread). Never null.
@@ -163,8 +163,8 @@ struct DeformOptions {
 struct TimingMs {
   double precompute = 0.0;     // constructor: validation, clusters, right-hand-side map, symbolic analysis
   double factorize = 0.0;      // this solve: weights + numeric factorization (0 when reused)
-  double solve = 0.0;          // this solve: all iterations
-  double per_iteration = 0.0;  // solve / iterations
+  double solve = 0.0;          // this solve: all iterations, and the rate probe's evaluations if any
+  double per_iteration = 0.0;  // solve / (iterations + DeformResult::probe_evaluations)
 };
 
 struct DeformResult {
@@ -173,9 +173,19 @@ struct DeformResult {
   bool converged = false;  // stop_reason is ErrorTolerance or EnergyTolerance
   // Estimated largest vertex distance to the exact minimiser / reference length, at the last iteration.
   std::optional<double> error_estimate;
-  // The contraction rate of the plain local-global step behind error_estimate (in [0, 1); empty until
-  // known). Pass it as ConstraintTargets::rate_hint when this result warm-starts a nearby solve.
+  // The contraction rate of the plain local-global step over the last iterations (in [0, 1); empty until
+  // known; at least probe_rate when the probe ran). Pass it as ConstraintTargets::rate_hint when this result
+  // warm-starts a nearby solve. error_estimate may rest on a larger rate: the largest of the later half of
+  // the solve (deform/src/error_estimate.hpp says why).
   std::optional<double> contraction_rate;
+  // A solve that reaches its tolerance within its first 32 iterations (and was not warm-started with a
+  // rate_hint) first checks the rate its estimate rests on: 20 Arnoldi steps on the local-global map's
+  // Jacobian from a fixed random start, each one extra local and global step. A slower rate found there
+  // raises the estimate, and the solve goes on. probe_rate: the largest rate the probe found (empty: no
+  // probe); probe_evaluations: its local-global steps (not in `iterations`; their time is in
+  // timing.solve).
+  std::optional<double> probe_rate;
+  int probe_evaluations = 0;
   bool cancelled = false;
   StopReason stop_reason = StopReason::MaxIterations;
   std::vector<double> energy_trace;  // energy after every iteration (size == iterations)

@@ -1,0 +1,43 @@
+// Private: an independent check of the local-global map's contraction rate, made once at an early candidate
+// stop (local_global.cpp says when).
+//
+// Why: the running estimate (error_estimate.hpp) takes Ritz values from the iterates' differences. A mode
+// that contracts at rate lambda appears there weighted by 1 - lambda, so a slow mode (lambda ~ 0.999, a
+// nearly free hinge or a soft direction of asan's material) stays invisible until the fast modes have died
+// out, and a solve that stops early can stop with most of its error in that mode: on the shared models 7-10%
+// of random pulls stopped 2-6.4x optimistic (stopping_bench --random-pulls), nearly all within 32
+// iterations.
+//
+// How: `steps` Arnoldi steps on the Jacobian J of the plain map G, from a fixed pseudo-random start vector
+// (which holds every mode, the slow ones included, with weight ~1/sqrt(n)), orthogonalised in the inner
+// product of `metric` (the prefactored matrix Q_ff: J = I - Q_ff^-1 H is self-adjoint in it, so the
+// projected matrix is close to symmetric and its Ritz values approach J's extreme eigenvalues from inside).
+// The caller supplies J v (a finite difference of G, one local and one global step per call). The largest
+// |Ritz value| is a lower bound on the spectral radius; the solver uses it as a floor under its running
+// estimate. On the random pulls 20 steps found every slow mode that 8-16 steps missed.
+//
+// Deterministic: the start vector is a fixed function of the dimension (splitmix64), the same on every
+// platform. Thread-safety: none (a function of its arguments and callbacks).
+#pragma once
+
+#include <Eigen/Core>
+#include <functional>
+
+namespace pushpull::deform::detail {
+
+struct RateProbe {
+  double rate = 0.0;    // largest |Ritz value| found (0 when nothing could be probed)
+  int evaluations = 0;  // calls of `jacobian`
+};
+
+// jacobian(v, out): out = J v. metric(v, out): out = M v for a symmetric positive definite M. Both get and
+// fill vectors of `dimension`. Stops early when the Krylov space is exhausted (an invariant subspace).
+[[nodiscard]] RateProbe probe_rate(
+    Eigen::Index dimension, int steps,
+    const std::function<void(const Eigen::VectorXd& v, Eigen::VectorXd& out)>& jacobian,
+    const std::function<void(const Eigen::VectorXd& v, Eigen::VectorXd& out)>& metric);
+
+// The fixed start vector (unit in the Euclidean norm): entries uniform in [-0.5, 0.5) from splitmix64.
+[[nodiscard]] Eigen::VectorXd probe_start(Eigen::Index dimension);
+
+}  // namespace pushpull::deform::detail
