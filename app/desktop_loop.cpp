@@ -359,6 +359,8 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
         break;
       }
     }
+    if (window.lost())
+      std::printf("pushpull review: the window was closed from outside; ending the review as with Esc\n");
     // The end, also after a failure (review_end.hpp).
     guarded(failure, [&] {
       if (const auto e = interaction.cancel()) record_interaction(*e);

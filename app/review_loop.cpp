@@ -678,6 +678,8 @@ void run_review(const ReviewCommandOptions& o) {
     }
     // The end, also after a failure (review_end.hpp). A drag still in progress is cancelled (as the desktop
     // loop does): the model stays as it was before it.
+    if (mirror && mirror->lost())
+      std::printf("pushpull review: the mirror window was closed from outside; ending the review\n");
     if (failure)
       std::fprintf(stderr, "pushpull review: %s; ending the review (the committed work is kept)\n",
                    failure->c_str());

@@ -35,6 +35,8 @@ class SupervisorMirror {
   // pointer goes to the free orbit.
   std::vector<int> poll();
   [[nodiscard]] bool should_close() const { return window_.should_close(); }
+  // The window was destroyed from outside (renderer::MirrorWindow::lost).
+  [[nodiscard]] bool lost() const { return window_.lost(); }
   void set_orbit_bounds(const renderer::Bounds& bounds) { view_.set_orbit_bounds(bounds); }
   [[nodiscard]] MirrorMode mode() const { return view_.mode(); }
   // The mode's name for the HUD and the title; "headset eye (drawn)" when the last frame could not copy the

@@ -1425,6 +1425,37 @@ wait $pid
   EXPECT_GT((desktop_model.V - rest.V).cwiseAbs().maxCoeff(), 0.05);  // commit 1 moved the bonnet
 }
 
+// A window destroyed from outside (xdotool windowclose: XDestroyWindow, as a crashed window manager or a
+// kill leaves it) ends the review as Esc does: the committed push/pull is written to --out and the exit
+// status is 0. Xlib's default error handler used to exit with 1 on the next request on the window
+// (BadWindow), and the surface lost on the next frame was reported as an error.
+TEST(ReviewXrWindow, ADesktopWindowClosedFromOutsideEndsTheReviewAndKeepsTheWork) {
+  if (std::getenv("DISPLAY") == nullptr) GTEST_SKIP() << "no DISPLAY (ctest runs this under xvfb-run)";
+  ASSERT_EQ(run_command("command -v xdotool").status, 0) << "xdotool is missing (scripts/setup installs it)";
+  const fs::path dir = test_dir();
+  const fs::path recording = dir / "desktop.jsonl", out = dir / "desktop.off";
+  std::ofstream(dir / "drive.sh") << "set -e\n"
+                                  << PUSHPULL_EXECUTABLE << " review " << kHood << kPlacement
+                                  << " --desktop --mirror-size 400 300 --record " << recording.string()
+                                  << " --out " << out.string() << " > " << (dir / "review.log").string()
+                                  << " 2>&1 &\n"
+                                  << desktop_drive_prelude(recording) << R"SH(
+xdotool mousemove --window $wid 200 150; sleep 0.3; xdotool mousedown 1; await press 1
+for i in 1 2 3 4 5 6 7 8; do xdotool mousemove_relative -- 3 0; sleep 0.05; done
+sleep 0.3; xdotool mouseup 1; await commit 1
+xdotool windowclose $wid
+set +e; wait $pid; echo "review exit status $?"
+)SH";
+  const auto driven = run_drive_script(dir);  // its output ends with the review's log
+  ASSERT_EQ(driven.status, 0) << driven.output;
+  EXPECT_NE(driven.output.find("review exit status 0"), std::string::npos) << driven.output;
+  EXPECT_NE(driven.output.find("the window was closed from outside"), std::string::npos) << driven.output;
+  EXPECT_EQ(driven.output.find("X Error"), std::string::npos) << driven.output;
+  EXPECT_EQ(driven.output.find("SURFACE_LOST"), std::string::npos) << driven.output;
+  ASSERT_TRUE(fs::exists(out)) << driven.output;
+  EXPECT_GT(largest_move_from_hood(out), 0.0);  // the committed push/pull is in the written model
+}
+
 // Desktop mode: a click while the last commit is still solving is held back (the window keeps drawing) and
 // goes through once it has landed; the recording replays with both commits.
 TEST(ReviewXrWindow, DesktopPressWhileACommitIsSolvingIsHeldBack) {

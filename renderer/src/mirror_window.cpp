@@ -2,6 +2,7 @@
 
 #include "pushpull/renderer/unique_handle.hpp"
 #include "pushpull/renderer/vk_check.hpp"
+#include "x11_error_guard.hpp"
 
 #define GLFW_INCLUDE_VULKAN
 #include <GLFW/glfw3.h>
@@ -36,6 +37,7 @@ struct MirrorWindow::Impl {
   std::vector<UniqueSemaphore> rendered;  // one per swapchain image
   uint32_t next_acquire = 0;
   bool needs_recreate = false;
+  bool lost = false;         // the surface or the window is gone (closed from outside)
   bool blit_target = false;  // the swapchain images take transfers (TRANSFER_DST usage)
   std::vector<int> key_presses;
   double scroll = 0.0;
@@ -157,6 +159,8 @@ MirrorWindow::MirrorWindow(const Context& context, uint32_t width, uint32_t heig
   glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
   impl_->window = glfwCreateWindow(int(width), int(height), title.c_str(), nullptr, nullptr);
   if (impl_->window == nullptr) throw VulkanError(VK_ERROR_INITIALIZATION_FAILED, "glfwCreateWindow failed");
+  detail::reset_x11_window_gone();
+  detail::install_x11_error_guard();
   glfwSetWindowUserPointer(impl_->window, impl_.get());
   glfwSetKeyCallback(impl_->window, [](GLFWwindow* window, int key, int, int action, int) {
     if (action == GLFW_PRESS)
@@ -179,14 +183,24 @@ MirrorWindow::~MirrorWindow() {
 
 std::optional<MirrorWindow::Frame> MirrorWindow::acquire() {
   Impl& w = *impl_;
+  if (lost()) return std::nullopt;
   if (w.needs_recreate || w.swapchain == VK_NULL_HANDLE) {
-    w.recreate();
-    if (w.swapchain == VK_NULL_HANDLE) return std::nullopt;
+    try {
+      w.recreate();
+    } catch (const VulkanError& e) {
+      if (e.result() != VK_ERROR_SURFACE_LOST_KHR) throw;
+      w.lost = true;
+    }
+    if (w.lost || w.swapchain == VK_NULL_HANDLE) return std::nullopt;
   }
   VkSemaphore acquired = w.acquired[w.next_acquire].get();
   uint32_t index = 0;
   const VkResult result =
       vkAcquireNextImageKHR(w.context.device(), w.swapchain, UINT64_MAX, acquired, VK_NULL_HANDLE, &index);
+  if (result == VK_ERROR_SURFACE_LOST_KHR) {  // nothing was acquired: the window is gone
+    w.lost = true;
+    return std::nullopt;
+  }
   if (result == VK_ERROR_OUT_OF_DATE_KHR) {
     w.needs_recreate = true;
     return std::nullopt;
@@ -219,6 +233,10 @@ void MirrorWindow::present(const Frame& frame) {
   info.pSwapchains = &w.swapchain;
   info.pImageIndices = &frame.image_index;
   const VkResult result = vkQueuePresentKHR(w.context.queue(), &info);
+  if (result == VK_ERROR_SURFACE_LOST_KHR) {  // the window is gone; the image is released with the swapchain
+    w.lost = true;
+    return;
+  }
   if (result == VK_ERROR_OUT_OF_DATE_KHR || result == VK_SUBOPTIMAL_KHR) {
     w.needs_recreate = true;
     return;
@@ -231,10 +249,14 @@ void MirrorWindow::abandon(const Frame& /*frame*/) {
 }
 
 bool MirrorWindow::should_close() const {
-  return glfwWindowShouldClose(impl_->window) == GLFW_TRUE;
+  return lost() || glfwWindowShouldClose(impl_->window) == GLFW_TRUE;
+}
+bool MirrorWindow::lost() const {
+  return impl_->lost || detail::x11_window_gone();
 }
 void MirrorWindow::poll_events() {
   glfwPollEvents();
+  detail::install_x11_error_guard();  // again: GLFW resets it after its own guarded requests
 }
 std::vector<int> MirrorWindow::take_key_presses() {
   return std::exchange(impl_->key_presses, {});

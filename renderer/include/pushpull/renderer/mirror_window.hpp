@@ -8,7 +8,8 @@
 //   if (auto frame = window.acquire()) { renderer.render(views, draws, settings, frame->targets,
 //   frame->sync);
 //                                         window.present(*frame); }
-// acquire() returns nullopt while the window is minimised or the swapchain was just recreated.
+// acquire() returns nullopt while the window is minimised, the swapchain was just recreated, or the window is
+// lost().
 //
 // Ownership: owns the window, surface and swapchain; borrows the Context (must outlive it).
 // Thread-safety: GLFW requires the main thread; the renderer's thread rule applies too.
@@ -47,7 +48,12 @@ class MirrorWindow {
   // acquire (which waits for the device to go idle, an error path only).
   void abandon(const Frame& frame);
 
+  // The user closed the window, or it is lost().
   [[nodiscard]] bool should_close() const;
+  // The window was destroyed from outside (an X11 BadWindow, or the surface lost): acquire() returns nullopt
+  // from then on and the loop should end as on a close. X errors no longer end the process
+  // (src/x11_error_guard.hpp).
+  [[nodiscard]] bool lost() const;
   void poll_events();
   // Keys pressed since the last call, in order, as GLFW key codes (letters and digits are their ASCII
   // upper-case characters, e.g. 'C'; GLFW_KEY_ESCAPE = 256). Filled by poll_events().
