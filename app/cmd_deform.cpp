@@ -358,9 +358,9 @@ void run_deform(DeformCommandOptions o) {
               r.timing.factorize, record.total_ms);
   if (r.probe_rate)
     std::printf(
-        "  rate probe (an early stop checked): %d extra local-global steps, slowest rate found %.5f%s\n",
-        r.probe_evaluations, *r.probe_rate,
-        r.contraction_rate && *r.probe_rate >= *r.contraction_rate ? " (it set the estimate)" : "");
+        "  rate probe (an early stop checked): %d extra local-global steps, slowest rate found %.5f; the "
+        "estimate rests on %.5f\n",
+        r.probe_evaluations, *r.probe_rate, r.estimate_rate.value_or(NAN));
   std::printf("  max displacement %.2f mm; RMS along d %.2f mm, orthogonal to d %.2f mm\n",
               life.to_mm(m.displacement.max), life.to_mm(m.along_d.rms), life.to_mm(m.orthogonal.rms));
   std::printf(

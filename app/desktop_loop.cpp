@@ -166,6 +166,7 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
       }
       try {
         window.poll_events();
+        if (window.lost()) break;  // its pointer and size would be garbage this frame
         t = double(std::llround(double(loop_frames++) * 1e9 / kRecordingRate)) *
             1e-9;  // as xr/sim's script_time
         bool quit = false, undo = false, redo = false, colour = false, method = false;

@@ -59,8 +59,9 @@ std::string metrics_json(const DeformRunRecord& record) {
   doc["stop_reason"] = std::string(deform::stop_reason_name(result.stop_reason));
   // Estimated largest vertex distance to the exact minimiser, relative to |d| (null before it is known).
   doc["error_estimate"] = result.error_estimate ? json(*result.error_estimate) : json(nullptr);
-  // The contraction rate behind it; the rate probe of an early stop (deformer.hpp: probe_rate) and its extra
-  // local-global steps (null and 0 when it did not run).
+  // The rate behind it, the rate of the last iterations (a warm start's hint), and the rate probe of an early
+  // stop (deformer.hpp: probe_rate) with its extra local-global steps (null and 0 when it did not run).
+  doc["estimate_rate"] = result.estimate_rate ? json(*result.estimate_rate) : json(nullptr);
   doc["contraction_rate"] = result.contraction_rate ? json(*result.contraction_rate) : json(nullptr);
   doc["probe_rate"] = result.probe_rate ? json(*result.probe_rate) : json(nullptr);
   doc["probe_evaluations"] = result.probe_evaluations;

@@ -14,6 +14,7 @@ SupervisorMirror::SupervisorMirror(const renderer::Context& context, renderer::R
 std::vector<int> SupervisorMirror::poll() {
   window_.poll_events();
   std::vector<int> keys = window_.take_key_presses();
+  if (window_.lost()) return keys;  // its pointer would be garbage; should_close() ends the loop
   view_.pointer(window_.pointer());
   return keys;
 }

@@ -4,6 +4,7 @@
 // (deform/src/rate_probe.hpp) finds it, and the estimate then bounds the true distance to the minimiser.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <string>

@@ -107,33 +107,45 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
   const bool hinted = rate_hint && initial_guess.size() != 0;
   if (hinted) contraction.set_floor(*rate_hint);
   // The rate probe (rate_probe.hpp) checks the first candidate stop within the first kProbeBefore
-  // iterations, unless a warm start brought the rate of a nearby solve (already probed or long-run).
+  // iterations, unless a warm start brought the rate of a nearby solve (already probed or long-run). Its
+  // rate becomes a floor only up to kProbeMaxRate: 20 steps do not resolve rates closer to 1, and Ritz values
+  // >= 1 (sr-arap's sweeps, arap-h's saddles: not self-adjoint; noise) would stall the solve at 0.9999.
   constexpr int kProbeBefore = 4 * kRateWindow;
   constexpr int kProbeSteps = 20;
+  constexpr double kProbeMaxRate = 0.999;
   bool probe_pending = !hinted;
-  // J v of the plain map at X by a finite difference: (G(X + h v) - G(X)) / h, with the rotations
-  // warm-started from those of G(X) (one Newton step from the optimum is exact to first order) and h a
-  // 1e-6 |d| move of the largest entry.
-  auto probe_at = [&](const Eigen::Matrix3Xd& X_at) {
-    std::vector<Eigen::Matrix3d> R0 = R;
-    std::vector<Eigen::Quaterniond> q0 = q;
+  std::shared_ptr<const Eigen::MatrixXd> reported;  // the positions of the last progress report
+  // J v of the plain map at X by a finite difference, (G(X + h v) - G(X)) / h, every evaluation starting
+  // from the loop's rotations R (so the rotation fit's remaining error is the same in both terms and cancels;
+  // with sr-arap's sweeps from a fixed R this is the map of X alone, its rotations' coupling aside), and h a
+  // 1e-6 |d| move of the largest entry (rounding noise ~1e-10 |X| / |d| relative). Between evaluations the
+  // progress callback is asked whether to go on (IterationReport::probe_step): false abandons the solve.
+  auto probe_at = [&](const Eigen::Matrix3Xd& X_at, int iteration) {
     Eigen::Matrix3Xd B0(3, n_free), G0(3, n_free), Bv(3, n_free), Gv(3, n_free), Y = X_at;
+    std::vector<Eigen::Matrix3d> Rv = R;
+    std::vector<Eigen::Quaterniond> qv = q;
     double unused = 0.0;
-    (void)local_step(X_at, R0, q0, true, sweeps, std::nullopt, &B0, threads);
+    (void)local_step(X_at, Rv, qv, true, sweeps, std::nullopt, &B0, threads);
     global_step(B0, rhs_c, constrained_quadratic, G0, unused, threads);
     const Eigen::Index N = 3 * static_cast<Eigen::Index>(n_free);
+    int step = 0;
     auto jacobian = [&](const Eigen::VectorXd& v, Eigen::VectorXd& out) {
       const double largest = v.cwiseAbs().maxCoeff();
       const double h = largest > 0.0 ? 1e-6 * reference / largest : 0.0;
       Y.leftCols(n_free) =
           X_at.leftCols(n_free) + h * Eigen::Map<const Eigen::Matrix3Xd>(v.data(), 3, n_free);
-      std::vector<Eigen::Matrix3d> Rv = R0;
-      std::vector<Eigen::Quaterniond> qv = q0;
+      Rv = R;
+      qv = q;
       (void)local_step(Y, Rv, qv, true, sweeps, std::nullopt, &Bv, threads);
       global_step(Bv, rhs_c, constrained_quadratic, Gv, unused, threads);
       out =
           (Eigen::Map<const Eigen::VectorXd>(Gv.data(), N) - Eigen::Map<const Eigen::VectorXd>(G0.data(), N));
       out /= h > 0.0 ? h : 1.0;
+      if (!progress || !reported) return true;
+      IterationReport report{iteration, energy, 0.0, result.error_estimate, result.contraction_rate,
+                             reported};
+      report.probe_step = ++step;
+      return progress(report);
     };
     // Q_ff v over the free block of Q (both triangles stored).
     auto metric = [&](const Eigen::VectorXd& v, Eigen::VectorXd& out) {
@@ -147,8 +159,8 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
       }
     };
     const detail::RateProbe found = detail::probe_rate(N, kProbeSteps, jacobian, metric);
-    result.probe_evaluations += found.evaluations + 1;
-    return found.rate;
+    result.probe_evaluations += found.evaluations + (found.abandoned ? 2 : 1);
+    return found;
   };
 
   Eigen::Matrix3Xd X_next =
@@ -189,6 +201,7 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
     const std::optional<double> rate = contraction.rate();
     if (rate) error = move / (1.0 - *rate);
     result.error_estimate = error;
+    result.estimate_rate = rate;
     result.contraction_rate = contraction.recent_rate();
     X.swap(X_next);
     result.energy_trace.push_back(next_energy);
@@ -197,12 +210,8 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
     energy = next_energy;
 
     if (progress) {
-      const IterationReport report{iteration,
-                                   energy,
-                                   move,
-                                   error,
-                                   result.contraction_rate,
-                                   std::make_shared<const Eigen::MatrixXd>(to_full(X))};
+      reported = std::make_shared<const Eigen::MatrixXd>(to_full(X));
+      const IterationReport report{iteration, energy, move, error, result.contraction_rate, reported};
       if (!progress(report)) {
         result.cancelled = true;
         result.stop_reason = StopReason::Cancelled;
@@ -212,12 +221,20 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
     if (options.tolerance > 0.0 && error && *error <= options.tolerance) {
       if (probe_pending && iteration <= kProbeBefore) {
         probe_pending = false;
-        const double probed = probe_at(X);
-        result.probe_rate = probed;
-        contraction.set_floor(probed);  // a floor from now on, and under the rate handed to warm starts
+        const detail::RateProbe found = probe_at(X, iteration);
+        if (found.abandoned) {
+          result.cancelled = true;
+          result.stop_reason = StopReason::Cancelled;
+          break;
+        }
+        result.probe_rate = found.rate;
+        // A floor from now on, and under the rate handed to warm starts.
+        const double floor = std::min(found.rate, kProbeMaxRate);
+        contraction.set_floor(floor);
         result.contraction_rate = contraction.recent_rate();
-        if (probed > *rate) {  // a slower mode than the iterates have shown: it bounds the error
+        if (floor > *rate) {  // a slower mode than the iterates have shown: it bounds the error
           const std::optional<double> raised = contraction.rate();
+          result.estimate_rate = raised;
           if (raised) result.error_estimate = move / (1.0 - *raised);
           if (!raised || *result.error_estimate > options.tolerance) continue;
         }

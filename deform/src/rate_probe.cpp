@@ -24,39 +24,43 @@ Eigen::VectorXd probe_start(Eigen::Index dimension) {
 }
 
 RateProbe probe_rate(Eigen::Index dimension, int steps,
-                     const std::function<void(const Eigen::VectorXd&, Eigen::VectorXd&)>& jacobian,
+                     const std::function<bool(const Eigen::VectorXd&, Eigen::VectorXd&)>& jacobian,
                      const std::function<void(const Eigen::VectorXd&, Eigen::VectorXd&)>& metric) {
   RateProbe probe;
   if (dimension <= 0 || steps <= 0) return probe;
   steps = static_cast<int>(std::min<Eigen::Index>(steps, dimension));
-  // V: an M-orthonormal basis of the Krylov space, MV = M V; H: J projected on it (upper Hessenberg).
-  Eigen::MatrixXd V(dimension, steps + 1), MV(dimension, steps + 1);
+  // V: an M-orthonormal basis of the Krylov space; H: J projected on it (upper Hessenberg).
+  Eigen::MatrixXd V(dimension, steps);
   Eigen::MatrixXd H = Eigen::MatrixXd::Zero(steps + 1, steps);
-  Eigen::VectorXd w(dimension), mw(dimension);
-  V.col(0) = probe_start(dimension);
-  metric(V.col(0), mw);
-  const double start_norm = std::sqrt(std::max(0.0, V.col(0).dot(mw)));
+  Eigen::VectorXd v = probe_start(dimension), w(dimension), mw(dimension);
+  metric(v, mw);
+  const double start_norm = std::sqrt(std::max(0.0, v.dot(mw)));
   if (!(start_norm > 0.0) || !std::isfinite(start_norm)) return probe;
-  V.col(0) /= start_norm;
-  MV.col(0) = mw / start_norm;
+  V.col(0) = v / start_norm;
   int built = 0;
   for (int j = 0; j < steps; ++j) {
-    jacobian(V.col(j), w);
+    v = V.col(j);
+    if (!jacobian(v, w)) {
+      probe.abandoned = true;
+      return probe;
+    }
     ++probe.evaluations;
     if (!w.allFinite()) break;
-    // Classical Gram-Schmidt in the M inner product, twice (the second pass mends the first's cancellation).
+    // Classical Gram-Schmidt in the M inner product, twice (the second pass mends the first's
+    // cancellation): the coefficients are V^T (M w).
     for (int pass = 0; pass < 2; ++pass) {
-      const Eigen::VectorXd c = MV.leftCols(j + 1).transpose() * w;
+      metric(w, mw);
+      const Eigen::VectorXd c = V.leftCols(j + 1).transpose() * mw;
       w.noalias() -= V.leftCols(j + 1) * c;
       H.col(j).head(j + 1) += c;
     }
     built = j + 1;
+    if (j + 1 == steps) break;
     metric(w, mw);
     const double next = std::sqrt(std::max(0.0, w.dot(mw)));
-    H(j + 1, j) = next;
     if (!std::isfinite(next) || !(next > 1e-12 * std::max(1.0, H.col(j).head(j + 1).norm()))) break;
+    H(j + 1, j) = next;
     V.col(j + 1) = w / next;
-    MV.col(j + 1) = mw / next;
   }
   if (built == 0) return probe;
   const Eigen::EigenSolver<Eigen::MatrixXd> eigen(H.topLeftCorner(built, built),

@@ -275,6 +275,8 @@ struct Service::Impl {
     }
     const auto solve_start = Clock::now();
     auto progress = [&](const IterationReport& report) {
+      if (report.probe_step > 0)  // the rate probe: nothing new to show, only whether to go on
+        return !interrupt.load(std::memory_order_acquire) && !stopping.load(std::memory_order_acquire);
       Snapshot s = request_snapshot(Snapshot::Kind::Preview, p, a, report.V);
       s.iteration = report.iteration;
       s.error_estimate = report.error_estimate;

@@ -1,11 +1,15 @@
 // The rate probe (src/rate_probe.hpp): on a linear map with one slow mode hidden among fast ones it finds
-// the slow rate from inside the spectrum, and the solver probes only an early stop of a cold solve.
+// the slow rate from inside the spectrum, and the solver probes only an early stop of a cold solve, and can
+// be cancelled during it. The estimate's rate (src/error_estimate.hpp): the later half of the solve's
+// largest, the warm start's rate the last ten's.
 #include <gtest/gtest.h>
 
 #include <Eigen/QR>
+#include <algorithm>
 #include <cmath>
 #include <random>
 
+#include "../src/error_estimate.hpp"
 #include "../src/rate_probe.hpp"
 #include "pushpull/deform/deformer.hpp"
 #include "pushpull/deform/roi.hpp"
@@ -41,20 +45,28 @@ TEST(RateProbe, FindsTheSlowModeFromInsideTheSpectrum) {
   const LinearMap map(400, 1e-3);  // rate 0.999; the fast modes' rates are at most 0.95
   int metric_calls = 0;
   const detail::RateProbe probe = detail::probe_rate(
-      400, 20, [&](const Eigen::VectorXd& v, Eigen::VectorXd& out) { out = map.J * v; },
+      400, 20,
+      [&](const Eigen::VectorXd& v, Eigen::VectorXd& out) {
+        out = map.J * v;
+        return true;
+      },
       [&](const Eigen::VectorXd& v, Eigen::VectorXd& out) {
         ++metric_calls;
         out = map.m.cwiseProduct(v);
       });
   EXPECT_EQ(probe.evaluations, 20);
-  EXPECT_LE(metric_calls, 21);  // once per basis vector
+  EXPECT_LE(metric_calls, 3 * 20 + 1);  // the start, then two Gram-Schmidt passes and a norm per step
   EXPECT_GT(probe.rate, 0.998);
   EXPECT_LE(probe.rate, 0.999 + 1e-9);  // a Ritz value of a self-adjoint map: never above its largest
 }
 
 TEST(RateProbe, StopsWhenTheKrylovSpaceIsExhausted) {
   const detail::RateProbe probe = detail::probe_rate(
-      50, 20, [](const Eigen::VectorXd& v, Eigen::VectorXd& out) { out = 0.5 * v; },
+      50, 20,
+      [](const Eigen::VectorXd& v, Eigen::VectorXd& out) {
+        out = 0.5 * v;
+        return true;
+      },
       [](const Eigen::VectorXd& v, Eigen::VectorXd& out) { out = v; });
   EXPECT_EQ(probe.evaluations, 1);
   EXPECT_NEAR(probe.rate, 0.5, 1e-12);
@@ -62,10 +74,58 @@ TEST(RateProbe, StopsWhenTheKrylovSpaceIsExhausted) {
 
 TEST(RateProbe, NonFiniteProductsEndTheProbe) {
   const detail::RateProbe probe = detail::probe_rate(
-      50, 20, [](const Eigen::VectorXd& v, Eigen::VectorXd& out) { out = v * NAN; },
+      50, 20,
+      [](const Eigen::VectorXd& v, Eigen::VectorXd& out) {
+        out = v * NAN;
+        return true;
+      },
       [](const Eigen::VectorXd& v, Eigen::VectorXd& out) { out = v; });
   EXPECT_EQ(probe.evaluations, 1);
   EXPECT_EQ(probe.rate, 0.0);
+}
+
+TEST(RateProbe, AJacobianThatSaysStopAbandonsIt) {
+  int calls = 0;
+  const detail::RateProbe probe = detail::probe_rate(
+      50, 20,
+      [&](const Eigen::VectorXd& v, Eigen::VectorXd& out) {
+        out = Eigen::VectorXd::LinSpaced(v.size(), 0.1, 0.9).cwiseProduct(v);  // 50 distinct rates
+        return ++calls < 3;
+      },
+      [](const Eigen::VectorXd& v, Eigen::VectorXd& out) { out = v; });
+  EXPECT_TRUE(probe.abandoned);
+  EXPECT_EQ(probe.evaluations, 2);
+  EXPECT_EQ(probe.rate, 0.0);
+}
+
+// Secant pairs of a linear map J (dG = J dX exactly; 8 dimensions = the window, so the Ritz values are J's
+// eigenvalues): a slow phase (largest rate 0.99), then a fast one (0.5).
+TEST(ContractionEstimate, TheLaterHalfKeepsASlowRateTheLastTenForget) {
+  const int n = 8;
+  detail::ContractionEstimate estimate(8, n);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  Eigen::VectorXd slow(n), fast(n);
+  slow << 0.99, 0.5, 0.4, 0.3, 0.2, 0.1, -0.2, 0.05;
+  fast << 0.5, 0.45, 0.4, 0.3, 0.2, 0.1, -0.2, 0.05;
+  auto feed = [&](const Eigen::VectorXd& eigenvalues, int count) {
+    for (int k = 0; k < count; ++k) {
+      Eigen::VectorXd x(n);
+      for (int i = 0; i < n; ++i) x[i] = unit(rng);
+      estimate.add(x, eigenvalues.cwiseProduct(x));
+    }
+  };
+  feed(slow, 40);  // estimates from iteration 9 on: 32 of them, all 0.99
+  ASSERT_TRUE(estimate.rate().has_value());
+  EXPECT_NEAR(*estimate.rate(), 0.99, 1e-6);
+  EXPECT_NEAR(*estimate.recent_rate(), 0.99, 1e-6);
+  // 52 estimates: the last 12 see only the fast phase (8 pairs each); those whose pairs straddle the change
+  // are no map's Ritz values and may be anything (clamped to kMaxRate).
+  feed(fast, 20);
+  EXPECT_GE(*estimate.rate(), 0.99 - 1e-6) << "the later half still holds the slow phase";
+  EXPECT_NEAR(*estimate.recent_rate(), 0.5, 1e-6) << "the last 10 estimates have forgotten it";
+  feed(fast, 80);  // 132 estimates: the later half is all fast
+  EXPECT_NEAR(*estimate.rate(), 0.5, 1e-6);
 }
 
 TEST(RateProbe, TheStartVectorIsFixedAndUnit) {
@@ -107,7 +167,9 @@ TEST(SolverRateProbe, AnEarlyStopOfAColdSolveIsProbedOnce) {
   EXPECT_GE(r.probe_evaluations, 2);   // G(X) and at least one Jacobian product
   EXPECT_LE(r.probe_evaluations, 21);  // one probe of at most 20 steps
   ASSERT_TRUE(r.contraction_rate.has_value());
-  EXPECT_GE(*r.contraction_rate, *r.probe_rate);  // the probe's rate is a floor under the estimate
+  ASSERT_TRUE(r.estimate_rate.has_value());
+  EXPECT_GE(*r.contraction_rate, std::min(*r.probe_rate, 0.999));  // a floor under both rates
+  EXPECT_GE(*r.estimate_rate, *r.contraction_rate);
 }
 
 TEST(SolverRateProbe, AWarmStartWithARateHintAndThePaperSettingAreNotProbed) {
@@ -128,6 +190,31 @@ TEST(SolverRateProbe, AWarmStartWithARateHintAndThePaperSettingAreNotProbed) {
   EXPECT_FALSE(paper.probe_rate.has_value());
   EXPECT_EQ(paper.probe_evaluations, 0);
   EXPECT_EQ(paper.iterations, 50);
+}
+
+TEST(SolverRateProbe, TheProgressCallbackCanCancelDuringTheProbe) {
+  const SmallSheet s;
+  DeformOptions options;
+  options.method = Method::ArapSR;
+  int last_iteration = 0, probe_steps = 0;
+  options.progress = [&](const IterationReport& report) {
+    if (report.probe_step == 0) {
+      last_iteration = report.iteration;
+      return true;
+    }
+    EXPECT_EQ(report.iteration, last_iteration);  // the iteration the probe checks
+    EXPECT_EQ(report.probe_step, probe_steps + 1);
+    ++probe_steps;
+    return report.probe_step < 3;
+  };
+  const DeformResult r = deform(*s.mesh, s.roi, s.d, options);
+  EXPECT_TRUE(r.cancelled);
+  EXPECT_EQ(r.stop_reason, StopReason::Cancelled);
+  EXPECT_FALSE(r.converged);
+  EXPECT_EQ(probe_steps, 3);
+  EXPECT_EQ(r.iterations, last_iteration);
+  EXPECT_FALSE(r.probe_rate.has_value());
+  EXPECT_TRUE(r.V.allFinite());
 }
 
 }  // namespace

@@ -65,6 +65,8 @@ TEST_P(SolverThreaded, LargeRegionIsDeterministicFiniteAndMonotone) {
   EXPECT_EQ(first.iterations, alone.iterations);
   EXPECT_EQ((first.V - alone.V).cwiseAbs().maxCoeff(), 0.0) << "one thread and two differ";
   EXPECT_EQ(first.error_estimate, alone.error_estimate);
+  EXPECT_EQ(first.probe_rate, alone.probe_rate);  // the rate probe too, where it ran
+  EXPECT_EQ(first.probe_evaluations, alone.probe_evaluations);
 
   for (int h : problem.handle) {
     EXPECT_NEAR((first.V.row(h) - problem.mesh->V.row(h)).norm(), d.norm(), 1e-9);

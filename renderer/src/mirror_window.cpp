@@ -159,7 +159,7 @@ MirrorWindow::MirrorWindow(const Context& context, uint32_t width, uint32_t heig
   glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
   impl_->window = glfwCreateWindow(int(width), int(height), title.c_str(), nullptr, nullptr);
   if (impl_->window == nullptr) throw VulkanError(VK_ERROR_INITIALIZATION_FAILED, "glfwCreateWindow failed");
-  detail::reset_x11_window_gone();
+  detail::watch_x11_window(impl_->window);
   detail::install_x11_error_guard();
   glfwSetWindowUserPointer(impl_->window, impl_.get());
   glfwSetKeyCallback(impl_->window, [](GLFWwindow* window, int key, int, int action, int) {

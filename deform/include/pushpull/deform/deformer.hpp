@@ -113,6 +113,9 @@ struct IterationReport {
   // #V by 3 full-mesh positions after this iteration: an immutable copy the receiver may keep (e.g. publish
   // as a preview snapshot to another thread). Never null.
   std::shared_ptr<const Eigen::MatrixXd> V;
+  // 0 for an iteration. k > 0: the rate probe's k-th step after this iteration (DeformResult::probe_rate),
+  // with the iteration's fields again (max_move 0): nothing new to show; answer only whether to go on.
+  int probe_step = 0;
 };
 
 // Called on the solving thread after every iteration; return false to stop the solve at this iteration
@@ -174,16 +177,18 @@ struct DeformResult {
   // Estimated largest vertex distance to the exact minimiser / reference length, at the last iteration.
   std::optional<double> error_estimate;
   // The contraction rate of the plain local-global step over the last iterations (in [0, 1); empty until
-  // known; at least probe_rate when the probe ran). Pass it as ConstraintTargets::rate_hint when this result
-  // warm-starts a nearby solve. error_estimate may rest on a larger rate: the largest of the later half of
-  // the solve (deform/src/error_estimate.hpp says why).
+  // known; at least min(probe_rate, 0.999) when the probe ran). Pass it as ConstraintTargets::rate_hint when
+  // this result warm-starts a nearby solve.
   std::optional<double> contraction_rate;
-  // A solve that reaches its tolerance within its first 32 iterations (and was not warm-started with a
-  // rate_hint) first checks the rate its estimate rests on: 20 Arnoldi steps on the local-global map's
-  // Jacobian from a fixed random start, each one extra local and global step. A slower rate found there
-  // raises the estimate, and the solve goes on. probe_rate: the largest rate the probe found (empty: no
-  // probe); probe_evaluations: its local-global steps (not in `iterations`; their time is in
-  // timing.solve).
+  // The rate behind error_estimate: the largest of the later half of the solve, at least the warm start's
+  // hint and the probe's floor (deform/src/error_estimate.hpp says why it may exceed contraction_rate).
+  std::optional<double> estimate_rate;
+  // A solve that reaches its tolerance within its first 32 iterations without a rate_hint (a cold solve, or
+  // a warm start that brings no rate) first checks the rate its estimate rests on: 20 Arnoldi steps on the
+  // local-global map's Jacobian from a fixed random start, each one extra local and global step. A slower
+  // rate found there (taken up to 0.999) raises the estimate, and the solve goes on. probe_rate: the largest
+  // rate the probe found (empty: no probe); probe_evaluations: its local-global steps (not in `iterations`;
+  // their time is in timing.solve).
   std::optional<double> probe_rate;
   int probe_evaluations = 0;
   bool cancelled = false;
