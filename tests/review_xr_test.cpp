@@ -1330,7 +1330,8 @@ xdotool mousemove --window $wid 200 150; xdotool key Escape; wait $pid
 
 // The start of an xdotool script driving `pushpull review --desktop ... --record RECORDING &`: the window id
 // in $wid, and `await KIND N`, which waits (up to 60 s) until the recording holds N records of KIND, so the
-// script goes on when the loop has seen an input, not after a fixed sleep that a loaded machine outlasts.
+// script goes on when the loop has seen an input, not after a fixed sleep that a loaded machine outlasts;
+// `drag` and `key` as below.
 std::string desktop_drive_prelude(const fs::path& recording) {
   return R"SH(pid=$!
 wid=$(timeout 60 xdotool search --sync --onlyvisible --name "pushpull review \(desktop\)" | head -1)
@@ -1339,7 +1340,21 @@ await() { for i in $(seq 600); do
     [ "$(grep -c "\"record\":\"$1\"" ")SH" +
          recording.string() + R"SH(" || true)" -ge "$2" ] && return 0; sleep 0.1; done
   echo "no $2 $1 record(s) after 60 s" >&2; return 1; }
+# drag X Y DX DY N: the N-th press at (X, Y), 8 steps of (DX, DY) pixels, release (press and release awaited);
+# key K KIND N: key K, then await the N-th KIND record.
+drag() { xdotool mousemove --window $wid $1 $2; sleep 0.3; xdotool mousedown 1; await press $5
+  for i in 1 2 3 4 5 6 7 8; do xdotool mousemove_relative -- $3 $4; sleep 0.05; done
+  sleep 0.3; xdotool mouseup 1; await release $5; }
+key() { xdotool key $1; await $2 $3; }  # to the window under the pointer (no window manager)
 sleep 1)SH";
+}
+
+// An xdotool script's start: `pushpull review` of the bonnet in a 400 x 300 desktop window, recorded to
+// `recording`, written to `out`, its output in dir/review.log, then desktop_drive_prelude.
+std::string desktop_hood_review_script(const fs::path& dir, const fs::path& recording, const fs::path& out) {
+  return "set -e\n" + std::string(PUSHPULL_EXECUTABLE) + " review " + kHood + kPlacement +
+         " --desktop --mirror-size 400 300 --record " + recording.string() + " --out " + out.string() +
+         " > " + (dir / "review.log").string() + " 2>&1 &\n" + desktop_drive_prelude(recording);
 }
 
 // Desktop mode driven by real X input (xdotool under Xvfb): two mouse push/pulls with undo, redo and a method
@@ -1351,18 +1366,7 @@ TEST(ReviewXrWindow, DesktopMouseGesturesCommitAndTheirRecordingReplaysBitIdenti
   const fs::path dir = test_dir();
   const fs::path recording = dir / "desktop.jsonl", out = dir / "desktop.off";
   // Press at a window point, drag by (dx, dy) pixels in 8 steps, release; a key is one press.
-  std::ofstream(dir / "drive.sh") << "set -e\n"
-                                  << PUSHPULL_EXECUTABLE << " review " << kHood << kPlacement
-                                  << " --desktop --mirror-size 400 300 --record " << recording.string()
-                                  << " --out " << out.string() << " > " << (dir / "review.log").string()
-                                  << " 2>&1 &\n"
-                                  << desktop_drive_prelude(recording) << R"SH(
-# drag X Y DX DY N: the N-th press at (X, Y), 8 steps of (DX, DY) pixels, release (press and release awaited);
-# key K KIND N: key K, then await the N-th KIND record.
-drag() { xdotool mousemove --window $wid $1 $2; sleep 0.3; xdotool mousedown 1; await press $5
-  for i in 1 2 3 4 5 6 7 8; do xdotool mousemove_relative -- $3 $4; sleep 0.05; done
-  sleep 0.3; xdotool mouseup 1; await release $5; }
-key() { xdotool key $1; await $2 $3; }  # to the window under the pointer (no window manager)
+  std::ofstream(dir / "drive.sh") << desktop_hood_review_script(dir, recording, out) << R"SH(
 drag 200 150 3 0 1
 key u undo 1; key r redo 1; key m method 1; key m method 2; key c colour 1
 key bracketright sizes 1  # the handle 1.25x, at once: a "sizes" record
@@ -1434,15 +1438,8 @@ TEST(ReviewXrWindow, ADesktopWindowClosedFromOutsideEndsTheReviewAndKeepsTheWork
   ASSERT_EQ(run_command("command -v xdotool").status, 0) << "xdotool is missing (scripts/setup installs it)";
   const fs::path dir = test_dir();
   const fs::path recording = dir / "desktop.jsonl", out = dir / "desktop.off";
-  std::ofstream(dir / "drive.sh") << "set -e\n"
-                                  << PUSHPULL_EXECUTABLE << " review " << kHood << kPlacement
-                                  << " --desktop --mirror-size 400 300 --record " << recording.string()
-                                  << " --out " << out.string() << " > " << (dir / "review.log").string()
-                                  << " 2>&1 &\n"
-                                  << desktop_drive_prelude(recording) << R"SH(
-xdotool mousemove --window $wid 200 150; sleep 0.3; xdotool mousedown 1; await press 1
-for i in 1 2 3 4 5 6 7 8; do xdotool mousemove_relative -- 3 0; sleep 0.05; done
-sleep 0.3; xdotool mouseup 1; await commit 1
+  std::ofstream(dir / "drive.sh") << desktop_hood_review_script(dir, recording, out) << R"SH(
+drag 200 150 3 0 1; await commit 1
 xdotool windowclose $wid
 set +e; wait $pid; echo "review exit status $?"
 )SH";

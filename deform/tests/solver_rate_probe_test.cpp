@@ -136,22 +136,9 @@ TEST(RateProbe, TheStartVectorIsFixedAndUnit) {
   EXPECT_LT(a.minCoeff(), 0.0);
 }
 
-// A 21 x 21 flat sheet, border fixed, the centre vertex pulled up: arap-sr stops within a few windows.
-struct SmallSheet {
-  std::shared_ptr<const Mesh> mesh;
-  RegionOfInterest roi;
-  Eigen::Vector3d d{0.0, 0.0, 0.1};
-  SmallSheet() {
-    Mesh m = solver_testing::sheet(20, 20, 1.0, 1.0);
-    std::vector<int> handle, fixed;
-    for (int v = 0; v < m.V.rows(); ++v) {
-      const double x = m.V(v, 0), y = m.V(v, 1);
-      if (x < 1e-9 || y < 1e-9 || x > 1.0 - 1e-9 || y > 1.0 - 1e-9) fixed.push_back(v);
-      if (std::hypot(x - 0.5, y - 0.5) <= 0.08) handle.push_back(v);
-    }
-    roi = make_roi(m, handle, fixed, {});
-    mesh = std::make_shared<const Mesh>(std::move(m));
-  }
+// A 21 x 21 flat sheet, border fixed, the centre disk pulled up: arap-sr stops within a few windows.
+struct SmallSheet : solver_testing::PulledSheet {
+  SmallSheet() : PulledSheet(solver_testing::pulled_sheet(20, 0.08, 0.0)) {}
 };
 
 TEST(SolverRateProbe, AnEarlyStopOfAColdSolveIsProbedOnce) {

@@ -4,14 +4,18 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Core>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <memory>
+#include <numbers>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "pushpull/deform/mesh.hpp"
 #include "pushpull/deform/mesh_io.hpp"
+#include "pushpull/deform/roi.hpp"
 #include "test_shapes.hpp"
 
 namespace pushpull::deform::solver_testing {
@@ -20,6 +24,28 @@ namespace pushpull::deform::solver_testing {
 // cells split along alternating diagonals.
 inline Mesh sheet(int nx, int ny, double width, double height) {
   return testing::grid(nx, ny, 0.0, width, 0.0, height);
+}
+
+// A cells x cells sheet over [0, 1]^2 (z = wave sin(2 pi x) cos(1.5 pi y)), border fixed, the disk of
+// `handle_radius` at the centre as handle, to be pulled by d (0.1 up).
+struct PulledSheet {
+  std::shared_ptr<const Mesh> mesh;
+  RegionOfInterest roi;
+  Eigen::Vector3d d{0.0, 0.0, 0.1};
+};
+inline PulledSheet pulled_sheet(int cells, double handle_radius, double wave) {
+  Mesh m = sheet(cells, cells, 1.0, 1.0);
+  std::vector<int> handle, fixed;
+  for (int v = 0; v < m.V.rows(); ++v) {
+    const double x = m.V(v, 0), y = m.V(v, 1);
+    m.V(v, 2) = wave * std::sin(2.0 * std::numbers::pi * x) * std::cos(1.5 * std::numbers::pi * y);
+    if (x < 1e-9 || y < 1e-9 || x > 1.0 - 1e-9 || y > 1.0 - 1e-9) fixed.push_back(v);
+    if (std::hypot(x - 0.5, y - 0.5) <= handle_radius) handle.push_back(v);
+  }
+  PulledSheet s;
+  s.roi = make_roi(m, handle, fixed, {});
+  s.mesh = std::make_shared<const Mesh>(std::move(m));
+  return s;
 }
 
 inline std::filesystem::path shared_mesh(const std::string& name) {

@@ -16,22 +16,8 @@ namespace {
 
 // A 41 x 41 wavy sheet over [0, 1]^2 (1,681 vertices), border fixed, a disk of radius 0.1 at the centre as
 // handle, pulled 0.1 up: deform_bench's problem at a test's size.
-struct WavySheet {
-  std::shared_ptr<const Mesh> mesh;
-  RegionOfInterest roi;
-  Eigen::Vector3d d{0.0, 0.0, 0.1};
-  WavySheet() {
-    Mesh m = solver_testing::sheet(40, 40, 1.0, 1.0);
-    std::vector<int> handle, fixed;
-    for (int v = 0; v < m.V.rows(); ++v) {
-      const double x = m.V(v, 0), y = m.V(v, 1);
-      m.V(v, 2) = 0.05 * std::sin(2.0 * std::numbers::pi * x) * std::cos(1.5 * std::numbers::pi * y);
-      if (x < 1e-9 || y < 1e-9 || x > 1.0 - 1e-9 || y > 1.0 - 1e-9) fixed.push_back(v);
-      if (std::hypot(x - 0.5, y - 0.5) <= 0.1) handle.push_back(v);
-    }
-    roi = make_roi(m, handle, fixed, {});
-    mesh = std::make_shared<const Mesh>(std::move(m));
-  }
+struct WavySheet : solver_testing::PulledSheet {
+  WavySheet() : PulledSheet(solver_testing::pulled_sheet(40, 0.1, 0.05)) {}
 };
 
 double distance(const Eigen::MatrixXd& V, const Eigen::MatrixXd& reference, const Eigen::Vector3d& d) {
