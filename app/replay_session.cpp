@@ -373,11 +373,15 @@ void run_replay(const ReplayOptions& o) {
     // error tolerance was met.
     record.result.stop_reason = s.converged ? deform::StopReason::ErrorTolerance : deform::StopReason::MaxIterations;
     record.result.error_estimate = s.error_estimate;
+    record.result.estimate_rate = s.estimate_rate;
+    record.result.probe_rate = s.probe_rate;
+    record.result.probe_evaluations = s.probe_evaluations;
     // The commit's own costs: setup and factorization read 0 when the drag's previews had built them.
     record.result.timing.precompute = s.setup_ms;
     record.result.timing.factorize = s.factorize_ms;
     record.result.timing.solve = s.solve_ms;
-    record.result.timing.per_iteration = s.iteration > 0 ? s.solve_ms / s.iteration : 0.0;
+    const int evaluations = s.iteration + s.probe_evaluations;  // as DeformResult counts them
+    record.result.timing.per_iteration = evaluations > 0 ? s.solve_ms / evaluations : 0.0;
     record.total_ms = s.setup_ms + s.factorize_ms + s.solve_ms;  // the commit's solve (no file reading here)
     record.dead_band_fraction = deform::MetricsOptions{}.flat_band;  // the band the metrics below use
     record.result.warnings = s.warnings;

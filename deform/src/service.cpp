@@ -245,6 +245,9 @@ struct Service::Impl {
     s.iteration = r.iterations;
     s.converged = r.converged;
     s.error_estimate = r.error_estimate;
+    s.estimate_rate = r.estimate_rate;
+    s.probe_rate = r.probe_rate;
+    s.probe_evaluations = r.probe_evaluations;
     s.final = true;
     s.energy = r.energy_trace.empty() ? r.initial_energy : r.energy_trace.back();
     s.factorize_ms = r.timing.factorize;
