@@ -195,8 +195,12 @@ std::optional<MirrorWindow::Frame> MirrorWindow::acquire() {
   }
   VkSemaphore acquired = w.acquired[w.next_acquire].get();
   uint32_t index = 0;
-  const VkResult result =
-      vkAcquireNextImageKHR(w.context.device(), w.swapchain, UINT64_MAX, acquired, VK_NULL_HANDLE, &index);
+  // At most 100 ms: a window system that stalls (or a WSI that blocks on a window destroyed from outside)
+  // costs the loop a mirror frame, never the headset's frames for good.
+  constexpr uint64_t kAcquireTimeoutNs = 100'000'000;
+  const VkResult result = vkAcquireNextImageKHR(w.context.device(), w.swapchain, kAcquireTimeoutNs, acquired,
+                                                VK_NULL_HANDLE, &index);
+  if (result == VK_TIMEOUT || result == VK_NOT_READY) return std::nullopt;  // nothing acquired or signalled
   if (result == VK_ERROR_SURFACE_LOST_KHR) {  // nothing was acquired: the window is gone
     w.lost = true;
     return std::nullopt;

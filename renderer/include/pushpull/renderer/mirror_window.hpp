@@ -8,8 +8,8 @@
 //   if (auto frame = window.acquire()) { renderer.render(views, draws, settings, frame->targets,
 //   frame->sync);
 //                                         window.present(*frame); }
-// acquire() returns nullopt while the window is minimised, the swapchain was just recreated, or the window is
-// lost().
+// acquire() returns nullopt while the window is minimised, the swapchain was just recreated, no image came
+// within 100 ms, or the window is lost().
 //
 // Ownership: owns the window, surface and swapchain; borrows the Context (must outlive it).
 // Thread-safety: GLFW requires the main thread; the renderer's thread rule applies too.
