@@ -75,7 +75,7 @@ class ContractionEstimate {
   Eigen::VectorXd previous_x_, previous_g_;
   Eigen::MatrixXd dX_, dG_;          // dimension by window, circular
   Eigen::MatrixXd xx_, xg_;          // window by window: dX^T dX, dX^T dG
-  double rate_ = 0.0;                // largest |Ritz value| of the recent estimates (or whole solve)
+  double rate_ = 0.0;                // largest |Ritz value| of the later half (Cautious: the whole solve)
   double recent_only_ = 0.0;         // Recent: the last 10 estimates' largest, clamped
   double whole_solve_ = 0.0;         // largest |Ritz value| of the whole solve (Cautious)
   bool expanding_ = false;           // a recent |Ritz value| >= 1

@@ -121,12 +121,17 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
   // 1e-6 |d| move of the largest entry (rounding noise ~1e-10 |X| / |d| relative). Between evaluations the
   // progress callback is asked whether to go on (IterationReport::probe_step): false abandons the solve.
   auto probe_at = [&](const Eigen::Matrix3Xd& X_at, int iteration) {
-    Eigen::Matrix3Xd B0(3, n_free), G0(3, n_free), Bv(3, n_free), Gv(3, n_free), Y = X_at;
-    std::vector<Eigen::Matrix3d> Rv = R;
-    std::vector<Eigen::Quaterniond> qv = q;
-    double unused = 0.0;
-    (void)local_step(X_at, Rv, qv, true, sweeps, std::nullopt, &B0, threads);
-    global_step(B0, rhs_c, constrained_quadratic, G0, unused, threads);
+    Eigen::Matrix3Xd B_at(3, n_free), G0(3, n_free), Gv(3, n_free), Y = X_at;
+    std::vector<Eigen::Matrix3d> R_at;
+    std::vector<Eigen::Quaterniond> q_at;
+    auto plain_map = [&](const Eigen::Matrix3Xd& at, Eigen::Matrix3Xd& image) {  // G(at), from R
+      R_at = R;
+      q_at = q;
+      double unused = 0.0;
+      (void)local_step(at, R_at, q_at, true, sweeps, std::nullopt, &B_at, threads);
+      global_step(B_at, rhs_c, constrained_quadratic, image, unused, threads);
+    };
+    plain_map(X_at, G0);
     const Eigen::Index N = 3 * static_cast<Eigen::Index>(n_free);
     int step = 0;
     auto jacobian = [&](const Eigen::VectorXd& v, Eigen::VectorXd& out) {
@@ -134,10 +139,7 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
       const double h = largest > 0.0 ? 1e-6 * reference / largest : 0.0;
       Y.leftCols(n_free) =
           X_at.leftCols(n_free) + h * Eigen::Map<const Eigen::Matrix3Xd>(v.data(), 3, n_free);
-      Rv = R;
-      qv = q;
-      (void)local_step(Y, Rv, qv, true, sweeps, std::nullopt, &Bv, threads);
-      global_step(Bv, rhs_c, constrained_quadratic, Gv, unused, threads);
+      plain_map(Y, Gv);
       out =
           (Eigen::Map<const Eigen::VectorXd>(Gv.data(), N) - Eigen::Map<const Eigen::VectorXd>(G0.data(), N));
       out /= h > 0.0 ? h : 1.0;
@@ -147,16 +149,11 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
       report.probe_step = ++step;
       return progress(report);
     };
-    // Q_ff v over the free block of Q (both triangles stored).
+    // Q_ff v, v a 3 by n_free matrix of vertex coordinates (Q symmetric: v Q_ff).
     auto metric = [&](const Eigen::VectorXd& v, Eigen::VectorXd& out) {
-      out.setZero(N);
-      const Eigen::SparseMatrix<double>& Q = model.Q;
-      for (int j = 0; j < n_free; ++j) {
-        for (int p = Q.outerIndexPtr()[j]; p < Q.outerIndexPtr()[j + 1]; ++p) {
-          const int i = Q.innerIndexPtr()[p];
-          if (i < n_free) out.segment<3>(3 * j) += Q.valuePtr()[p] * v.segment<3>(3 * i);
-        }
-      }
+      out.resize(N);
+      Eigen::Map<Eigen::Matrix3Xd>(out.data(), 3, n_free).noalias() =
+          Eigen::Map<const Eigen::Matrix3Xd>(v.data(), 3, n_free) * model.Q.topLeftCorner(n_free, n_free);
     };
     const detail::RateProbe found = detail::probe_rate(N, kProbeSteps, jacobian, metric);
     result.probe_evaluations += found.evaluations + (found.abandoned ? 2 : 1);
