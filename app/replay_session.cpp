@@ -374,6 +374,7 @@ void run_replay(const ReplayOptions& o) {
     record.result.stop_reason = s.converged ? deform::StopReason::ErrorTolerance : deform::StopReason::MaxIterations;
     record.result.error_estimate = s.error_estimate;
     record.result.estimate_rate = s.estimate_rate;
+    record.result.contraction_rate = s.contraction_rate;
     record.result.probe_rate = s.probe_rate;
     record.result.probe_evaluations = s.probe_evaluations;
     // The commit's own costs: setup and factorization read 0 when the drag's previews had built them.

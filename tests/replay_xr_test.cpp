@@ -425,6 +425,8 @@ TEST(ReplayXr, BundledPaperSessionReplaysWithTheRecordedHashes) {
   EXPECT_FALSE(metrics.at("probe_rate").is_null());
   EXPECT_GT(metrics.at("probe_evaluations").get<int>(), 1);
   EXPECT_FALSE(metrics.at("estimate_rate").is_null());
+  EXPECT_FALSE(metrics.at("contraction_rate").is_null());
+  EXPECT_GE(metrics.at("estimate_rate").get<double>(), metrics.at("contraction_rate").get<double>());
   const auto& parts = metrics.at("attached_parts").at("parts");
   EXPECT_EQ(parts.size(), 6u);
   EXPECT_EQ(std::count_if(parts.begin(), parts.end(),

@@ -246,6 +246,7 @@ struct Service::Impl {
     s.converged = r.converged;
     s.error_estimate = r.error_estimate;
     s.estimate_rate = r.estimate_rate;
+    s.contraction_rate = r.contraction_rate;
     s.probe_rate = r.probe_rate;
     s.probe_evaluations = r.probe_evaluations;
     s.final = true;

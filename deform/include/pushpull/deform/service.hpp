@@ -111,9 +111,10 @@ struct Snapshot {
   bool converged = false;  // the solver met its stopping rule for this request
   bool final = false;      // the last snapshot of this request (converged, stopped, superseded or failed)
   std::optional<double> error_estimate;  // relative to |d|, when the solver gives one
-  // Final snapshots of a solve only (empty, 0 otherwise): the rate behind error_estimate and the solver's
-  // rate probe (DeformResult::estimate_rate, probe_rate, probe_evaluations).
-  std::optional<double> estimate_rate, probe_rate;
+  // Final snapshots of a solve only (empty, 0 otherwise): the rate behind error_estimate, the rate handed to
+  // a warm start from these positions, and the solver's rate probe (DeformResult::estimate_rate,
+  // contraction_rate, probe_rate, probe_evaluations).
+  std::optional<double> estimate_rate, contraction_rate, probe_rate;
   int probe_evaluations = 0;
   double energy = 0.0;
   double max_displacement = 0.0;  // largest vertex displacement from rest (model units)
