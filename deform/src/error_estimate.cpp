@@ -84,8 +84,9 @@ void ContractionEstimate::add(const Eigen::Ref<const Eigen::VectorXd>& x,
     while (!later_.empty() && later_.back().second <= largest) later_.pop_back();
     later_.emplace_back(index, largest);
     while (later_.front().first < estimates_ / 2) later_.pop_front();
-    rate_ = std::min(std::max(later_.front().second, recent_largest), kMaxRate);
     recent_only_ = std::min(recent_largest, kMaxRate);
+    rate_ = policy_ == Policy::Warm ? recent_only_
+                                    : std::min(std::max(later_.front().second, recent_largest), kMaxRate);
   }
 }
 

@@ -101,10 +101,12 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
   // Per-triangle rotations: the cautious rate (error_estimate.hpp says why).
   const bool triangle_rotations = options.method == Method::ArapM || options.method == Method::ArapH ||
                                   (options.method == Method::Asan && options.asan_base == Method::ArapM);
-  detail::ContractionEstimate contraction(kRateWindow, 3 * n_free,
-                                          triangle_rotations ? detail::ContractionEstimate::Policy::Cautious
-                                                             : detail::ContractionEstimate::Policy::Recent);
   const bool hinted = rate_hint && initial_guess.size() != 0;
+  using Policy = detail::ContractionEstimate::Policy;
+  detail::ContractionEstimate contraction(kRateWindow, 3 * n_free,
+                                          triangle_rotations ? Policy::Cautious
+                                          : hinted           ? Policy::Warm
+                                                             : Policy::Recent);
   if (hinted) contraction.set_floor(*rate_hint);
   // The rate probe (rate_probe.hpp) checks the first candidate stop within the first kProbeBefore
   // iterations, unless a warm start brought the rate of a nearby solve (already probed or long-run). Its
