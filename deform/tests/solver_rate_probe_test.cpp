@@ -128,6 +128,33 @@ TEST(ContractionEstimate, TheLaterHalfKeepsASlowRateTheLastTenForget) {
   EXPECT_NEAR(*estimate.rate(), 0.5, 1e-6);
 }
 
+// A warm start's estimate (Policy::Warm) reads the last 10 estimates above the hint: a slow phase is
+// forgotten once 10 fast estimates follow, however long it lasted, but never below the hint.
+TEST(ContractionEstimate, AWarmStartReadsTheLastTenAboveItsHint) {
+  const int n = 8;
+  detail::ContractionEstimate estimate(8, n, detail::ContractionEstimate::Policy::Warm);
+  estimate.set_floor(0.7);
+  ASSERT_TRUE(estimate.rate().has_value()) << "the hint is a rate from the first iteration";
+  EXPECT_NEAR(*estimate.rate(), 0.7, 1e-12);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  Eigen::VectorXd slow(n), fast(n);
+  slow << 0.99, 0.5, 0.4, 0.3, 0.2, 0.1, -0.2, 0.05;
+  fast << 0.5, 0.45, 0.4, 0.3, 0.2, 0.1, -0.2, 0.05;
+  auto feed = [&](const Eigen::VectorXd& eigenvalues, int count) {
+    for (int k = 0; k < count; ++k) {
+      Eigen::VectorXd x(n);
+      for (int i = 0; i < n; ++i) x[i] = unit(rng);
+      estimate.add(x, eigenvalues.cwiseProduct(x));
+    }
+  };
+  feed(slow, 40);
+  EXPECT_NEAR(*estimate.rate(), 0.99, 1e-6);
+  feed(fast, 20);  // as in TheLaterHalfKeeps...: the Recent policy still says 0.99 here
+  EXPECT_NEAR(*estimate.rate(), 0.7, 1e-6) << "the fast phase's 0.5 stays under the hint";
+  EXPECT_NEAR(*estimate.recent_rate(), 0.7, 1e-6);
+}
+
 TEST(RateProbe, TheStartVectorIsFixedAndUnit) {
   const Eigen::VectorXd a = detail::probe_start(1000), b = detail::probe_start(1000);
   EXPECT_EQ(a, b);
