@@ -112,7 +112,9 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
   // iterations, unless a warm start brought the rate of a nearby solve (already probed or long-run). Its
   // rate becomes a floor only up to kProbeMaxRate: 20 steps do not resolve rates closer to 1, and Ritz values
   // >= 1 (sr-arap's sweeps, arap-h's saddles: not self-adjoint; noise) would stall the solve at 0.9999.
-  constexpr int kProbeBefore = 4 * kRateWindow;
+  // 8 windows: with 4 (32 iterations), fresh seeds of stopping_bench's random pulls found cold asan solves
+  // on the real car stopping at 33-36 iterations up to 21.8x optimistic, which the probe catches.
+  constexpr int kProbeBefore = 8 * kRateWindow;
   constexpr int kProbeSteps = 20;
   constexpr double kProbeMaxRate = 0.999;
   bool probe_pending = !hinted;

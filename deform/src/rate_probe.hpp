@@ -6,7 +6,7 @@
 // nearly free hinge or a soft direction of asan's material) stays invisible until the fast modes have died
 // out, and a solve that stops early can stop with most of its error in that mode: on the shared models 7-10%
 // of random pulls stopped 2-6.4x optimistic (stopping_bench --random-pulls), nearly all within 32
-// iterations.
+// iterations, and on later seeds cold solves of the real car stopping at 33-36 iterations up to 21.8x.
 //
 // How: `steps` Arnoldi steps on the Jacobian J of the plain map G, from a fixed pseudo-random start vector
 // (which holds every mode, the slow ones included, with weight ~1/sqrt(n)), orthogonalised in the inner
