@@ -16,10 +16,11 @@
 // (or the --method ones); prints each run and how many stopped optimistic (> 2x) or beyond 2e-2 |d|, and
 // the iterations and rate-probe steps (deformer.hpp: DeformResult::probe_evaluations) they took.
 //
-// Usage: stopping_bench [--quick] [--random-pulls N [--seed S]] [--method NAME]...   (--quick: the 2.5K
-// height field only; --random-pulls: only the random pulls, drawn with seed S (default 20261202; the rate
-// probe's settings were chosen on it and checked on seeds 7 and 99); --method: only these methods' rows,
-// repeatable)
+// Usage: stopping_bench [--quick] [--random-pulls N [--seed S] [--details]] [--method NAME]...   (--quick:
+// the 2.5K height field only; --random-pulls: only the random pulls, drawn with seed S (default 20261202;
+// the rate probe's settings were chosen on it and checked on seeds 7, 99, 12345, 2027 and 31337); --details:
+// each pull's triangle, region radius and d in full precision, to reproduce it in a test; --method: only
+// these methods' rows, repeatable)
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -171,7 +172,7 @@ int run_warm(const Problem& p, References& references) {
 
 #ifdef PUSHPULL_BENCH_WITH_ASSETS
 // See the header comment. Returns the number of dishonest runs (converged, true error > 2x the estimate).
-int run_random_pulls(int per_model, unsigned seed, const std::vector<pd::Method>& methods) {
+int run_random_pulls(int per_model, unsigned seed, const std::vector<pd::Method>& methods, bool details) {
   struct Model {
     const char* file;
     double region;  // fraction of the bounding-box diagonal
@@ -211,6 +212,10 @@ int run_random_pulls(int per_model, unsigned seed, const std::vector<pd::Method>
       p.d = (normal.normalized() + 0.5 * tilt).normalized() * length;
       if (p.roi.size() < 30) continue;  // a lamp or a bolt: nothing to measure
       ++pull;
+      if (details) {
+        std::printf("%-22s %5d triangle %d, region radius %.17g, d %.17g %.17g %.17g\n",
+                    path.filename().c_str(), pull, f, radius, p.d.x(), p.d.y(), p.d.z());
+      }
       References references;
       for (const pd::Method method : methods) {
         std::string refusal;
@@ -250,7 +255,7 @@ int run_random_pulls(int per_model, unsigned seed, const std::vector<pd::Method>
 }  // namespace
 
 int main(int argc, char** argv) {
-  bool quick = false;
+  bool quick = false, details = false;
   int random_pulls = 0;
   unsigned seed = 20261202;
   std::vector<pd::Method> methods;
@@ -263,6 +268,8 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "stopping_bench: --random-pulls needs a positive count\n");
         return 2;
       }
+    } else if (std::strcmp(argv[a], "--details") == 0) {
+      details = true;
     } else if (std::strcmp(argv[a], "--seed") == 0 && a + 1 < argc) {
       seed = static_cast<unsigned>(std::strtoul(argv[++a], nullptr, 10));
     } else if (std::strcmp(argv[a], "--method") == 0 && a + 1 < argc) {
@@ -274,7 +281,8 @@ int main(int argc, char** argv) {
       }
     } else {
       std::fprintf(stderr,
-                   "usage: stopping_bench [--quick] [--random-pulls N [--seed S]] [--method NAME]...\n");
+                   "usage: stopping_bench [--quick] [--random-pulls N [--seed S] [--details]] [--method "
+                   "NAME]...\n");
       return 2;
     }
   }
@@ -283,7 +291,7 @@ int main(int argc, char** argv) {
 #ifdef PUSHPULL_BENCH_WITH_ASSETS
     const int dishonest = run_random_pulls(
         random_pulls, seed,
-        methods.empty() ? std::vector<pd::Method>{pd::Method::Asan, pd::Method::ArapSR} : methods);
+        methods.empty() ? std::vector<pd::Method>{pd::Method::Asan, pd::Method::ArapSR} : methods, details);
     std::printf("\n%d run(s) failed the honesty check\n", dishonest);
     return 0;
 #else

@@ -108,13 +108,17 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
                                           : hinted           ? Policy::Warm
                                                              : Policy::Recent);
   if (hinted) contraction.set_floor(*rate_hint);
-  // The rate probe (rate_probe.hpp) checks the first candidate stop within the first kProbeBefore
+  // The rate probe (rate_probe.hpp) checks the first candidate stop within the first probe_before
   // iterations, unless a warm start brought the rate of a nearby solve (already probed or long-run). Its
   // rate becomes a floor only up to kProbeMaxRate: 20 steps do not resolve rates closer to 1, and Ritz values
   // >= 1 (sr-arap's sweeps, arap-h's saddles: not self-adjoint; noise) would stall the solve at 0.9999.
-  // 8 windows: with 4 (32 iterations), fresh seeds of stopping_bench's random pulls found cold asan solves
-  // on the real car stopping at 33-36 iterations up to 21.8x optimistic, which the probe catches.
-  constexpr int kProbeBefore = 8 * kRateWindow;
+  // asan: 8 windows. Its material is soft along d by design (mu^2 = 1e4 between directions), its slowest
+  // modes contract within 1e-3 of 1 and surface late: with 4 windows for every method, six seeds of
+  // stopping_bench's random pulls (564 solves) had 5 stop more than 2x optimistic, all asan, after 33-41
+  // iterations (up to 21.8x, the real car); with 8 for asan 2 (2.06x, 3.26x). arap-sr stops in 33-64
+  // iterations were honest without a probe, and probing them would cost the 10K height field's arap-sr
+  // (37 iterations) 21 more local-global steps, +40% time.
+  const int probe_before = (options.method == Method::Asan ? 8 : 4) * kRateWindow;
   constexpr int kProbeSteps = 20;
   constexpr double kProbeMaxRate = 0.999;
   bool probe_pending = !hinted;
@@ -220,7 +224,7 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
       }
     }
     if (options.tolerance > 0.0 && error && *error <= options.tolerance) {
-      if (probe_pending && iteration <= kProbeBefore) {
+      if (probe_pending && iteration <= probe_before) {
         probe_pending = false;
         const detail::RateProbe found = probe_at(X, iteration);
         if (found.abandoned) {
