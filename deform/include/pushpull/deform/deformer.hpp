@@ -184,11 +184,11 @@ struct DeformResult {
   // hint and the probe's floor (deform/src/error_estimate.hpp says why it may exceed contraction_rate).
   std::optional<double> estimate_rate;
   // A solve that reaches its tolerance within its first 32 iterations (asan: 64) without a rate_hint (a cold
-  // solve, or a warm start that brings no rate) first checks the rate its estimate rests on: 20 Arnoldi steps
+  // solve, or a warm start that brings no rate) first checks the rate its estimate rests on: 40 Arnoldi steps
   // on the local-global map's Jacobian from a fixed random start, each one extra local and global step. A
-  // slower rate found there (taken up to 0.999) raises the estimate, and the solve goes on. probe_rate: the
-  // largest rate the probe found (empty: no probe); probe_evaluations: its local-global steps (not in
-  // `iterations`; their time is in timing.solve).
+  // slower rate found there (its distance to 1 halved, taken up to 0.999) raises the estimate, and the solve
+  // goes on. probe_rate: the largest rate the probe found (empty: no probe); probe_evaluations: its
+  // local-global steps (not in `iterations`; their time is in timing.solve).
   std::optional<double> probe_rate;
   int probe_evaluations = 0;
   bool cancelled = false;
