@@ -8,7 +8,7 @@
 // the secant pairs the iterations provide: with dX = [x_k - x_{k-1}, ...] and dG = [G(x_k) - G(x_{k-1}),
 // ...] over a window, dG ~ J dX, and the eigenvalues of C = argmin |dX C - dG| (Ritz values of J on the
 // span of the recent steps) approximate J's extreme eigenvalues; Anderson's steps span a Krylov-like space
-// that holds exactly the slowly contracting modes that set rho. Two policies:
+// that holds exactly the slowly contracting modes that set rho. Three policies:
 // - Recent (every method but those below): the largest |Ritz value| of the later half of the solve's
 //   estimates (at least the last 10), clamped to kMaxRate, once `window` estimates have been made
 //   (iteration 2 x window): the first Ritz values come from steps that have mostly seen the fast modes, and
@@ -58,13 +58,13 @@ class ContractionEstimate {
   void add(const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Ref<const Eigen::VectorXd>& g,
            HelperThread* threads = nullptr);
   // The estimated rate in [0, kMaxRate] (Cautious: [0, kCautiousMaxRate]), once `window` estimates have been
-  // made (Cautious: 10); before that, with a floor (Recent only), the floor or the estimates so far if
+  // made (Cautious: 10); before that, with a floor (Recent and Warm), the floor or the estimates so far if
   // larger. Cautious: empty while a recent Ritz value says the iterates move away (>= 1).
   [[nodiscard]] std::optional<double> rate() const;
   // A lower bound for the rate from an earlier solve of a nearby problem (a warm start's): rate() is at
-  // least this, and (Recent policy) available from the first iteration on. Clamped to the policy's maximum.
+  // least this, and (Recent and Warm) available from the first iteration on. Clamped to the policy's maximum.
   void set_floor(double rate);
-  // Recent policy: the largest rate of the last 10 estimates (and at least the floor), the rate to hand to
+  // Recent and Warm: the largest rate of the last 10 estimates (and at least the floor), the rate to hand to
   // a warm start from this iterate (DeformResult::contraction_rate). rate() may be larger: it keeps a slow
   // mode the later half of the solve has seen. Passing rate() instead cost the warm starts of stopping_bench
   // 4x the iterations (10K height field, 0.995 d: 12 -> 51) with no row more honest. Cautious: rate().
@@ -81,8 +81,8 @@ class ContractionEstimate {
   Eigen::VectorXd previous_x_, previous_g_;
   Eigen::MatrixXd dX_, dG_;          // dimension by window, circular
   Eigen::MatrixXd xx_, xg_;          // window by window: dX^T dX, dX^T dG
-  double rate_ = 0.0;                // largest |Ritz value| of the later half (Cautious: the whole solve)
-  double recent_only_ = 0.0;         // Recent: the last 10 estimates' largest, clamped
+  double rate_ = 0.0;  // largest |Ritz value| of the later half (Warm: the last 10; Cautious: the solve)
+  double recent_only_ = 0.0;         // Recent and Warm: the last 10 estimates' largest, clamped
   double whole_solve_ = 0.0;         // largest |Ritz value| of the whole solve (Cautious)
   bool expanding_ = false;           // a recent |Ritz value| >= 1
   std::array<double, 10> recent_{};  // the last few estimates (unclamped), circular

@@ -109,25 +109,30 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
                                                              : Policy::Recent);
   if (hinted) contraction.set_floor(*rate_hint);
   // The rate probe (rate_probe.hpp) checks the first candidate stop within the first probe_before
-  // iterations, unless a warm start brought the rate of a nearby solve (already probed or long-run). Its
-  // Ritz value approaches the slowest rate from below, so the floor it sets is 1 - (1 - rate) / 2: after 20
-  // steps the real car (stopping_bench --random-pulls --seed 2027, pull 7) read 0.99794 where the stop
-  // needed 0.9985 and stopped 3.3x optimistic. With 40 steps and the halved gap, twelve seeds of random pulls
-  // (1,126 solves, three of them drawn after the choice) had none stop more than 2x optimistic; with 20 steps
-  // and the raw rate 8 did (2.1-5.9x), with 6% fewer iterations (2-13% per seed) and half the probe steps.
-  // The floor stops at
-  // kProbeMaxRate: 40 steps do not resolve rates closer to 1, and Ritz values >= 1 (sr-arap's sweeps,
-  // arap-h's saddles: not self-adjoint; noise) would stall the solve at 0.9999. asan: 8 windows. Its material
-  // is soft along d by design (mu^2 = 1e4 between directions), its slowest modes contract within 1e-3 of 1
-  // and surface late: with 4 windows for every method, six seeds of stopping_bench's random pulls (564
-  // solves) had 5 stop more than 2x optimistic, all asan, after 33-41 iterations (up to 21.8x, the real car);
-  // with 8 for asan 2 (2.06x, 3.26x). arap-sr stops in 33-64 iterations were honest without a probe, and
-  // probing them would cost the 10K height field's arap-sr (37 iterations) 21 more local-global steps, +40%
-  // time.
+  // iterations, unless a warm start brought the rate of a nearby solve (already probed or long-run).
+  // - Its Ritz value approaches the slowest rate from below, so the floor it sets is 1 - (1 - rate) / 2 (a
+  //   probe that finds nothing, rate 0, sets 0.5): after 20 steps the real car (stopping_bench
+  //   --random-pulls --seed 2027, pull 7) read 0.99794 where the stop needed 0.9985 and stopped 3.3x
+  //   optimistic. With 40 steps and the halved gap, twelve seeds of random pulls (1,126 solves, three of them
+  //   drawn after the choice) had none stop more than 2x optimistic; with 20 steps and the raw rate 8 did
+  //   (2.1-5.9x), with 6% fewer iterations (2-13% per seed) and half the probe steps.
+  // - The floor stops at kProbeMaxRate: 40 steps do not resolve rates closer to 1, and Ritz values >= 1
+  //   (sr-arap's sweeps, arap-h's saddles: not self-adjoint; noise) would stall the solve at 0.9999.
+  // - asan: 8 windows. Its material is soft along d by design (mu^2 = 1e4 between directions), its slowest
+  //   modes contract within 1e-3 of 1 and surface late: with 4 windows for every method, six seeds of random
+  //   pulls (564 solves) had 5 stop more than 2x optimistic, all asan, after 33-41 iterations (up to 21.8x,
+  //   the real car); with 8 for asan 2 (2.06x, 3.26x, before the 40 steps). arap-sr stops in 33-64 iterations
+  //   were honest without a probe, and probing them would cost the 10K height field's arap-sr (37 iterations)
+  //   41 more local-global steps, about doubling its time.
   const int probe_before = (options.method == Method::Asan ? 8 : 4) * kRateWindow;
   constexpr int kProbeSteps = 40;
   constexpr double kProbeMaxRate = 0.999;
   bool probe_pending = !hinted;
+  // Whether the rate is one to hand to a warm start (IterationReport::contraction_rate): a hinted solve's
+  // from the start (it rests on the hint), a cold one's once probed or past the probe window. A warm start
+  // reads its last 10 Ritz values above the hint (Policy::Warm), so a hint taken from a cold solve's first
+  // iterations (a drag's request superseded before its probe) would carry their optimism along.
+  bool rate_settled = hinted;
   std::shared_ptr<const Eigen::MatrixXd> reported;  // the positions of the last progress report
   // J v of the plain map at X by a finite difference, (G(X + h v) - G(X)) / h, every evaluation starting
   // from the loop's rotations R (so the rotation fit's remaining error is the same in both terms and cancels;
@@ -158,8 +163,7 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
           (Eigen::Map<const Eigen::VectorXd>(Gv.data(), N) - Eigen::Map<const Eigen::VectorXd>(G0.data(), N));
       out /= h > 0.0 ? h : 1.0;
       if (!progress || !reported) return true;
-      IterationReport report{iteration, energy, 0.0, result.error_estimate, result.contraction_rate,
-                             reported};
+      IterationReport report{iteration, energy, 0.0, result.error_estimate, std::nullopt, reported};
       report.probe_step = ++step;
       return progress(report);
     };
@@ -220,9 +224,11 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
     const double previous_energy = energy;
     energy = next_energy;
 
+    if (iteration > probe_before) rate_settled = true;
     if (progress) {
       reported = std::make_shared<const Eigen::MatrixXd>(to_full(X));
-      const IterationReport report{iteration, energy, move, error, result.contraction_rate, reported};
+      const IterationReport report{
+          iteration, energy, move, error, rate_settled ? result.contraction_rate : std::nullopt, reported};
       if (!progress(report)) {
         result.cancelled = true;
         result.stop_reason = StopReason::Cancelled;
@@ -232,6 +238,7 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
     if (options.tolerance > 0.0 && error && *error <= options.tolerance) {
       if (probe_pending && iteration <= probe_before) {
         probe_pending = false;
+        rate_settled = true;
         const detail::RateProbe found = probe_at(X, iteration);
         if (found.abandoned) {
           result.cancelled = true;
@@ -259,6 +266,7 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
       break;
     }
   }
+  if (result.cancelled && !rate_settled) result.contraction_rate.reset();  // not one to hand on
   if (n_free == 0) {  // nothing to solve for: exact
     result.stop_reason = StopReason::ErrorTolerance;
     result.error_estimate = 0.0;

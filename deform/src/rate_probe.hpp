@@ -13,13 +13,14 @@
 // product of `metric` (the prefactored matrix Q_ff: J = I - Q_ff^-1 H is self-adjoint in it, so the
 // projected matrix is close to symmetric and its Ritz values approach J's extreme eigenvalues from inside).
 // The caller supplies J v (a finite difference of G, one local and one global step per call). The largest
-// |Ritz value| is a lower bound on the spectral radius; the solver uses it as a floor under its running
-// estimate. On the random pulls 20 steps found every slow mode that 8-16 steps missed; on later seeds 40
-// (with the gap to 1 halved, local_global.cpp) held stops that 20 let through 2-6x optimistic.
+// |Ritz value| is a lower bound on the spectral radius; the solver sets a floor under its running estimate
+// from it (its distance to 1 halved, local_global.cpp). On the random pulls 20 steps found every slow mode
+// that 8-16 steps missed; on later seeds 40 (with the gap to 1 halved, local_global.cpp) held stops that 20
+// let through 2-6x optimistic.
 //
 // The Ritz values approach the spectrum from inside only where J is self-adjoint in M: sr-arap's Gauss-Seidel
-// sweeps and arap-h's saddles are not, and finite differences are noisy next to 1, so the solver takes the
-// probe's rate as a floor only up to kProbeMaxRate (local_global.cpp).
+// sweeps and arap-h's saddles are not, and finite differences are noisy next to 1, so the solver's floor
+// from the probe stops at kProbeMaxRate (local_global.cpp).
 // Memory: `steps` vectors of `dimension` doubles (40 x 3 n_free: 96 MB on a 100K region).
 // Deterministic: the start vector is a fixed function of the dimension (splitmix64), the same on every
 // platform. Thread-safety: reentrant (no state outside its arguments and callbacks).

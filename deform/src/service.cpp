@@ -288,14 +288,14 @@ struct Service::Impl {
       s.setup_ms = setup_ms;
       s.solve_ms = ms_between(solve_start, Clock::now());
       a.last_iterate = report.V;
-      if (report.contraction_rate) a.last_rate = report.contraction_rate;
+      a.last_rate = report.contraction_rate;  // empty until the solver trusts it as a hint
       publish(std::move(s));
       return !interrupt.load(std::memory_order_acquire) && !stopping.load(std::memory_order_acquire);
     };
     const DeformResult r = a.deformer->solve(targets, progress);
     a.request = p.request;
     a.last_iterate = std::make_shared<const Eigen::MatrixXd>(r.V);
-    if (r.contraction_rate) a.last_rate = r.contraction_rate;
+    a.last_rate = r.contraction_rate;
     Snapshot s = result_snapshot(p, a, r, Snapshot::Kind::Preview);
     s.setup_ms = setup_ms;
     publish(std::move(s));

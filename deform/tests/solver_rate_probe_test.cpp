@@ -182,7 +182,10 @@ TEST(SolverRateProbe, AnEarlyStopOfAColdSolveIsProbedOnce) {
   EXPECT_LE(r.probe_evaluations, 41);  // one probe of at most 40 steps
   ASSERT_TRUE(r.contraction_rate.has_value());
   ASSERT_TRUE(r.estimate_rate.has_value());
-  EXPECT_GE(*r.contraction_rate, std::min(*r.probe_rate, 0.999));  // a floor under both rates
+  // A floor under both rates: the probe's rate with its distance to 1 halved (Arnoldi approaches it from
+  // below).
+  EXPECT_GE(*r.contraction_rate, std::min(1.0 - 0.5 * (1.0 - *r.probe_rate), 0.999));
+  EXPECT_GT(*r.contraction_rate, *r.probe_rate);
   EXPECT_GE(*r.estimate_rate, *r.contraction_rate);
 }
 
@@ -204,6 +207,56 @@ TEST(SolverRateProbe, AWarmStartWithARateHintAndThePaperSettingAreNotProbed) {
   EXPECT_FALSE(paper.probe_rate.has_value());
   EXPECT_EQ(paper.probe_evaluations, 0);
   EXPECT_EQ(paper.iterations, 50);
+}
+
+// A warm start trusts its rate_hint, so a cold solve hands on a rate only once it is settled: its progress
+// reports carry none before the probe (or the probe's window) has passed, and a cold solve cancelled before
+// then returns none. A hinted solve's reports carry one from its first iteration.
+TEST(SolverRateProbe, AColdSolveHandsOnARateOnlyOnceProbed) {
+  const SmallSheet s;
+  DeformOptions options;
+  options.method = Method::ArapSR;
+  Deformer deformer(s.mesh, s.roi, options);
+  int reports = 0, with_rate = 0;
+  const DeformResult cold =
+      deformer.solve(deformer.push_pull_targets(0.9 * s.d), [&](const IterationReport& r) {
+        if (r.probe_step > 0) return true;
+        ++reports;
+        with_rate += r.contraction_rate.has_value() ? 1 : 0;
+        return true;
+      });
+  ASSERT_TRUE(cold.converged);
+  ASSERT_TRUE(cold.probe_rate.has_value()) << "the sheet no longer stops early: pick a problem that does";
+  EXPECT_EQ(reports, cold.iterations);
+  EXPECT_EQ(with_rate, 0) << "every report came before the probe";
+  ASSERT_TRUE(cold.contraction_rate.has_value()) << "the finished solve's rate is settled";
+
+  ConstraintTargets targets = deformer.push_pull_targets(s.d);
+  targets.initial_guess = cold.V;
+  targets.rate_hint = cold.contraction_rate;
+  int warm_reports = 0, warm_with_rate = 0;
+  const DeformResult warm = deformer.solve(targets, [&](const IterationReport& r) {
+    ++warm_reports;
+    warm_with_rate += r.contraction_rate.has_value() ? 1 : 0;
+    return true;
+  });
+  EXPECT_GT(warm_reports, 0);
+  EXPECT_EQ(warm_with_rate, warm_reports);
+  EXPECT_TRUE(warm.contraction_rate.has_value());
+
+  // The cold solve again, superseded at the iteration where it met its tolerance, before its probe: its rate
+  // is known there (it made the error estimate) but not settled.
+  bool estimate_known = false;
+  const DeformResult cancelled =
+      deformer.solve(deformer.push_pull_targets(0.9 * s.d), [&](const IterationReport& r) {
+        if (r.iteration < cold.iterations) return true;
+        estimate_known = r.error_estimate.has_value();
+        return false;
+      });
+  ASSERT_TRUE(cancelled.cancelled);
+  EXPECT_EQ(cancelled.iterations, cold.iterations);
+  EXPECT_TRUE(estimate_known);
+  EXPECT_FALSE(cancelled.contraction_rate.has_value());
 }
 
 TEST(SolverRateProbe, TheProgressCallbackCanCancelDuringTheProbe) {

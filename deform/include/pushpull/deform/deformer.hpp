@@ -108,7 +108,9 @@ struct IterationReport {
   // DeformOptions::tolerance); empty for the first few iterations, until the contraction rate is known, and
   // while the iterates move away from a fixed point (a saddle of a non-convex energy such as arap-h's).
   std::optional<double> error_estimate;
-  // The contraction rate to carry to a warm start from these positions (see DeformResult::contraction_rate).
+  // The contraction rate to carry to a warm start from these positions (see DeformResult::contraction_rate);
+  // empty in a solve without a rate_hint until its rate probe has run or it is past the probe's window (32
+  // iterations, asan 64): a warm start trusts its hint, and the first iterations' rate is not one to trust.
   std::optional<double> contraction_rate;
   // #V by 3 full-mesh positions after this iteration: an immutable copy the receiver may keep (e.g. publish
   // as a preview snapshot to another thread). Never null.
@@ -177,11 +179,13 @@ struct DeformResult {
   // Estimated largest vertex distance to the exact minimiser / reference length, at the last iteration.
   std::optional<double> error_estimate;
   // The contraction rate of the plain local-global step over the last iterations (in [0, 1); empty until
-  // known; at least min(probe_rate, 0.999) when the probe ran). Pass it as ConstraintTargets::rate_hint when
-  // this result warm-starts a nearby solve.
+  // known, and in a cancelled solve without a rate_hint stopped before its rate was settled (see
+  // IterationReport::contraction_rate); at least min(1 - (1 - probe_rate) / 2, 0.999) when the probe ran).
+  // Pass it as ConstraintTargets::rate_hint when this result warm-starts a nearby solve.
   std::optional<double> contraction_rate;
-  // The rate behind error_estimate: the largest of the later half of the solve, at least the warm start's
-  // hint and the probe's floor (deform/src/error_estimate.hpp says why it may exceed contraction_rate).
+  // The rate behind error_estimate: the largest of the later half of the solve (a warm start with a
+  // rate_hint: of its last 10 estimates), at least the hint and the probe's floor
+  // (deform/src/error_estimate.hpp says why it may exceed contraction_rate).
   std::optional<double> estimate_rate;
   // A solve that reaches its tolerance within its first 32 iterations (asan: 64) without a rate_hint (a cold
   // solve, or a warm start that brings no rate) first checks the rate its estimate rests on: 40 Arnoldi steps
