@@ -100,21 +100,27 @@ TEST(RateProbe, AJacobianThatSaysStopAbandonsIt) {
 
 // Secant pairs of a linear map J (dG = J dX exactly; 8 dimensions = the window, so the Ritz values are J's
 // eigenvalues): a slow phase (largest rate 0.99), then a fast one (0.5).
-TEST(ContractionEstimate, TheLaterHalfKeepsASlowRateTheLastTenForget) {
-  const int n = 8;
-  detail::ContractionEstimate estimate(8, n);
-  std::mt19937 rng(3);
-  std::uniform_real_distribution<double> unit(-1.0, 1.0);
-  Eigen::VectorXd slow(n), fast(n);
-  slow << 0.99, 0.5, 0.4, 0.3, 0.2, 0.1, -0.2, 0.05;
-  fast << 0.5, 0.45, 0.4, 0.3, 0.2, 0.1, -0.2, 0.05;
-  auto feed = [&](const Eigen::VectorXd& eigenvalues, int count) {
+struct TwoPhaseMap {
+  static constexpr int n = 8;
+  Eigen::VectorXd slow{{0.99, 0.5, 0.4, 0.3, 0.2, 0.1, -0.2, 0.05}};
+  Eigen::VectorXd fast{{0.5, 0.45, 0.4, 0.3, 0.2, 0.1, -0.2, 0.05}};
+  std::mt19937 rng{3};
+  // `count` iterates x (random) and G(x) = diag(eigenvalues) x into `estimate`.
+  void feed(detail::ContractionEstimate& estimate, const Eigen::VectorXd& eigenvalues, int count) {
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
     for (int k = 0; k < count; ++k) {
       Eigen::VectorXd x(n);
       for (int i = 0; i < n; ++i) x[i] = unit(rng);
       estimate.add(x, eigenvalues.cwiseProduct(x));
     }
-  };
+  }
+};
+
+TEST(ContractionEstimate, TheLaterHalfKeepsASlowRateTheLastTenForget) {
+  TwoPhaseMap map;
+  detail::ContractionEstimate estimate(8, TwoPhaseMap::n);
+  const Eigen::VectorXd &slow = map.slow, &fast = map.fast;
+  auto feed = [&](const Eigen::VectorXd& eigenvalues, int count) { map.feed(estimate, eigenvalues, count); };
   feed(slow, 40);  // estimates from iteration 9 on: 32 of them, all 0.99
   ASSERT_TRUE(estimate.rate().has_value());
   EXPECT_NEAR(*estimate.rate(), 0.99, 1e-6);
@@ -131,23 +137,13 @@ TEST(ContractionEstimate, TheLaterHalfKeepsASlowRateTheLastTenForget) {
 // A warm start's estimate (Policy::Warm) reads the last 10 estimates above the hint: a slow phase is
 // forgotten once 10 fast estimates follow, however long it lasted, but never below the hint.
 TEST(ContractionEstimate, AWarmStartReadsTheLastTenAboveItsHint) {
-  const int n = 8;
-  detail::ContractionEstimate estimate(8, n, detail::ContractionEstimate::Policy::Warm);
+  TwoPhaseMap map;
+  detail::ContractionEstimate estimate(8, TwoPhaseMap::n, detail::ContractionEstimate::Policy::Warm);
   estimate.set_floor(0.7);
   ASSERT_TRUE(estimate.rate().has_value()) << "the hint is a rate from the first iteration";
   EXPECT_NEAR(*estimate.rate(), 0.7, 1e-12);
-  std::mt19937 rng(3);
-  std::uniform_real_distribution<double> unit(-1.0, 1.0);
-  Eigen::VectorXd slow(n), fast(n);
-  slow << 0.99, 0.5, 0.4, 0.3, 0.2, 0.1, -0.2, 0.05;
-  fast << 0.5, 0.45, 0.4, 0.3, 0.2, 0.1, -0.2, 0.05;
-  auto feed = [&](const Eigen::VectorXd& eigenvalues, int count) {
-    for (int k = 0; k < count; ++k) {
-      Eigen::VectorXd x(n);
-      for (int i = 0; i < n; ++i) x[i] = unit(rng);
-      estimate.add(x, eigenvalues.cwiseProduct(x));
-    }
-  };
+  const Eigen::VectorXd &slow = map.slow, &fast = map.fast;
+  auto feed = [&](const Eigen::VectorXd& eigenvalues, int count) { map.feed(estimate, eigenvalues, count); };
   feed(slow, 40);
   EXPECT_NEAR(*estimate.rate(), 0.99, 1e-6);
   feed(fast, 20);  // as in TheLaterHalfKeeps...: the Recent policy still says 0.99 here
