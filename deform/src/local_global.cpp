@@ -112,10 +112,10 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
   // iterations, unless a warm start brought the rate of a nearby solve (already probed or long-run).
   // - Its Ritz value approaches the slowest rate from below, so the floor it sets is 1 - (1 - rate) / 2 (a
   //   probe that finds nothing, rate 0, sets 0.5): after 20 steps the real car (stopping_bench
-  //   --random-pulls --seed 2027, pull 7) read 0.99794 where the stop needed 0.9985 and stopped 3.3x
-  //   optimistic. With 40 steps and the halved gap, twelve seeds of random pulls (1,126 solves, three of them
-  //   drawn after the choice) had none stop more than 2x optimistic; with 20 steps and the raw rate 8 did
-  //   (2.1-5.9x), with 6% fewer iterations (2-13% per seed) and half the probe steps.
+  //   --random-pulls --seed 2027, pull 7) read 0.99794 where the stop needed 0.9987 to stay within 2x; it
+  //   stopped 3.3x optimistic. With 40 steps and the halved gap, twelve seeds of random pulls (1,126 solves,
+  //   three of them drawn after the choice) had none stop more than 2x optimistic; with 20 steps and the raw
+  //   rate 8 did (2.1-5.9x), with 6% fewer iterations (2-13% per seed) and half the probe steps.
   // - The floor stops at kProbeMaxRate: 40 steps do not resolve rates closer to 1, and Ritz values >= 1
   //   (sr-arap's sweeps, arap-h's saddles: not self-adjoint; noise) would stall the solve at 0.9999.
   // - asan: 8 windows. Its material is soft along d by design (mu^2 = 1e4 between directions), its slowest
