@@ -11,7 +11,9 @@
 // Printed per size: the frame thread's snapshot read (longest, 99th percentile), its mean busy time per
 // frame idle and with solves running and their ratio (goal <= 1.05), the latency from submit() to the first
 // preview snapshot of that request and to its converged snapshot, and per drag rate the share of requests
-// that reach a converged result before the next one supersedes them.
+// that reach a converged result before the next one supersedes them. Then 12 short drags, each with the hand
+// held still at its end: the latency from the last submit() to the converged shape, what the reviewer waits
+// for once the hand stops (one sample per drag; the per-rate converged latencies above rest on 1-2).
 //
 // Usage: service_bench [--quick]   (--quick: 10K only, shorter drags)
 #include <Eigen/Geometry>
@@ -111,6 +113,22 @@ class Bench {
   }
 
   void wait_idle() { (void)service_->wait_idle(); }
+
+  // `drags` drags of `seconds` each at 90 / `every` requests per second, the hand held still at the end of
+  // each: the latency from the drag's last submit() to its converged snapshot (what the reviewer waits for
+  // once the hand stops), in ms, one per drag (NaN when the last request did not converge).
+  std::vector<double> drags_then_hold(int drags, double seconds, int every, std::uint64_t first_drag) {
+    std::vector<double> latency;
+    for (int k = 0; k < drags; ++k) {
+      (void)run(seconds, every, first_drag + static_cast<std::uint64_t>(k));
+      wait_idle();
+      std::lock_guard lock(mutex_);
+      const RequestTimes& last = times_.rbegin()->second;
+      latency.push_back(last.has_converged ? ms(last.converged - last.submitted) : NAN);
+      times_.clear();
+    }
+    return latency;
+  }
 
   // Share of submitted requests that converged, and their latencies; clears the record.
   void report(const char* label) {
@@ -215,6 +233,19 @@ void bench_size(int n, double seconds) {
     std::snprintf(label, sizeof label, "drag at %d requests/s", 90 / every);
     bench.report(label);
   }
+  // The hand stops: 12 short drags along the same path (the curve's first 0.8 s: |d| up to 40 mm, its
+  // direction turning) at 30 requests per second, each held still at its end.
+  const int drags = 12;
+  std::vector<double> hold = bench.drags_then_hold(drags, 0.8, 3, 100);
+  const long unconverged = std::count_if(hold.begin(), hold.end(), [](double v) { return std::isnan(v); });
+  hold.erase(std::remove_if(hold.begin(), hold.end(), [](double v) { return std::isnan(v); }), hold.end());
+  std::printf(
+      "  hand held still after a drag (%d drags of 0.8 s at 30 requests/s): last submit->converged median "
+      "%.1f,"
+      " p90 %.1f, longest %.1f ms%s\n",
+      drags, percentile(hold, 0.5), percentile(hold, 0.9),
+      hold.empty() ? 0.0 : *std::max_element(hold.begin(), hold.end()),
+      unconverged > 0 ? " (some did not converge)" : "");
 }
 
 }  // namespace

@@ -152,7 +152,10 @@ int run_warm(const Problem& p, References& references) {
       for (const bool hint : {false, true}) {
         pd::ConstraintTargets targets = deformer.push_pull_targets(p.d);
         targets.initial_guess = previous.V;
-        if (hint) targets.rate_hint = previous.contraction_rate;
+        if (hint) {
+          targets.rate_hint = previous.contraction_rate;
+          targets.rate_hint_settled = previous.rate_settled;  // as the service passes them
+        }
         const pd::DeformResult r = deformer.solve(targets);
         const double truth = true_error(r.V, reference.V, p.d);
         const double estimate = r.error_estimate.value_or(NAN);

@@ -344,8 +344,8 @@ DeformResult Deformer::solve(const ConstraintTargets& targets, const ProgressCal
   } else {
     push = (X_c.leftCols(s.n_handle) - s.P.middleCols(s.n_free, s.n_handle)).rowwise().mean();
   }
-  DeformResult result =
-      s.run(X_c, push, targets.initial_guess, targets.rate_hint, progress ? progress : s.options.progress);
+  DeformResult result = s.run(X_c, push, targets.initial_guess, targets.rate_hint, targets.rate_hint_settled,
+                              progress ? progress : s.options.progress);
   // arap-s is the one method whose energy is not PSD (negative spoke weights): a negative energy proves the
   // negative weights won, and the shape means nothing (Le Vaou et al. 2020, Fig. 3). Say so, not return it.
   if (s.options.method == Method::ArapS && !result.cancelled && !result.energy_trace.empty() &&

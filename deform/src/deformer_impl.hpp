@@ -68,10 +68,10 @@ struct Deformer::Impl {
   void global_step(const Eigen::Matrix3Xd& B, const Eigen::Matrix3Xd& rhs_c, double constrained_quadratic,
                    Eigen::Matrix3Xd& G, double& quadratic, detail::HelperThread* threads = nullptr) const;
   [[nodiscard]] Eigen::MatrixXd to_full(const Eigen::Matrix3Xd& X) const;
-  // rate_hint: ConstraintTargets::rate_hint (with a warm start).
+  // rate_hint, rate_hint_settled: ConstraintTargets' (with a warm start).
   DeformResult run(const Eigen::Matrix3Xd& X_c, const Eigen::Vector3d& push_direction,
                    const Eigen::MatrixXd& initial_guess, std::optional<double> rate_hint,
-                   const ProgressCallback& progress);
+                   bool rate_hint_settled, const ProgressCallback& progress);
 };
 
 }  // namespace pushpull::deform

@@ -25,8 +25,8 @@
 //   (or was probed), so it already holds the slow mode the later-half rule waits for. With the later half on
 //   top, stopping_bench's hinted warm starts on the car's 2 m region took 188 / 66 / 27 iterations (asan,
 //   from 0.9 / 0.97 / 0.995 d); with this rule 186 / 38 / 27, every hinted row still honest (true distance
-//   at most 0.96x the estimate, on the 10K height field; 0.49x on the car). Cold rows are unchanged. The
-//   solver hands on a cold solve's rate only once it is settled (local_global.cpp: rate_settled).
+//   at most 0.96x the estimate, on the 10K height field; 0.49x on the car). Cold rows are unchanged. A hint
+//   from a cold solve's first iterations is not settled (DeformResult::rate_settled) and gets Recent.
 // - Cautious (per-triangle rotations: arap-m, arap-h, asan on arap-m): the largest of the whole solve,
 //   clamped to kCautiousMaxRate, no rate before 10 estimates and none while one of the last 10 is >= 1. Their
 //   soft fold modes contract at rates within 1e-4 of 1, and arap-h's non-convex energy has saddles where the

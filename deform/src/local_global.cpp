@@ -50,7 +50,7 @@ void Deformer::Impl::global_step(const Eigen::Matrix3Xd& B, const Eigen::Matrix3
 
 DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vector3d& push_direction,
                                  const Eigen::MatrixXd& initial_guess, std::optional<double> rate_hint,
-                                 const ProgressCallback& progress) {
+                                 bool rate_hint_settled, const ProgressCallback& progress) {
   DeformResult result;
   result.warnings = setup_warnings;
   result.timing.precompute = precompute_ms;
@@ -104,9 +104,9 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
   const bool hinted = rate_hint && initial_guess.size() != 0;
   using Policy = detail::ContractionEstimate::Policy;
   detail::ContractionEstimate contraction(kRateWindow, 3 * n_free,
-                                          triangle_rotations ? Policy::Cautious
-                                          : hinted           ? Policy::Warm
-                                                             : Policy::Recent);
+                                          triangle_rotations            ? Policy::Cautious
+                                          : hinted && rate_hint_settled ? Policy::Warm
+                                                                        : Policy::Recent);
   if (hinted) contraction.set_floor(*rate_hint);
   // The rate probe (rate_probe.hpp) checks the first candidate stop within the first probe_before
   // iterations, unless a warm start brought the rate of a nearby solve (already probed or long-run).
@@ -128,11 +128,14 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
   constexpr int kProbeSteps = 40;
   constexpr double kProbeMaxRate = 0.999;
   bool probe_pending = !hinted;
-  // Whether the rate is one to hand to a warm start (IterationReport::contraction_rate): a hinted solve's
-  // from the start (it rests on the hint), a cold one's once probed or past the probe window. A warm start
-  // reads its last 10 Ritz values above the hint (Policy::Warm), so a hint taken from a cold solve's first
-  // iterations (a drag's request superseded before its probe) would carry their optimism along.
-  bool rate_settled = hinted;
+  // DeformResult::rate_settled: a warm start with a settled hint rests on it from the start; other solves
+  // once probed or past the probe window. A warm start reads its last 10 Ritz values above a settled hint
+  // (Policy::Warm), so a hint from a cold solve's first iterations (a drag's request superseded before its
+  // probe) must not count as settled: it would carry their optimism along. Marking such hints unsettled
+  // instead of withholding them keeps a drag's requests chained: withheld, every request of a 30-per-second
+  // drag started unhinted, probed at its stop, and the hand held still waited 188-198 ms for the converged
+  // shape instead of 63-67 (service_bench).
+  bool rate_settled = hinted && rate_hint_settled;
   std::shared_ptr<const Eigen::MatrixXd> reported;  // the positions of the last progress report
   // J v of the plain map at X by a finite difference, (G(X + h v) - G(X)) / h, every evaluation starting
   // from the loop's rotations R (so the rotation fit's remaining error is the same in both terms and cancels;
@@ -163,7 +166,8 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
           (Eigen::Map<const Eigen::VectorXd>(Gv.data(), N) - Eigen::Map<const Eigen::VectorXd>(G0.data(), N));
       out /= h > 0.0 ? h : 1.0;
       if (!progress || !reported) return true;
-      IterationReport report{iteration, energy, 0.0, result.error_estimate, std::nullopt, reported};
+      IterationReport report{iteration, energy, 0.0, result.error_estimate, result.contraction_rate,
+                             reported};
       report.probe_step = ++step;
       return progress(report);
     };
@@ -227,8 +231,8 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
     if (iteration > probe_before) rate_settled = true;
     if (progress) {
       reported = std::make_shared<const Eigen::MatrixXd>(to_full(X));
-      const IterationReport report{
-          iteration, energy, move, error, rate_settled ? result.contraction_rate : std::nullopt, reported};
+      IterationReport report{iteration, energy, move, error, result.contraction_rate, reported};
+      report.rate_settled = rate_settled;
       if (!progress(report)) {
         result.cancelled = true;
         result.stop_reason = StopReason::Cancelled;
@@ -266,7 +270,7 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
       break;
     }
   }
-  if (result.cancelled && !rate_settled) result.contraction_rate.reset();  // not one to hand on
+  result.rate_settled = rate_settled;
   if (n_free == 0) {  // nothing to solve for: exact
     result.stop_reason = StopReason::ErrorTolerance;
     result.error_estimate = 0.0;

@@ -119,6 +119,7 @@ struct Service::Impl {
     std::optional<AttachedParts> parts;                   // when the request attaches parts
     std::shared_ptr<const Eigen::MatrixXd> last_iterate;  // warm start for the next request of the drag
     std::optional<double> last_rate;  // the contraction rate known when last_iterate was made (its hint)
+    bool last_rate_settled = false;   // and whether it was settled (DeformResult::rate_settled)
 
     // The solver's positions with the attached parts moved along (a new matrix when there are parts).
     std::shared_ptr<const Eigen::MatrixXd> with_parts(std::shared_ptr<const Eigen::MatrixXd> V) const {
@@ -276,6 +277,7 @@ struct Service::Impl {
     if (a.last_iterate) {
       targets.initial_guess = *a.last_iterate;
       targets.rate_hint = a.last_rate;
+      targets.rate_hint_settled = a.last_rate_settled;
     }
     const auto solve_start = Clock::now();
     auto progress = [&](const IterationReport& report) {
@@ -288,7 +290,8 @@ struct Service::Impl {
       s.setup_ms = setup_ms;
       s.solve_ms = ms_between(solve_start, Clock::now());
       a.last_iterate = report.V;
-      a.last_rate = report.contraction_rate;  // empty until the solver trusts it as a hint
+      a.last_rate = report.contraction_rate;
+      a.last_rate_settled = report.rate_settled;
       publish(std::move(s));
       return !interrupt.load(std::memory_order_acquire) && !stopping.load(std::memory_order_acquire);
     };
@@ -296,6 +299,7 @@ struct Service::Impl {
     a.request = p.request;
     a.last_iterate = std::make_shared<const Eigen::MatrixXd>(r.V);
     a.last_rate = r.contraction_rate;
+    a.last_rate_settled = r.rate_settled;
     Snapshot s = result_snapshot(p, a, r, Snapshot::Kind::Preview);
     s.setup_ms = setup_ms;
     publish(std::move(s));

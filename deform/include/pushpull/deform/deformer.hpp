@@ -109,8 +109,7 @@ struct IterationReport {
   // while the iterates move away from a fixed point (a saddle of a non-convex energy such as arap-h's).
   std::optional<double> error_estimate;
   // The contraction rate to carry to a warm start from these positions (see DeformResult::contraction_rate);
-  // empty in a solve without a rate_hint until its rate probe has run or it is past the probe's window (32
-  // iterations, asan 64): a warm start trusts its hint, and the first iterations' rate is not one to trust.
+  // whether it is settled: rate_settled below.
   std::optional<double> contraction_rate;
   // #V by 3 full-mesh positions after this iteration: an immutable copy the receiver may keep (e.g. publish
   // as a preview snapshot to another thread). Never null.
@@ -118,6 +117,8 @@ struct IterationReport {
   // 0 for an iteration. k > 0: the rate probe's k-th step after this iteration (DeformResult::probe_rate),
   // with the iteration's fields again (max_move 0): nothing new to show; answer only whether to go on.
   int probe_step = 0;
+  // Whether contraction_rate is settled (DeformResult::rate_settled); pass both on (ConstraintTargets).
+  bool rate_settled = false;
 };
 
 // Called on the solving thread after every iteration; return false to stop the solve at this iteration
@@ -179,10 +180,15 @@ struct DeformResult {
   // Estimated largest vertex distance to the exact minimiser / reference length, at the last iteration.
   std::optional<double> error_estimate;
   // The contraction rate of the plain local-global step over the last iterations (in [0, 1); empty until
-  // known, and in a cancelled solve without a rate_hint stopped before its rate was settled (see
-  // IterationReport::contraction_rate); at least min(1 - (1 - probe_rate) / 2, 0.999) when the probe ran).
-  // Pass it as ConstraintTargets::rate_hint when this result warm-starts a nearby solve.
+  // known; at least min(1 - (1 - probe_rate) / 2, 0.999) when the probe ran). Pass it as
+  // ConstraintTargets::rate_hint, and rate_settled as rate_hint_settled, when this result warm-starts a
+  // nearby solve.
   std::optional<double> contraction_rate;
+  // Whether contraction_rate has seen what a cold solve's first iterations cannot: true once the rate probe
+  // has run, once the solve is past the probe's window (32 iterations, asan 64), or from the start in a
+  // warm start whose hint was settled. A drag's request superseded in its first iterations hands on an
+  // unsettled rate.
+  bool rate_settled = false;
   // The rate behind error_estimate: the largest of the later half of the solve (a warm start with a
   // rate_hint: of its last 10 estimates), at least the hint and the probe's floor
   // (deform/src/error_estimate.hpp says why it may exceed contraction_rate).
@@ -221,6 +227,10 @@ struct ConstraintTargets {
   // iterations was up to 2.9x optimistic (asan, 10K, a drag's next request 1% longer). The error estimate
   // uses the larger of this rate and its own, and may use this one before its own is known. In [0, 1).
   std::optional<double> rate_hint;
+  // Whether rate_hint is settled (DeformResult::rate_settled). A settled hint carries the slow modes, and
+  // the estimate reads its own last 10 Ritz values above it; an unsettled one (a solve's first iterations)
+  // is only a floor under the largest of the later half of the solve, as in a cold solve.
+  bool rate_hint_settled = true;
 };
 
 class Deformer {
