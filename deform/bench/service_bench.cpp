@@ -13,7 +13,8 @@
 // preview snapshot of that request and to its converged snapshot, and per drag rate the share of requests
 // that reach a converged result before the next one supersedes them. Then 12 short drags, each with the hand
 // held still at its end: the latency from the last submit() to the converged shape, what the reviewer waits
-// for once the hand stops (one sample per drag; the per-rate converged latencies above rest on 1-2).
+// for once the hand stops (one sample per drag; the per-rate converged latencies above rest on 1-2), and how
+// far that converged shape is from the energy's minimiser (solved to 1e-9 |d|) against its estimate.
 //
 // Usage: service_bench [--quick]   (--quick: 10K only, shorter drags)
 #include <Eigen/Geometry>
@@ -31,6 +32,8 @@
 #include <vector>
 
 #include "height_field.hpp"
+#include "pushpull/deform/deformer.hpp"
+#include "pushpull/deform/roi.hpp"
 #include "pushpull/deform/service.hpp"
 
 namespace pd = pushpull::deform;
@@ -59,6 +62,15 @@ struct RequestTimes {
   Clock::time_point submitted, first_preview, converged, final;
   bool has_preview = false, has_converged = false, has_final = false;
   double per_iteration_ms = 0.0;  // solve time / iterations of its last snapshot
+  Eigen::Vector3d d = Eigen::Vector3d::Zero();
+  std::shared_ptr<const Eigen::MatrixXd> converged_positions;  // its converged snapshot's, when it has one
+  double converged_estimate = NAN;                             // and that snapshot's error estimate / |d|
+};
+
+// One drag held still at its end (Bench::drags_then_hold).
+struct HeldDrag {
+  double latency_ms = NAN;  // last submit() -> converged snapshot; NaN: it did not converge
+  RequestTimes last;        // the drag's last request
 };
 
 struct FrameStats {
@@ -78,8 +90,11 @@ class Bench {
       auto it = times_.find(s->request);
       if (it == times_.end()) return;
       if (!it->second.has_preview) it->second.first_preview = now, it->second.has_preview = true;
-      if (s->final && s->converged && !it->second.has_converged)
+      if (s->final && s->converged && !it->second.has_converged) {
         it->second.converged = now, it->second.has_converged = true;
+        it->second.converged_positions = s->positions;
+        it->second.converged_estimate = s->error_estimate.value_or(NAN);
+      }
       if (s->final) it->second.final = now, it->second.has_final = true;
       if (s->iteration > 0) it->second.per_iteration_ms = s->solve_ms / s->iteration;
     };
@@ -115,19 +130,21 @@ class Bench {
   void wait_idle() { (void)service_->wait_idle(); }
 
   // `drags` drags of `seconds` each at 90 / `every` requests per second, the hand held still at the end of
-  // each: the latency from the drag's last submit() to its converged snapshot (what the reviewer waits for
-  // once the hand stops), in ms, one per drag (NaN when the last request did not converge).
-  std::vector<double> drags_then_hold(int drags, double seconds, int every, std::uint64_t first_drag) {
-    std::vector<double> latency;
+  // each: per drag, the latency from its last submit() to its converged snapshot (what the reviewer waits
+  // for once the hand stops) and that request's record.
+  std::vector<HeldDrag> drags_then_hold(int drags, double seconds, int every, std::uint64_t first_drag) {
+    std::vector<HeldDrag> held;
     for (int k = 0; k < drags; ++k) {
       (void)run(seconds, every, first_drag + static_cast<std::uint64_t>(k));
       wait_idle();
       std::lock_guard lock(mutex_);
-      const RequestTimes& last = times_.rbegin()->second;
-      latency.push_back(last.has_converged ? ms(last.converged - last.submitted) : NAN);
+      HeldDrag h;
+      h.last = times_.rbegin()->second;
+      if (h.last.has_converged) h.latency_ms = ms(h.last.converged - h.last.submitted);
+      held.push_back(std::move(h));
       times_.clear();
     }
-    return latency;
+    return held;
   }
 
   // Share of submitted requests that converged, and their latencies; clears the record.
@@ -193,8 +210,10 @@ class Bench {
     r.options.method = pd::Method::Asan;
     std::lock_guard lock(mutex_);
     const auto now = Clock::now();
+    const Eigen::Vector3d d = r.d;
     const std::uint64_t id = service_->submit(std::move(r));
     times_[id].submitted = now;
+    times_[id].d = d;
   }
 
   const pb::HeightFieldProblem& problem_;
@@ -236,16 +255,40 @@ void bench_size(int n, double seconds) {
   // The hand stops: 12 short drags along the same path (the curve's first 0.8 s: |d| up to 40 mm, its
   // direction turning) at 30 requests per second, each held still at its end.
   const int drags = 12;
-  std::vector<double> hold = bench.drags_then_hold(drags, 0.8, 3, 100);
-  const long unconverged = std::count_if(hold.begin(), hold.end(), [](double v) { return std::isnan(v); });
-  hold.erase(std::remove_if(hold.begin(), hold.end(), [](double v) { return std::isnan(v); }), hold.end());
+  const std::vector<HeldDrag> held = bench.drags_then_hold(drags, 0.8, 3, 100);
+  std::vector<double> hold;
+  for (const HeldDrag& h : held)
+    if (!std::isnan(h.latency_ms)) hold.push_back(h.latency_ms);
   std::printf(
       "  hand held still after a drag (%d drags of 0.8 s at 30 requests/s): last submit->converged median "
       "%.1f,"
       " p90 %.1f, longest %.1f ms%s\n",
       drags, percentile(hold, 0.5), percentile(hold, 0.9),
       hold.empty() ? 0.0 : *std::max_element(hold.begin(), hold.end()),
-      unconverged > 0 ? " (some did not converge)" : "");
+      hold.size() < held.size() ? " (some did not converge)" : "");
+  // Is the held drag's "converged" honest? Its shape against the same energy solved to 1e-9 |d| from rest
+  // (every drag ends at the same d; the reference is solved once).
+  const pd::RegionOfInterest roi = pd::build_roi(problem.mesh, problem.handle, problem.fixed);
+  pd::DeformOptions tight;
+  tight.method = pd::Method::Asan;
+  tight.tolerance = 1e-9;
+  tight.max_iterations = 50000;
+  const Eigen::Vector3d last_d = held.front().last.d;
+  const Eigen::MatrixXd reference = pd::deform(problem.mesh, roi, last_d, tight).V;
+  std::vector<double> ratio;
+  int optimistic = 0;
+  for (const HeldDrag& h : held) {
+    if (!h.last.converged_positions || h.last.d != last_d) continue;
+    const double truth =
+        (*h.last.converged_positions - reference).rowwise().norm().maxCoeff() / last_d.norm();
+    ratio.push_back(truth / h.last.converged_estimate);
+    optimistic += ratio.back() > 2.0 ? 1 : 0;
+  }
+  std::printf(
+      "  its converged shape against the energy solved to 1e-9 |d|: true distance / estimate median %.2f,"
+      " largest %.2f; %d of %zu more than 2x optimistic\n",
+      percentile(ratio, 0.5), ratio.empty() ? 0.0 : *std::max_element(ratio.begin(), ratio.end()), optimistic,
+      ratio.size());
 }
 
 }  // namespace
