@@ -86,16 +86,6 @@ OurRun run_ours(const pb::HeightFieldProblem& problem, const pd::RegionOfInteres
   return run;
 }
 
-// The same energy solved until the solver's estimate is below 1e-9 |d|.
-Eigen::MatrixXd reference_shape(const pb::HeightFieldProblem& problem, const pd::RegionOfInterest& roi,
-                                pd::Method method) {
-  pd::DeformOptions options;
-  options.method = method;
-  options.tolerance = 1e-9;
-  options.max_iterations = 50000;
-  return pd::deform(problem.mesh, roi, problem.d, options).V;
-}
-
 void print_row(long vertices, const char* method, const char* setting, const OurRun& r) {
   std::printf("%8ld %-8s %-15s %9.1f %9.1f %8.2f %5d%s %10.1f %8.1e %8.1e\n", vertices, method, setting,
               r.precompute_ms, r.factorize_ms, r.per_iteration_ms, r.iterations, r.converged ? " " : "*",
@@ -148,7 +138,7 @@ int main(int argc, char** argv) {
     for (const pd::Method method : {pd::Method::ArapSR, pd::Method::Asan}) {
       const std::string name(pd::method_name(method));
       const Eigen::MatrixXd reference =
-          with_reference ? reference_shape(problem, roi, method) : Eigen::MatrixXd();
+          with_reference ? pb::reference_solution(problem.mesh, roi, problem.d, method) : Eigen::MatrixXd();
       pd::DeformOptions options;
       options.method = method;
       options.threads = 1;

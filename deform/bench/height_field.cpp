@@ -4,6 +4,8 @@
 #include <numbers>
 #include <random>
 
+#include "pushpull/deform/deformer.hpp"
+
 namespace pushpull::bench {
 
 HeightFieldProblem make_height_field(int n, double handle_radius, const Eigen::Vector3d& d) {
@@ -36,6 +38,15 @@ HeightFieldProblem make_height_field(int n, double handle_radius, const Eigen::V
     }
   }
   return problem;
+}
+
+Eigen::MatrixXd reference_solution(const deform::Mesh& mesh, const deform::RegionOfInterest& roi,
+                                   const Eigen::Vector3d& d, deform::Method method) {
+  deform::DeformOptions options;
+  options.method = method;
+  options.tolerance = 1e-9;
+  options.max_iterations = 50000;
+  return deform::deform(mesh, roi, d, options).V;
 }
 
 }  // namespace pushpull::bench

@@ -3,6 +3,8 @@
 #pragma once
 
 #include "pushpull/deform/mesh.hpp"
+#include "pushpull/deform/method.hpp"
+#include "pushpull/deform/roi.hpp"
 
 #include <Eigen/Core>
 
@@ -20,5 +22,11 @@ struct HeightFieldProblem {
 // Deterministic: the jitter comes from a fixed-seed generator.
 [[nodiscard]] HeightFieldProblem make_height_field(int n, double handle_radius = 0.08,
                                                    const Eigen::Vector3d& d = Eigen::Vector3d(0.0, 0.0, 0.1));
+
+// The benchmarks' reference: `method`'s energy for the pull d solved from rest until the solver's estimate
+// is below 1e-9 |d| (at most 50000 iterations). #V by 3 positions.
+[[nodiscard]] Eigen::MatrixXd reference_solution(const deform::Mesh& mesh,
+                                                 const deform::RegionOfInterest& roi,
+                                                 const Eigen::Vector3d& d, deform::Method method);
 
 }  // namespace pushpull::bench

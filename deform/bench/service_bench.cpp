@@ -32,7 +32,6 @@
 #include <vector>
 
 #include "height_field.hpp"
-#include "pushpull/deform/deformer.hpp"
 #include "pushpull/deform/roi.hpp"
 #include "pushpull/deform/service.hpp"
 
@@ -269,12 +268,8 @@ void bench_size(int n, double seconds) {
   // Is the held drag's "converged" honest? Its shape against the same energy solved to 1e-9 |d| from rest
   // (every drag ends at the same d; the reference is solved once).
   const pd::RegionOfInterest roi = pd::build_roi(problem.mesh, problem.handle, problem.fixed);
-  pd::DeformOptions tight;
-  tight.method = pd::Method::Asan;
-  tight.tolerance = 1e-9;
-  tight.max_iterations = 50000;
   const Eigen::Vector3d last_d = held.front().last.d;
-  const Eigen::MatrixXd reference = pd::deform(problem.mesh, roi, last_d, tight).V;
+  const Eigen::MatrixXd reference = pb::reference_solution(problem.mesh, roi, last_d, pd::Method::Asan);
   std::vector<double> ratio;
   int optimistic = 0;
   for (const HeldDrag& h : held) {

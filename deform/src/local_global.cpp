@@ -134,7 +134,7 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
   // probe) must not count as settled: it would carry their optimism along. Marking such hints unsettled
   // instead of withholding them keeps a drag's requests chained: withheld, every request of a 30-per-second
   // drag started unhinted, probed at its stop, and the hand held still waited 188-198 ms for the converged
-  // shape instead of 63-67 (service_bench).
+  // shape instead of 58-69 (service_bench).
   bool rate_settled = hinted && rate_hint_settled;
   std::shared_ptr<const Eigen::MatrixXd> reported;  // the positions of the last progress report
   // J v of the plain map at X by a finite difference, (G(X + h v) - G(X)) / h, every evaluation starting
