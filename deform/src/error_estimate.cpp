@@ -4,6 +4,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <complex>
 
 namespace pushpull::deform::detail {
 
@@ -64,9 +65,14 @@ void ContractionEstimate::add(const Eigen::Ref<const Eigen::VectorXd>& x,
   if (!C.allFinite()) return;
   const Eigen::EigenSolver<Eigen::MatrixXd> eigen(C, /*computeEigenvectors=*/false);
   if (eigen.info() != Eigen::Success) return;
+  // Recent and Warm: Ritz values with a non-positive real part are left out (error_estimate.hpp says why).
+  const bool contracting_only = policy_ != Policy::Cautious;
   double largest = 0.0;
-  for (Eigen::Index k = 0; k < eigen.eigenvalues().size(); ++k)
-    largest = std::max(largest, std::abs(eigen.eigenvalues()(k)));
+  for (Eigen::Index k = 0; k < eigen.eigenvalues().size(); ++k) {
+    const std::complex<double> value = eigen.eigenvalues()(k);
+    if (contracting_only && !(value.real() > 0.0)) continue;
+    largest = std::max(largest, std::abs(value));
+  }
   if (!std::isfinite(largest)) return;
   recent_[static_cast<std::size_t>(estimates_++ % recent_.size())] = largest;
   double recent_largest = 0.0;

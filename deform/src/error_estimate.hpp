@@ -24,9 +24,11 @@
 //   10 estimates, at least the floor. The hint is the rate of a nearby solve that ran past its transients
 //   (or was probed), so it already holds the slow mode the later-half rule waits for. With the later half on
 //   top, stopping_bench's hinted warm starts on the car's 2 m region took 188 / 66 / 27 iterations (asan,
-//   from 0.9 / 0.97 / 0.995 d); with this rule 186 / 38 / 27, every hinted row still honest (true distance
-//   at most 0.96x the estimate, on the 10K height field; 0.49x on the car). Cold rows are unchanged. A hint
-//   from a cold solve's first iterations is not settled (DeformResult::rate_settled) and gets Recent.
+//   from 0.9 / 0.97 / 0.995 d); with this rule 186 / 38 / 27 (186 / 24 / 23 since the rule on which Ritz
+//   values count, below), every hinted row still honest (true distance
+//   at most 0.96x the estimate, on the 10K height field; 0.49x on the car, 1.22x since the Ritz-value rule).
+//   Cold rows are unchanged. A hint from a cold solve's first iterations is not settled
+//   (DeformResult::rate_settled) and gets Recent.
 // - Cautious (per-triangle rotations: arap-m, arap-h, asan on arap-m): the largest of the whole solve,
 //   clamped to kCautiousMaxRate, no rate before 10 estimates and none while one of the last 10 is >= 1. Their
 //   soft fold modes contract at rates within 1e-4 of 1, and arap-h's non-convex energy has saddles where the
@@ -34,6 +36,21 @@
 //   stopped on estimates 2.6-100x below its true distance (stopping_bench). Applying the >= 1 rule to every
 //   method cost sr-arap its convergence (its Gauss-Seidel rotations give Ritz values >= 1 too), hence the two
 //   policies.
+// Which Ritz values count (Recent and Warm): near a minimiser the plain map's Jacobian is J = I - L^-1 H,
+// with H the energy's Hessian and L the global matrix; the local step's surrogate lies above the energy and
+// touches it with the same gradient, so 0 <= H <= L and J's eigenvalues are real and in [0, 1]. Ritz values
+// with a non-positive real part are the secant model's noise (Anderson's mixed steps, the rotations'
+// nonlinearity: -5.7, -2.7, -1.3 between slow-mode values of 0.998-0.9994 on deform_bench's 30K field, asan)
+// and are left out: taken as |value| and clamped to kMaxRate, each held an estimate of 1e4 |r| over the later
+// half of the solve, and the 30K field stopped after 154 iterations at a true distance of 2.9e-4 |d| (now 128
+// at 4.0e-3, estimate 5.2e-3). Values of modulus >= 1 with a positive real part stay (clamped): a slow mode
+// within 1e-4 of 1 can show above 1, and leaving those out as well (a further 8% fewer iterations on the
+// random pulls) made one real-car pull stop 2.10x optimistic after 215 iterations where keeping them took
+// 566. On the 1,126 random pulls of the README's twelve seeds (stopping_bench): 69,892 iterations and 32,759
+// probe steps before, 68,404 and 33,333 now, the largest true / estimate 1.97 both times; the fixed problems'
+// rows are unchanged but for asan on the hemisphere (40 -> 25 iterations, ratio 0.15) and the car's warm
+// starts (2 m region, unhinted 188 / 66 / 16 -> 154 / 24 / 23 iterations, hinted 186 / 38 / 27 -> 186 / 24 /
+// 23; true / estimate at most 1.40). Cautious keeps every value: its saddles show as values >= 1 it must see.
 // The estimate is then rho_hat-scaled largest per-vertex residual; the benchmark checks it against
 // references solved to 1e-9 for every method (deform_bench).
 // Thread-safety: none; one per solve.

@@ -134,6 +134,30 @@ TEST(ContractionEstimate, TheLaterHalfKeepsASlowRateTheLastTenForget) {
   EXPECT_NEAR(*estimate.rate(), 0.5, 1e-6);
 }
 
+// Near a minimiser the local-global map's Jacobian has real eigenvalues in [0, 1] (error_estimate.hpp): a
+// Ritz value with a non-positive real part is noise and does not set the rate (Recent, Warm); one of modulus
+// >= 1 and positive real part may be a slow mode seen above 1 and counts, clamped. Cautious counts every
+// value.
+TEST(ContractionEstimate, RitzValuesWithANonPositiveRealPartDoNotSetTheRate) {
+  using Policy = detail::ContractionEstimate::Policy;
+  TwoPhaseMap map;
+  const Eigen::VectorXd negative{{0.9, 0.5, 0.4, 0.3, 0.2, 0.1, -1.5, -0.95}};
+  detail::ContractionEstimate recent(8, TwoPhaseMap::n), warm(8, TwoPhaseMap::n, Policy::Warm),
+      cautious(8, TwoPhaseMap::n, Policy::Cautious);
+  warm.set_floor(0.2);
+  for (auto* estimate : {&recent, &warm, &cautious}) map.feed(*estimate, negative, 40);
+  ASSERT_TRUE(recent.rate().has_value());
+  EXPECT_NEAR(*recent.rate(), 0.9, 1e-6) << "-1.5 and -0.95 are left out";
+  EXPECT_NEAR(*warm.rate(), 0.9, 1e-6);
+  EXPECT_FALSE(cautious.rate().has_value()) << "Cautious reads |-1.5| >= 1 as iterates moving away";
+
+  const Eigen::VectorXd above_one{{1.2, 0.5, 0.4, 0.3, 0.2, 0.1, -1.5, 0.05}};
+  detail::ContractionEstimate slow(8, TwoPhaseMap::n);
+  map.feed(slow, above_one, 40);
+  ASSERT_TRUE(slow.rate().has_value());
+  EXPECT_EQ(*slow.rate(), detail::ContractionEstimate::kMaxRate) << "1.2 counts, clamped";
+}
+
 // A warm start's estimate (Policy::Warm) reads the last 10 estimates above the hint: a slow phase is
 // forgotten once 10 fast estimates follow, however long it lasted, but never below the hint.
 TEST(ContractionEstimate, AWarmStartReadsTheLastTenAboveItsHint) {
