@@ -8,9 +8,11 @@
 
 namespace pushpull::deform::detail {
 
-ContractionEstimate::ContractionEstimate(int window, Eigen::Index dimension, Policy policy)
+ContractionEstimate::ContractionEstimate(int window, Eigen::Index dimension, Policy policy,
+                                         bool exact_local_fit)
     : window_(window),
       policy_(policy),
+      contracting_only_(exact_local_fit && policy != Policy::Cautious),
       dX_(dimension, window),
       dG_(dimension, window),
       xx_(Eigen::MatrixXd::Zero(window, window)),
@@ -65,15 +67,17 @@ void ContractionEstimate::add(const Eigen::Ref<const Eigen::VectorXd>& x,
   if (!C.allFinite()) return;
   const Eigen::EigenSolver<Eigen::MatrixXd> eigen(C, /*computeEigenvectors=*/false);
   if (eigen.info() != Eigen::Success) return;
-  // Recent and Warm: Ritz values with a non-positive real part are left out (error_estimate.hpp says why).
-  const bool contracting_only = policy_ != Policy::Cautious;
+  // Recent and Warm with an exact local fit: Ritz values with a non-positive real part are left out
+  // (error_estimate.hpp says why); a window whose values are all left out says nothing and is no estimate.
   double largest = 0.0;
+  bool any = false;
   for (Eigen::Index k = 0; k < eigen.eigenvalues().size(); ++k) {
     const std::complex<double> value = eigen.eigenvalues()(k);
-    if (contracting_only && !(value.real() > 0.0)) continue;
+    if (contracting_only_ && !(value.real() > 0.0)) continue;
     largest = std::max(largest, std::abs(value));
+    any = true;
   }
-  if (!std::isfinite(largest)) return;
+  if (!any || !std::isfinite(largest)) return;
   recent_[static_cast<std::size_t>(estimates_++ % recent_.size())] = largest;
   double recent_largest = 0.0;
   for (std::size_t k = 0; k < std::min<std::size_t>(recent_.size(), static_cast<std::size_t>(estimates_));

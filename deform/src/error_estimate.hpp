@@ -27,7 +27,7 @@
 //   from 0.9 / 0.97 / 0.995 d); with this rule 186 / 38 / 27 (186 / 24 / 23 since the rule on which Ritz
 //   values count, below), every hinted row still honest (true distance
 //   at most 0.96x the estimate, on the 10K height field; 0.49x on the car, 1.22x since the Ritz-value rule).
-//   Cold rows are unchanged. A hint from a cold solve's first iterations is not settled
+//   Cold rows were unchanged by it. A hint from a cold solve's first iterations is not settled
 //   (DeformResult::rate_settled) and gets Recent.
 // - Cautious (per-triangle rotations: arap-m, arap-h, asan on arap-m): the largest of the whole solve,
 //   clamped to kCautiousMaxRate, no rate before 10 estimates and none while one of the last 10 is >= 1. Their
@@ -36,10 +36,14 @@
 //   stopped on estimates 2.6-100x below its true distance (stopping_bench). Applying the >= 1 rule to every
 //   method cost sr-arap its convergence (its Gauss-Seidel rotations give Ritz values >= 1 too), hence the two
 //   policies.
-// Which Ritz values count (Recent and Warm): near a minimiser the plain map's Jacobian is J = I - L^-1 H,
-// with H the energy's Hessian and L the global matrix; the local step's surrogate lies above the energy and
-// touches it with the same gradient, so 0 <= H <= L and J's eigenvalues are real and in [0, 1]. Ritz values
-// with a non-positive real part are the secant model's noise (Anderson's mixed steps, the rotations'
+// Which Ritz values count (Recent and Warm, when the local step fits every rotation exactly): the plain map's
+// Jacobian is J = I - L^-1 H, with H the energy's Hessian and L the global matrix; the local step's surrogate
+// lies above the energy and touches it with the same gradient, so H <= L (at every iterate where the energy
+// is twice differentiable: each cluster's best rotation unique), and H >= 0 near a minimiser, so J's
+// eigenvalues are real and in [0, 1]; at least the bound from above on the spectrum of L^-1 H, the one used
+// here, holds at every iterate. sr-arap's Gauss-Seidel sweeps are no exact fit (J is not even self-adjoint
+// there): it counts every value, as before. A window whose values are all left out is no estimate. Ritz
+// values with a non-positive real part are the secant model's noise (Anderson's mixed steps, the rotations'
 // nonlinearity: -5.7, -2.7, -1.3 between slow-mode values of 0.998-0.9994 on deform_bench's 30K field, asan)
 // and are left out: taken as |value| and clamped to kMaxRate, each held an estimate of 1e4 |r| over the later
 // half of the solve, and the 30K field stopped after 154 iterations at a true distance of 2.9e-4 |d| (now 128
@@ -50,7 +54,8 @@
 // probe steps before, 68,404 and 33,333 now, the largest true / estimate 1.97 both times; the fixed problems'
 // rows are unchanged but for asan on the hemisphere (40 -> 25 iterations, ratio 0.15) and the car's warm
 // starts (2 m region, unhinted 188 / 66 / 16 -> 154 / 24 / 23 iterations, hinted 186 / 38 / 27 -> 186 / 24 /
-// 23; true / estimate at most 1.40). Cautious keeps every value: its saddles show as values >= 1 it must see.
+// 23; true / estimate at most 1.40, where it was at most 0.38). sr-arap's rows are bit-identical. Cautious
+// keeps every value, its rule unchanged: it takes any recent value of modulus >= 1 as iterates moving away.
 // The estimate is then rho_hat-scaled largest per-vertex residual; the benchmark checks it against
 // references solved to 1e-9 for every method (deform_bench).
 // Thread-safety: none; one per solve.
@@ -69,7 +74,10 @@ namespace pushpull::deform::detail {
 class ContractionEstimate {
  public:
   enum class Policy { Recent, Warm, Cautious };
-  ContractionEstimate(int window, Eigen::Index dimension, Policy policy = Policy::Recent);
+  // exact_local_fit: whether the local step fits every rotation exactly (every method but sr-arap, whose
+  // Gauss-Seidel sweeps do not); only then are Ritz values with a non-positive real part left out.
+  ContractionEstimate(int window, Eigen::Index dimension, Policy policy = Policy::Recent,
+                      bool exact_local_fit = true);
   // x: the iterate, g = G(x). Call once per iteration. The vectors' two halves are updated and their dot
   // products summed separately (the halves on two threads when `threads` is given; the same sums either
   // way, so results do not depend on it).
@@ -94,6 +102,7 @@ class ContractionEstimate {
  private:
   int window_;
   Policy policy_;
+  bool contracting_only_;  // leave out Ritz values with a non-positive real part
   int pairs_ = 0;  // secant pairs seen
   bool has_previous_ = false;
   Eigen::VectorXd previous_x_, previous_g_;

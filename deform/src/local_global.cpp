@@ -106,7 +106,8 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
   detail::ContractionEstimate contraction(kRateWindow, 3 * n_free,
                                           triangle_rotations            ? Policy::Cautious
                                           : hinted && rate_hint_settled ? Policy::Warm
-                                                                        : Policy::Recent);
+                                                                        : Policy::Recent,
+                                          /*exact_local_fit=*/options.method != Method::SrArap);
   if (hinted) contraction.set_floor(*rate_hint);
   // The rate probe (rate_probe.hpp) checks the first candidate stop within the first probe_before
   // iterations, unless a warm start brought the rate of a nearby solve (already probed or long-run).

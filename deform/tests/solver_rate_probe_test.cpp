@@ -156,6 +156,18 @@ TEST(ContractionEstimate, RitzValuesWithANonPositiveRealPartDoNotSetTheRate) {
   map.feed(slow, above_one, 40);
   ASSERT_TRUE(slow.rate().has_value());
   EXPECT_EQ(*slow.rate(), detail::ContractionEstimate::kMaxRate) << "1.2 counts, clamped";
+
+  // sr-arap's rotations are no exact fit: every value counts, |-1.5| clamped.
+  detail::ContractionEstimate inexact(8, TwoPhaseMap::n, Policy::Recent, /*exact_local_fit=*/false);
+  map.feed(inexact, negative, 40);
+  ASSERT_TRUE(inexact.rate().has_value());
+  EXPECT_EQ(*inexact.rate(), detail::ContractionEstimate::kMaxRate);
+
+  // Windows whose values are all left out are no estimates: no rate, rather than a rate of 0.
+  const Eigen::VectorXd all_negative{{-0.9, -0.8, -0.7, -0.6, -0.5, -0.4, -0.3, -0.2}};
+  detail::ContractionEstimate none(8, TwoPhaseMap::n);
+  map.feed(none, all_negative, 40);
+  EXPECT_FALSE(none.rate().has_value());
 }
 
 // A warm start's estimate (Policy::Warm) reads the last 10 estimates above the hint: a slow phase is
