@@ -25,10 +25,9 @@
 //   (or was probed), so it already holds the slow mode the later-half rule waits for. With the later half on
 //   top, stopping_bench's hinted warm starts on the car's 2 m region took 188 / 66 / 27 iterations (asan,
 //   from 0.9 / 0.97 / 0.995 d); with this rule 186 / 38 / 27 (186 / 24 / 23 since the rule on which Ritz
-//   values count, below), every hinted row still honest (true distance
-//   at most 0.96x the estimate, on the 10K height field; 0.49x on the car, 1.22x since the Ritz-value rule).
-//   Cold rows were unchanged by it. A hint from a cold solve's first iterations is not settled
-//   (DeformResult::rate_settled) and gets Recent.
+//   values count, below), every hinted row still honest (true distance at most 0.96x the estimate, on the 10K
+//   height field; 0.49x on the car, 1.22x since the Ritz-value rule). Cold rows were unchanged by it. A hint
+//   from a cold solve's first iterations is not settled (DeformResult::rate_settled) and gets Recent.
 // - Cautious (per-triangle rotations: arap-m, arap-h, asan on arap-m): the largest of the whole solve,
 //   clamped to kCautiousMaxRate, no rate before 10 estimates and none while one of the last 10 is >= 1. Their
 //   soft fold modes contract at rates within 1e-4 of 1, and arap-h's non-convex energy has saddles where the
@@ -51,14 +50,15 @@
 // within 1e-4 of 1 can show above 1, and leaving those out as well (a further 8% fewer iterations on the
 // random pulls) made one real-car pull stop 2.10x optimistic after 215 iterations where keeping them took
 // 566. On the 1,126 random pulls of the README's twelve seeds (stopping_bench): 69,892 iterations and 32,759
-// probe steps before, 68,404 and 33,333 now, the largest true / estimate 1.97 both times; the fixed problems'
-// rows are unchanged but for asan on the hemisphere (40 -> 25 iterations, ratio 0.15) and the car's warm
-// starts (2 m region, unhinted 188 / 66 / 16 -> 154 / 24 / 23 iterations, hinted 186 / 38 / 27 -> 186 / 24 /
-// 23; true / estimate at most 1.40, where it was at most 0.38). sr-arap's rows are bit-identical. Cautious
-// keeps every value, its rule unchanged: it takes any recent value of modulus >= 1 as iterates moving away.
-// The estimate is then rho_hat-scaled largest per-vertex residual; the benchmark checks it against
-// references solved to 1e-9 for every method (deform_bench).
-// Thread-safety: none; one per solve.
+// probe steps before, 68,404 and 33,333 at 183d9c2 (before sr-arap's exemption and the empty-window rule,
+// which the random pulls' asan and arap-sr rows are not expected to meet; not re-run), the largest true /
+// estimate 1.97 both times; the fixed problems' rows are unchanged but for asan on the hemisphere (40 -> 25
+// iterations, ratio 0.15) and the car's warm starts (2 m region, unhinted 188 / 66 / 16 -> 154 / 24 / 23
+// iterations, hinted 186 / 38 / 27 -> 186 / 24 / 23; true / estimate at most 1.40, where it was at most
+// 0.38). sr-arap's rows are bit-identical. Cautious keeps every value, its rule unchanged: it takes any
+// recent value of modulus >= 1 as iterates moving away. The estimate is then rho_hat-scaled largest
+// per-vertex residual; the benchmark checks it against references solved to 1e-9 for every method
+// (deform_bench). Thread-safety: none; one per solve.
 #pragma once
 
 #include <Eigen/Core>
