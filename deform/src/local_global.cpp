@@ -220,6 +220,9 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
     std::optional<double> error;
     const std::optional<double> rate = contraction.rate();
     if (rate) error = move / (1.0 - *rate);
+    // A plain step that does not move is at a fixed point of G, the minimiser: exact whatever the rate (the
+    // secant pairs of a solve that never moves, d = 0, hold no Ritz value that counts, hence no rate).
+    if (move == 0.0) error = 0.0;
     result.error_estimate = error;
     result.estimate_rate = rate;
     result.contraction_rate = contraction.recent_rate();
@@ -241,7 +244,7 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
       }
     }
     if (options.tolerance > 0.0 && error && *error <= options.tolerance) {
-      if (probe_pending && iteration <= probe_before) {
+      if (probe_pending && iteration <= probe_before && move > 0.0) {  // a move of 0 is exact
         probe_pending = false;
         rate_settled = true;
         const detail::RateProbe found = probe_at(X, iteration);
@@ -255,7 +258,7 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
         const double floor = std::min(1.0 - 0.5 * (1.0 - found.rate), kProbeMaxRate);
         contraction.set_floor(floor);
         result.contraction_rate = contraction.recent_rate();
-        if (floor > *rate) {  // a slower mode than the iterates have shown: it bounds the error
+        if (!rate || floor > *rate) {  // a slower mode than the iterates have shown: it bounds the error
           const std::optional<double> raised = contraction.rate();
           result.estimate_rate = raised;
           if (raised) result.error_estimate = move / (1.0 - *raised);
