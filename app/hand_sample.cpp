@@ -30,9 +30,8 @@ HandSample hold_untracked(const xr::HandInput& in, std::optional<HandSample>& la
     s.tracked = false;
     return s;
   }
-  HandSample held = *last_tracked;
-  held.trigger = s.trigger;
-  return held;
+  s.origin_stage = last_tracked->origin_stage;  // the position is held; the orientation (IMU) stays live
+  return s;
 }
 
 XrPosef pointer_pose(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction) {

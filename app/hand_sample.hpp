@@ -19,9 +19,11 @@ namespace pushpull::app {
 [[nodiscard]] HandSample hand_sample(const xr::HandInput& in);
 
 // A controller out of its tracking cameras' view is still located, by the runtime's guess (position valid,
-// not tracked), which drifts. The sample of `in` with the ray of `last_tracked` while its position is such a
-// guess (the trigger as read), not tracked at all before any tracked pose; `last_tracked` keeps the latest
-// tracked sample. A drag thus holds where the hand was last seen and never pushes the guess into the model.
+// not tracked), which drifts; its orientation still comes from its own gyroscopes. The sample of `in` with
+// the ray's origin of `last_tracked` while its position is such a guess (the direction and the trigger as
+// read), not tracked at all before any tracked pose; `last_tracked` keeps the latest tracked sample. A drag
+// thus holds where the hand was last seen and never pushes the guess into the model, and the ray still turns
+// with the hand.
 [[nodiscard]] HandSample hold_untracked(const xr::HandInput& in, std::optional<HandSample>& last_tracked);
 
 // The aim pose (float, as OpenXR holds it) of a ray: position = origin, orientation = the shortest rotation

@@ -1487,6 +1487,20 @@ wait $pid
   expect_replays_with_commits(recording, 2, " --model " + bonnet.string());
 }
 
+// A runtime with only the first Vulkan binding (no XR_KHR_vulkan_enable2): the message names the extension
+// it lacks, the runtime it looked for and how to point at another.
+TEST(ReviewXr, ARuntimeWithoutVulkanEnable2IsNamedWithTheMissingExtension) {
+  const auto result =
+      run_command("env -u DISPLAY -u WAYLAND_DISPLAY PUSHPULL_XR_SIM_QUIRKS=vulkan1-only " +
+                  pushpull::testing::xr_sim_environment() + " " + PUSHPULL_EXECUTABLE + " review " + kHood);
+  EXPECT_NE(result.status, 0);
+  EXPECT_NE(result.output.find("no usable OpenXR runtime: looked for the runtime in XR_RUNTIME_JSON="),
+            std::string::npos)
+      << result.output;
+  EXPECT_NE(result.output.find("it does not offer XR_KHR_vulkan_enable2 "), std::string::npos)
+      << result.output;
+}
+
 TEST(ReviewXr, WithoutARuntimeSaysWhichOneItLookedForAndHowToPointAtOne) {
   // No display either: the command ends with the message instead of opening the desktop window.
   const auto result =

@@ -9,6 +9,8 @@
 #include <optional>
 #include <thread>
 
+#include "eye_hold.hpp"
+
 namespace pushpull::xr {
 namespace {
 
@@ -25,6 +27,25 @@ std::string runtime_looked_for() {
 constexpr const char* kPointAtRuntime =
     "point at one with XR_RUNTIME_JSON=/path/to/runtime.json (the simulated runtime: "
     "XR_RUNTIME_JSON=build/xr/sim/pushpull_xr_sim.json)";
+
+// The ones of `wanted` the runtime does not list (comma-separated; all of them when it lists none).
+std::string missing_extensions(const std::vector<const char*>& wanted) {
+  uint32_t n = 0;
+  std::vector<XrExtensionProperties> offered;
+  if (XR_SUCCEEDED(xrEnumerateInstanceExtensionProperties(nullptr, 0, &n, nullptr))) {
+    offered.assign(n, {XR_TYPE_EXTENSION_PROPERTIES});
+    if (XR_FAILED(xrEnumerateInstanceExtensionProperties(nullptr, n, &n, offered.data()))) n = 0;
+    offered.resize(n);
+  }
+  std::string missing;
+  for (const char* name : wanted) {
+    const bool listed = std::any_of(offered.begin(), offered.end(), [&](const XrExtensionProperties& e) {
+      return std::strcmp(e.extensionName, name) == 0;
+    });
+    if (!listed) missing += (missing.empty() ? "" : ", ") + std::string(name);
+  }
+  return missing.empty() ? "an extension it was asked for" : missing;
+}
 
 template <class Fn>
 Fn instance_function(XrInstance instance, const char* name) {
@@ -62,8 +83,7 @@ struct Session::Impl {
   XrSpace stage = XR_NULL_HANDLE;
   bool stage_is_local = false;
   bool space_changed = false;  // a REFERENCE_SPACE_CHANGE_PENDING for the space in use, not yet taken
-  // The eyes' last located positions (stage), for frames whose views have orientation only.
-  std::array<XrVector3f, 2> last_eye_position{{{-0.032f, 1.6f, 0.0f}, {0.032f, 1.6f, 0.0f}}};
+  detail::EyeHold eye_hold;    // the eyes of frames whose views have orientation only
   std::vector<Swapchain> eyes;
   std::vector<XrViewConfigurationView> view_configs;
   XrEnvironmentBlendMode blend_mode = XR_ENVIRONMENT_BLEND_MODE_OPAQUE;
@@ -95,7 +115,7 @@ struct Session::Impl {
     if (const XrResult r = xrCreateInstance(&info, &instance); XR_FAILED(r)) {
       instance = XR_NULL_HANDLE;
       const std::string why = r == XR_ERROR_EXTENSION_NOT_PRESENT
-                                  ? "it does not offer XR_KHR_vulkan_enable2"
+                                  ? "it does not offer " + missing_extensions(extensions)
                                   : "xrCreateInstance failed with " + result_name(XR_NULL_HANDLE, r);
       throw RuntimeUnavailable("no usable OpenXR runtime: looked for " + runtime_looked_for() + ", " + why +
                                    " (the loader's and runtime's messages above say more); " +
@@ -249,6 +269,10 @@ struct Session::Impl {
   }
 
   void create_stage_space() {
+    // A recreated session (after a loss) may find STAGE where the first had none (a boundary set since), and
+    // a change pending for the old space is not one for the new.
+    stage_is_local = false;
+    space_changed = false;
     uint32_t n = 0;
     CHECK(xrEnumerateReferenceSpaces(session, 0, &n, nullptr));
     std::vector<XrReferenceSpaceType> types(n);
@@ -459,17 +483,13 @@ FrameViews Session::begin_frame() {
   uint32_t n = 0;
   if (!CHECK_UNLESS_LOST(xrLocateViews(s.session, &locate, &view_state, 2, &n, views.data()))) return frame;
   if (n != 2 || (view_state.viewStateFlags & XR_VIEW_STATE_ORIENTATION_VALID_BIT) == 0) return frame;
-  // Orientation without position (rotation-only tracking, or positional tracking lost): the eyes stay where
-  // they were last located (else at a standing reviewer's height) rather than the view going black.
+  // Orientation without position (rotation-only tracking, or positional tracking lost): the head stays where
+  // it was last located (else at a standing reviewer's height) and the eyes turn about it with their live
+  // orientations, rather than the view going black (eyes held in place would lose stereo as the head turns).
   const bool position = (view_state.viewStateFlags & XR_VIEW_STATE_POSITION_VALID_BIT) != 0;
-  for (int i = 0; i < 2; ++i) {
-    XrPosef& pose = views[size_t(i)].pose;
-    if (position)
-      s.last_eye_position[size_t(i)] = pose.position;
-    else
-      pose.position = s.last_eye_position[size_t(i)];
-    frame.eyes[size_t(i)] = {pose, views[size_t(i)].fov};
-  }
+  std::array<XrPosef, 2> poses{views[0].pose, views[1].pose};
+  s.eye_hold.apply(poses, position);
+  for (size_t i = 0; i < 2; ++i) frame.eyes[i] = {poses[i], views[i].fov};
   frame.should_render = true;
   frame.position_valid = position;
   return frame;

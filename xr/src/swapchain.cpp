@@ -64,10 +64,10 @@ uint32_t Swapchain::acquire() {
   uint32_t index = 0;
   XrSwapchainImageAcquireInfo acquire_info{XR_TYPE_SWAPCHAIN_IMAGE_ACQUIRE_INFO};
   PUSHPULL_XR_CHECK(impl_->instance, xrAcquireSwapchainImage(impl_->swapchain, &acquire_info, &index));
-  impl_->acquired = true;
   XrSwapchainImageWaitInfo wait_info{XR_TYPE_SWAPCHAIN_IMAGE_WAIT_INFO};
   wait_info.timeout = XR_INFINITE_DURATION;
   PUSHPULL_XR_CHECK(impl_->instance, xrWaitSwapchainImage(impl_->swapchain, &wait_info));
+  impl_->acquired = true;  // release() needs a waited image (an unwaited one: XR_ERROR_CALL_ORDER_INVALID)
   return index;
 }
 

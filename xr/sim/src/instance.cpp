@@ -23,6 +23,11 @@ constexpr ExtensionInfo kExtensions[] = {
     {XR_KHR_COMPOSITION_LAYER_DEPTH_EXTENSION_NAME, XR_KHR_composition_layer_depth_SPEC_VERSION},
 };
 
+// Whether the runtime offers the extension `name` (the vulkan1-only quirk withdraws XR_KHR_vulkan_enable2).
+bool offered(const char* name) {
+  return !(Config::from_env().vulkan1_only && std::strcmp(name, XR_KHR_VULKAN_ENABLE2_EXTENSION_NAME) == 0);
+}
+
 XrResult XRAPI_CALL enumerate_instance_extension_properties(const char* layer_name, uint32_t capacity,
                                                             uint32_t* count,
                                                             XrExtensionProperties* properties) {
@@ -31,10 +36,12 @@ XrResult XRAPI_CALL enumerate_instance_extension_properties(const char* layer_na
   if (capacity != 0)
     for (uint32_t i = 0; i < capacity; ++i)
       if (properties[i].type != XR_TYPE_EXTENSION_PROPERTIES) return XR_ERROR_VALIDATION_FAILURE;
-  const uint32_t n = sizeof(kExtensions) / sizeof(kExtensions[0]);
-  return two_call(capacity, count, n, [&](uint32_t i) {
-    std::snprintf(properties[i].extensionName, XR_MAX_EXTENSION_NAME_SIZE, "%s", kExtensions[i].name);
-    properties[i].extensionVersion = kExtensions[i].version;
+  std::vector<ExtensionInfo> listed;
+  for (const auto& e : kExtensions)
+    if (offered(e.name)) listed.push_back(e);
+  return two_call(capacity, count, uint32_t(listed.size()), [&](uint32_t i) {
+    std::snprintf(properties[i].extensionName, XR_MAX_EXTENSION_NAME_SIZE, "%s", listed[i].name);
+    properties[i].extensionVersion = listed[i].version;
   });
 }
 
@@ -45,7 +52,7 @@ XrResult XRAPI_CALL enumerate_api_layer_properties(uint32_t capacity, uint32_t* 
 
 bool supported_extension(const char* name) {
   for (const auto& e : kExtensions)
-    if (std::strcmp(e.name, name) == 0) return true;
+    if (std::strcmp(e.name, name) == 0) return offered(name);
   return false;
 }
 

@@ -61,6 +61,7 @@ Config Config::from_env() {
   c.position_late = quirk("position-late");
   c.stays_lost = quirk("stays-lost");
   c.ignores_exit = quirk("ignores-exit");
+  c.vulkan1_only = quirk("vulkan1-only");
   return c;
 }
 

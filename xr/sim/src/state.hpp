@@ -69,7 +69,9 @@ constexpr XrSystemId kSystemId = 1;
 //                                     that finds the room after start-up), stays-lost (after a scripted
 //                                     "loss" the headset never comes back: xrGetSystem says
 //                                     XR_ERROR_FORM_FACTOR_UNAVAILABLE), ignores-exit
-//                                     (xrRequestExitSession succeeds but the session goes on)
+//                                     (xrRequestExitSession succeeds but the session goes on),
+//                                     vulkan1-only (XR_KHR_vulkan_enable2 is neither listed nor accepted:
+//                                     a runtime with only the first Vulkan binding)
 struct Config {
   uint32_t width = 1440;
   uint32_t height = 1600;
@@ -98,6 +100,7 @@ struct Config {
   bool position_late = false;
   bool stays_lost = false;
   bool ignores_exit = false;
+  bool vulkan1_only = false;
   static Config from_env();
 };
 
