@@ -419,9 +419,9 @@ TEST(ReplayXr, BundledPaperSessionReplaysWithTheRecordedHashes) {
   const nlohmann::json metrics = nlohmann::json::parse(in);
   EXPECT_EQ(metrics.at("energy_trace").size(), std::size_t(metrics.at("iterations").get<int>()));
   EXPECT_GT(metrics.at("initial_energy").get<double>(), 0.0);
-  // The commit (a cold solve stopping within 64 iterations) checked its rate with the probe, and the replay
-  // reports it as `pushpull deform` does.
-  ASSERT_LE(metrics.at("iterations").get<int>(), 64);
+  // The commit (a cold asan solve stopping within 80 iterations) checked its rate with the probe, and the
+  // replay reports it as `pushpull deform` does.
+  ASSERT_LE(metrics.at("iterations").get<int>(), 80);
   EXPECT_FALSE(metrics.at("probe_rate").is_null());
   EXPECT_GT(metrics.at("probe_evaluations").get<int>(), 1);
   EXPECT_FALSE(metrics.at("estimate_rate").is_null());

@@ -6,8 +6,12 @@
 
 namespace pushpull::deform::detail {
 
-Anderson::Anderson(int window, Eigen::Index dimension)
-    : window_(window), dF_(dimension, window), dG_(dimension, window), gram_(window, window) {}
+Anderson::Anderson(int window, Eigen::Index dimension, int min_pairs)
+    : window_(window),
+      min_pairs_(std::clamp(min_pairs, 1, window)),
+      dF_(dimension, window),
+      dG_(dimension, window),
+      gram_(window, window) {}
 
 Eigen::VectorXd Anderson::step(const Eigen::Ref<const Eigen::VectorXd>& x,
                                const Eigen::Ref<const Eigen::VectorXd>& g, HelperThread* threads) {
@@ -66,6 +70,7 @@ Eigen::VectorXd Anderson::step(const Eigen::Ref<const Eigen::VectorXd>& x,
     reset();
     return g;
   }
+  if (m < min_pairs_) return g;  // too few pairs yet to extrapolate from
   Eigen::VectorXd next(n);
   auto combine = [&](int p) {
     const auto [begin, end] = range(p);

@@ -96,7 +96,10 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
   double energy = local_step(X, R, q, /*R_valid=*/false, 1, std::nullopt, &B, threads);
   result.initial_energy = energy;
   std::optional<detail::Anderson> anderson;
-  if (options.anderson_window > 0 && n_free > 0) anderson.emplace(options.anderson_window, 3 * n_free);
+  // asan extrapolates only from a full window (anderson.hpp says why); the other methods from the first pair.
+  if (options.anderson_window > 0 && n_free > 0)
+    anderson.emplace(options.anderson_window, 3 * n_free,
+                     options.method == Method::Asan ? options.anderson_window : 1);
   constexpr int kRateWindow = 8;
   // Per-triangle rotations: the cautious rate (error_estimate.hpp says why).
   const bool triangle_rotations = options.method == Method::ArapM || options.method == Method::ArapH ||
@@ -119,13 +122,18 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
   //   rate 8 did (2.1-5.9x), with 6% fewer iterations (2-13% per seed) and half the probe steps.
   // - The floor stops at kProbeMaxRate: 40 steps do not resolve rates closer to 1, and Ritz values >= 1
   //   (sr-arap's sweeps, arap-h's saddles: not self-adjoint; noise) would stall the solve at 0.9999.
-  // - asan: 8 windows. Its material is soft along d by design (mu^2 = 1e4 between directions), its slowest
+  // - asan: 8 windows at first. Its material is soft along d by design (mu^2 = 1e4 between directions), its
+  // slowest
   //   modes contract within 1e-3 of 1 and surface late: with 4 windows for every method, six seeds of random
   //   pulls (564 solves) had 5 stop more than 2x optimistic, all asan, after 33-41 iterations (up to 21.8x,
   //   the real car); with 8 for asan 2 (2.06x, 3.26x, before the 40 steps). arap-sr stops in 33-64 iterations
   //   were honest without a probe, and probing them would cost the 10K height field's arap-sr (37 iterations)
   //   41 more local-global steps, about doubling its time.
-  const int probe_before = (options.method == Method::Asan ? 8 : 4) * kRateWindow;
+  // - asan: 10 windows since its Anderson waits for a full window (anderson.hpp): the later stops on the real
+  //   car surface later still; with 8 windows one random pull of the car (988 vertices, seed 12345) stopped
+  //   after 68 iterations 2.47x optimistic. With 10 (and with 12) none of the twelve seeds' 1,139 solves
+  //   stopped more than 1.55x optimistic; 12 only cost more probe steps (37,884 against 36,408).
+  const int probe_before = (options.method == Method::Asan ? 10 : 4) * kRateWindow;
   constexpr int kProbeSteps = 40;
   constexpr double kProbeMaxRate = 0.999;
   bool probe_pending = !hinted;
