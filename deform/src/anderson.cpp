@@ -7,11 +7,11 @@
 namespace pushpull::deform::detail {
 
 Anderson::Anderson(int window, Eigen::Index dimension, int min_pairs)
-    : window_(window),
-      min_pairs_(std::clamp(min_pairs, 1, window)),
-      dF_(dimension, window),
-      dG_(dimension, window),
-      gram_(window, window) {}
+    : window_(std::max(window, 1)),
+      min_pairs_(std::clamp(min_pairs, 1, std::max(window, 1))),
+      dF_(dimension, window_),
+      dG_(dimension, window_),
+      gram_(window_, window_) {}
 
 Eigen::VectorXd Anderson::step(const Eigen::Ref<const Eigen::VectorXd>& x,
                                const Eigen::Ref<const Eigen::VectorXd>& g, HelperThread* threads) {

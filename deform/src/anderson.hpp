@@ -22,9 +22,11 @@ namespace pushpull::deform::detail {
 class Anderson {
  public:
   Anderson(int window, Eigen::Index dimension, int min_pairs = 1);
-  // x: current iterate, g = G(x). Returns the accelerated next iterate (g itself for the first call after
-  // construction or reset). The vectors' two halves are processed and their dot products summed separately
-  // (on two threads when `threads` is given; the same results either way).
+  // window >= 1; min_pairs is clamped to [1, window].
+  // x: current iterate, g = G(x). Returns the accelerated next iterate (g itself for the first min_pairs
+  // calls after construction or reset, and after a window whose normal equations give no finite solution,
+  // which also resets). The vectors' two halves are processed and their dot products summed separately (on
+  // two threads when `threads` is given; the same results either way).
   [[nodiscard]] Eigen::VectorXd step(const Eigen::Ref<const Eigen::VectorXd>& x,
                                      const Eigen::Ref<const Eigen::VectorXd>& g,
                                      HelperThread* threads = nullptr);

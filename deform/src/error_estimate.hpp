@@ -49,16 +49,17 @@
 // at 4.0e-3, estimate 5.2e-3). Values of modulus >= 1 with a positive real part stay (clamped): a slow mode
 // within 1e-4 of 1 can show above 1, and leaving those out as well (a further 8% fewer iterations on the
 // random pulls) made one real-car pull stop 2.10x optimistic after 215 iterations where keeping them took
-// 566. On the 1,126 random pulls of the README's twelve seeds (stopping_bench): 69,892 iterations and 32,759
-// probe steps before, 68,404 and 33,333 after (at 183d9c2, and the same at 4c51571, with sr-arap's
-// exemption and the empty-window rule), the largest true / estimate 1.97 both times (since asan's Anderson
-// waits for a full window, anderson.hpp: 61,900 iterations, 36,408 probe steps, largest 1.55); the fixed
-// problems' rows are unchanged but for asan on the hemisphere (40 -> 25 iterations, ratio 0.15) and the car's
-// warm starts (2 m region, unhinted 188 / 66 / 16 -> 154 / 24 / 23 iterations, hinted 186 / 38 / 27 -> 186 /
-// 24 / 23; true / estimate at most 1.40, where it was at most 0.38). sr-arap's rows are bit-identical.
-// Cautious keeps every value, its rule unchanged: it takes any recent value of modulus >= 1 as iterates
-// moving away. The estimate is then rho_hat-scaled largest per-vertex residual; the benchmark checks it
-// against references solved to 1e-9 for every method (deform_bench). Thread-safety: none; one per solve.
+// 566. On the random pulls of the README's twelve seeds (1,126 solves then) (stopping_bench): 69,892
+// iterations and 32,759 probe steps before, 68,404 and 33,333 after (at 183d9c2, and the same at 4c51571,
+// with sr-arap's exemption and the empty-window rule), the largest true / estimate 1.97 both times (since
+// asan's Anderson waits for a full window, anderson.hpp: 61,900 iterations, 36,408 probe steps,
+// largest 1.55); the fixed problems' rows are unchanged but for asan on the hemisphere (40 -> 25 iterations,
+// ratio 0.15) and the car's warm starts (2 m region, unhinted 188 / 66 / 16 -> 154 / 24 / 23 iterations,
+// hinted 186 / 38 / 27 -> 186 / 24 / 23; true / estimate at most 1.40, where it was at most 0.38). sr-arap's
+// rows are bit-identical. Cautious keeps every value, its rule unchanged: it takes any recent value of
+// modulus >= 1 as iterates moving away. The estimate is then rho_hat-scaled largest per-vertex residual; the
+// benchmark checks it against references solved to 1e-9 for every method (deform_bench). Thread-safety: none;
+// one per solve.
 #pragma once
 
 #include <Eigen/Core>

@@ -122,19 +122,19 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
   //   rate 8 did (2.1-5.9x), with 6% fewer iterations (2-13% per seed) and half the probe steps.
   // - The floor stops at kProbeMaxRate: 40 steps do not resolve rates closer to 1, and Ritz values >= 1
   //   (sr-arap's sweeps, arap-h's saddles: not self-adjoint; noise) would stall the solve at 0.9999.
-  // - asan: 8 windows at first. Its material is soft along d by design (mu^2 = 1e4 between directions), its
-  // slowest
-  //   modes contract within 1e-3 of 1 and surface late: with 4 windows for every method, six seeds of random
-  //   pulls (564 solves) had 5 stop more than 2x optimistic, all asan, after 33-41 iterations (up to 21.8x,
-  //   the real car); with 8 for asan 2 (2.06x, 3.26x, before the 40 steps). arap-sr stops in 33-64 iterations
-  //   were honest without a probe, and probing them would cost the 10K height field's arap-sr (37 iterations)
-  //   41 more local-global steps, about doubling its time.
-  // - asan: 10 windows since its Anderson waits for a full window (anderson.hpp): the later stops on the real
-  //   car surface later still; with 8 windows one random pull of the car (988 vertices, seed 12345) stopped
-  //   after 68 iterations 2.47x optimistic. With 10 (and with 12) none of the twelve seeds' 1,139 solves
-  //   stopped more than 1.55x optimistic; 12 only cost more probe steps (37,884 against 36,408).
+  // - asan: 10 windows (80 iterations). Its material is soft along d by design (mu^2 = 1e4 between
+  //   directions), its slowest modes contract within 1e-3 of 1 and surface late: with 4 windows for every
+  //   method, six seeds of random pulls (564 solves) had 5 stop more than 2x optimistic, all asan, after
+  //   33-41 iterations (up to 21.8x, the real car); with 8 for asan 2 (2.06x, 3.26x, before the 40 steps).
+  //   Since asan's Anderson waits for a full window (anderson.hpp) its stops on the real car come later
+  //   still: with 8 windows one random pull of the car (988 vertices, seed 12345) stopped after 68
+  //   iterations 2.47x optimistic; with 10 (and with 12) none of the twelve seeds' 1,139 solves stopped more
+  //   than 1.55x optimistic, 12 only costing more probe steps (37,884 against 36,408). arap-sr stops in 33-64
+  //   iterations were honest without a probe, and probing them would cost the 10K height field's arap-sr (37
+  //   iterations) 41 more local-global steps, about doubling its time.
   const int probe_before = (options.method == Method::Asan ? 10 : 4) * kRateWindow;
   constexpr int kProbeSteps = 40;
+  constexpr double kFixedPointMove = 1e-14;  // a plain step's move / reference that counts as none
   constexpr double kProbeMaxRate = 0.999;
   bool probe_pending = !hinted;
   // DeformResult::rate_settled: a warm start with a settled hint rests on it from the start; other solves
@@ -228,9 +228,10 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
     std::optional<double> error;
     const std::optional<double> rate = contraction.rate();
     if (rate) error = move / (1.0 - *rate);
-    // A plain step that does not move is at a fixed point of G, the minimiser: exact whatever the rate (the
-    // secant pairs of a solve that never moves, d = 0, hold no Ritz value that counts, hence no rate).
-    if (move == 0.0) error = 0.0;
+    // A plain step that does not move (to rounding: 1e-14 of the reference length) is at a fixed point of G,
+    // a stationary point of the energy: exact whatever the rate (the secant pairs of a solve that never
+    // moves, d = 0, hold no Ritz value that counts, hence no rate).
+    if (move <= kFixedPointMove) error = 0.0;
     result.error_estimate = error;
     result.estimate_rate = rate;
     result.contraction_rate = contraction.recent_rate();
@@ -252,7 +253,7 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
       }
     }
     if (options.tolerance > 0.0 && error && *error <= options.tolerance) {
-      if (probe_pending && iteration <= probe_before && move > 0.0) {  // a move of 0 is exact
+      if (probe_pending && iteration <= probe_before && move > kFixedPointMove) {
         probe_pending = false;
         rate_settled = true;
         const detail::RateProbe found = probe_at(X, iteration);
@@ -266,7 +267,8 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
         const double floor = std::min(1.0 - 0.5 * (1.0 - found.rate), kProbeMaxRate);
         contraction.set_floor(floor);
         result.contraction_rate = contraction.recent_rate();
-        if (!rate || floor > *rate) {  // a slower mode than the iterates have shown: it bounds the error
+        if (!rate || floor > *rate) {  // (a rate is known here: a probe needs a move above the fixed point's)
+                                       // // a slower mode than the iterates have shown: it bounds the error
           const std::optional<double> raised = contraction.rate();
           result.estimate_rate = raised;
           if (raised) result.error_estimate = move / (1.0 - *raised);

@@ -120,6 +120,11 @@ TEST(SolverDeformer, ZeroDisplacementKeepsRestPose) {
   const DeformResult r = deform(*dome.mesh, dome.roi, Eigen::Vector3d::Zero());
   EXPECT_LT((r.V - dome.mesh->V).norm(), 1e-12);
   EXPECT_TRUE(r.converged);
+  // A plain step that does not move is exact: the first iteration stops, with no probe.
+  EXPECT_LE(r.iterations, 2);
+  EXPECT_EQ(r.probe_evaluations, 0);
+  ASSERT_TRUE(r.error_estimate.has_value());
+  EXPECT_EQ(*r.error_estimate, 0.0);
   EXPECT_FALSE(r.warnings.empty());  // asan without a direction says it used plain weights
 }
 

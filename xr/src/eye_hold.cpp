@@ -1,36 +1,34 @@
 #include "eye_hold.hpp"
 
+#include <glm/gtc/quaternion.hpp>
+#include <glm/vec3.hpp>
+
 namespace pushpull::xr::detail {
 namespace {
 
-// v rotated by the unit quaternion q (q v q^-1), or by its inverse.
-XrVector3f rotate(const XrQuaternionf& q, const XrVector3f& v, bool inverse = false) {
-  const float s = inverse ? -1.0f : 1.0f;
-  const float qx = s * q.x, qy = s * q.y, qz = s * q.z, qw = q.w;
-  // t = 2 (q_xyz x v); v' = v + w t + q_xyz x t
-  const float tx = 2.0f * (qy * v.z - qz * v.y), ty = 2.0f * (qz * v.x - qx * v.z),
-              tz = 2.0f * (qx * v.y - qy * v.x);
-  return {v.x + qw * tx + (qy * tz - qz * ty), v.y + qw * ty + (qz * tx - qx * tz),
-          v.z + qw * tz + (qx * ty - qy * tx)};
+glm::quat to_glm(const XrQuaternionf& q) {
+  return glm::quat(q.w, q.x, q.y, q.z);
+}
+glm::vec3 to_glm(const XrVector3f& v) {
+  return {v.x, v.y, v.z};
+}
+XrVector3f to_xr(const glm::vec3& v) {
+  return {v.x, v.y, v.z};
 }
 
 }  // namespace
 
 void EyeHold::apply(std::array<XrPosef, 2>& views, bool position_valid) {
   if (position_valid) {
-    const XrVector3f &a = views[0].position, &b = views[1].position;
-    head_centre_ = {0.5f * (a.x + b.x), 0.5f * (a.y + b.y), 0.5f * (a.z + b.z)};
-    for (size_t i = 0; i < 2; ++i) {
-      const XrVector3f& p = views[i].position;
-      const XrVector3f offset{p.x - head_centre_.x, p.y - head_centre_.y, p.z - head_centre_.z};
-      eye_offset_[i] = rotate(views[i].orientation, offset, /*inverse=*/true);
-    }
+    const glm::vec3 centre = 0.5f * (to_glm(views[0].position) + to_glm(views[1].position));
+    head_centre_ = to_xr(centre);
+    for (size_t i = 0; i < 2; ++i)
+      eye_offset_[i] =
+          to_xr(glm::conjugate(to_glm(views[i].orientation)) * (to_glm(views[i].position) - centre));
     return;
   }
-  for (size_t i = 0; i < 2; ++i) {
-    const XrVector3f o = rotate(views[i].orientation, eye_offset_[i]);
-    views[i].position = {head_centre_.x + o.x, head_centre_.y + o.y, head_centre_.z + o.z};
-  }
+  for (size_t i = 0; i < 2; ++i)
+    views[i].position = to_xr(to_glm(head_centre_) + to_glm(views[i].orientation) * to_glm(eye_offset_[i]));
 }
 
 }  // namespace pushpull::xr::detail

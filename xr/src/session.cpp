@@ -273,6 +273,7 @@ struct Session::Impl {
     // a change pending for the old space is not one for the new.
     stage_is_local = false;
     space_changed = false;
+    eye_hold = {};  // its head centre was in the old space's coordinates
     uint32_t n = 0;
     CHECK(xrEnumerateReferenceSpaces(session, 0, &n, nullptr));
     std::vector<XrReferenceSpaceType> types(n);

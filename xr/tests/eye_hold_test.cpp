@@ -56,6 +56,27 @@ TEST(EyeHold, WithoutPositionTheEyesTurnAboutTheLastHeadCentre) {
   }
 }
 
+// Located with the head turned: the offsets are kept in the eyes' own frames, so the same orientation
+// without position gives the same eyes back, and a further quarter turn turns them about the head centre.
+TEST(EyeHold, OffsetsAreKeptInTheEyesOwnFrames) {
+  EyeHold hold;
+  const float a = 0.7f;
+  const XrVector3f centre{0.3f, 1.65f, -0.4f};
+  const XrVector3f right{0.032f * std::cos(a), 0.0f, -0.032f * std::sin(a)};  // +X turned by the yaw
+  std::array<XrPosef, 2> located{pose(yaw(a), {centre.x - right.x, centre.y, centre.z - right.z}),
+                                 pose(yaw(a), {centre.x + right.x, centre.y, centre.z + right.z})};
+  hold.apply(located, true);
+  std::array<XrPosef, 2> same{pose(yaw(a), {}), pose(yaw(a), {})};
+  hold.apply(same, false);
+  for (size_t i = 0; i < 2; ++i) EXPECT_LT(distance(same[i].position, located[i].position), 1e-6f) << i;
+  const float b = a + float(M_PI / 2);
+  std::array<XrPosef, 2> turned{pose(yaw(b), {}), pose(yaw(b), {})};
+  hold.apply(turned, false);
+  const XrVector3f right_b{0.032f * std::cos(b), 0.0f, -0.032f * std::sin(b)};
+  EXPECT_LT(distance(turned[0].position, {centre.x - right_b.x, centre.y, centre.z - right_b.z}), 1e-6f);
+  EXPECT_LT(distance(turned[1].position, {centre.x + right_b.x, centre.y, centre.z + right_b.z}), 1e-6f);
+}
+
 // Never located (a 3-DoF headset): a standing reviewer's head 1.6 m above the stage origin.
 TEST(EyeHold, NeverLocatedEyesStandAtTheOrigin) {
   EyeHold hold;

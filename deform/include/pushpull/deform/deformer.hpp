@@ -152,7 +152,10 @@ struct DeformOptions {
   // Anderson acceleration (Peng et al. 2018) of the local-global fixed point with this many previous
   // iterates; 0 = off (the paper's plain iterations). Falls back to the plain step whenever the accelerated
   // iterate raises the energy, so the energy trace never rises. On by default: it reaches the same shape
-  // in 5-10x fewer iterations (asan on a 10K height field: 16 instead of 117 to 1e-3 |d|).
+  // in 5-10x fewer iterations (asan on a 10K height field: 16 instead of 117 to 1e-3 |d|, when measured
+  // before asan waited for a full window). asan extrapolates only once the window holds this many iterates'
+  // differences (plain steps until then, at the start and after each rejected step; deform/src/anderson.hpp
+  // says why), so a larger window also means more plain steps for asan.
   int anderson_window = 5;
   int arap_n_rings = 2;         // arap-n: n >= 1
   double sr_arap_alpha = 0.02;  // sr-arap: alpha >= 0 (dimensionless)
@@ -185,7 +188,7 @@ struct DeformResult {
   // nearby solve.
   std::optional<double> contraction_rate;
   // Whether contraction_rate has seen what a cold solve's first iterations cannot: true once the rate probe
-  // has run, once the solve is past the probe's window (32 iterations, asan 64), or from the start in a
+  // has run, once the solve is past the probe's window (32 iterations, asan 80), or from the start in a
   // warm start whose hint was settled. A drag's request superseded in its first iterations hands on an
   // unsettled rate.
   bool rate_settled = false;
@@ -193,7 +196,7 @@ struct DeformResult {
   // rate_hint: of its last 10 estimates), at least the hint and the probe's floor
   // (deform/src/error_estimate.hpp says why it may exceed contraction_rate).
   std::optional<double> estimate_rate;
-  // A solve that reaches its tolerance within its first 32 iterations (asan: 64) without a rate_hint (a cold
+  // A solve that reaches its tolerance within its first 32 iterations (asan: 80) without a rate_hint (a cold
   // solve, or a warm start that brings no rate) first checks the rate its estimate rests on: 40 Arnoldi steps
   // on the local-global map's Jacobian from a fixed random start, each one extra local and global step. A
   // slower rate found there (its distance to 1 halved, taken up to 0.999) raises the estimate, and the solve
