@@ -1493,15 +1493,50 @@ wait $pid
 
 // A runtime with only the first Vulkan binding (no XR_KHR_vulkan_enable2): the message names the extension
 // it lacks, the runtime it looked for and how to point at another.
-TEST(ReviewXr, ARuntimeWithoutVulkanEnable2IsNamedWithTheMissingExtension) {
+// A runtime with only the first Vulkan binding (XR_KHR_vulkan_enable; xr/sim's vulkan1-only, which names
+// instance and device extensions to enable): pushpull creates the Vulkan instance and device itself, says so,
+// and the review runs through a lost session and its new one (requirements asked again) to a commit, with
+// the OpenXR core validation layer and the Vulkan validation layer on the instance it made silent.
+TEST(ReviewXr, ARuntimeWithOnlyVulkanEnableReviewsThroughIt) {
+  const fs::path dir = test_dir();
+  const ReviewRun run = run_review(dir, drag_broken_by("loss"), "--validation",
+                                   "XR_ENABLE_API_LAYERS=XR_APILAYER_LUNARG_core_validation "
+                                   "PUSHPULL_XR_SIM_QUIRKS=vulkan1-only,requirements-per-session");
+  ASSERT_EQ(run.result.status, 0) << run.result.output;
+  EXPECT_NE(run.result.output.find("offers XR_KHR_vulkan_enable, not enable2"), std::string::npos)
+      << run.result.output;
+  EXPECT_NE(run.result.output.find("the headset is back"), std::string::npos) << run.result.output;
+  EXPECT_EQ(run.of("commit").size(), 1u) << run.result.output;
+  EXPECT_NE(run.result.output.find("Core Validation"), std::string::npos)
+      << "the core validation layer did not load";
+  std::istringstream lines(run.result.output);
+  for (std::string line; std::getline(lines, line);)
+    for (const char* bad : {"VUID", "Error", "ERROR", "Warning", "WARNING", "vulkan validation"})
+      EXPECT_EQ(line.find(bad), std::string::npos) << line;
+}
+
+// The eyes look the same through either Vulkan binding.
+TEST(ReviewXr, EyesLookTheSameThroughEitherVulkanBinding) {
+  const fs::path dir = test_dir();
+  const auto usual = left_eye_while_aiming(dir, "");
+  const auto first_binding = left_eye_while_aiming(dir, "PUSHPULL_XR_SIM_QUIRKS=vulkan1-only");
+  ASSERT_EQ(usual.width, first_binding.width);
+  ASSERT_EQ(usual.height, first_binding.height);
+  ASSERT_GT(usual.width, 0u);
+  EXPECT_EQ(usual.pixels, first_binding.pixels);
+}
+
+// A runtime with neither Vulkan binding is named with both missing extensions.
+TEST(ReviewXr, ARuntimeWithoutAVulkanBindingIsNamedWithTheMissingExtensions) {
   const auto result =
-      run_command("env -u DISPLAY -u WAYLAND_DISPLAY PUSHPULL_XR_SIM_QUIRKS=vulkan1-only " +
+      run_command("env -u DISPLAY -u WAYLAND_DISPLAY PUSHPULL_XR_SIM_QUIRKS=no-vulkan " +
                   pushpull::testing::xr_sim_environment() + " " + PUSHPULL_EXECUTABLE + " review " + kHood);
   EXPECT_NE(result.status, 0);
   EXPECT_NE(result.output.find("no usable OpenXR runtime: looked for the runtime in XR_RUNTIME_JSON="),
             std::string::npos)
       << result.output;
-  EXPECT_NE(result.output.find("it does not offer XR_KHR_vulkan_enable2 "), std::string::npos)
+  EXPECT_NE(result.output.find("it does not offer XR_KHR_vulkan_enable2 (nor XR_KHR_vulkan_enable) "),
+            std::string::npos)
       << result.output;
 }
 

@@ -109,7 +109,13 @@ struct Input::Impl {
   ~Impl() {
     for (XrSpace s : aim_spaces)
       if (s != XR_NULL_HANDLE) xrDestroySpace(s);
-    if (set != XR_NULL_HANDLE) xrDestroyActionSet(set);  // destroys its actions
+    // xrDestroyActionSet destroys its actions, but the OpenXR core validation layer (1.0.20) keeps tracking
+    // them: when a new session's action set reuses an old action's handle value (xr/sim's handles are
+    // addresses) the layer failed xrCreateAction with "Handle ... already inserted" (XR_ERROR_VALIDATION_
+    // FAILURE) after a lost session. Destroying them one by one first keeps its tracking right.
+    for (XrAction& a : actions)
+      if (a != XR_NULL_HANDLE) xrDestroyAction(a);
+    if (set != XR_NULL_HANDLE) xrDestroyActionSet(set);
   }
 
   XrPath path(const std::string& text) const {

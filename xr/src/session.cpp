@@ -7,7 +7,9 @@
 #include <cstdlib>
 #include <cstring>
 #include <optional>
+#include <string>
 #include <thread>
+#include <vector>
 
 #include "eye_hold.hpp"
 
@@ -28,8 +30,8 @@ constexpr const char* kPointAtRuntime =
     "point at one with XR_RUNTIME_JSON=/path/to/runtime.json (the simulated runtime: "
     "XR_RUNTIME_JSON=build/xr/sim/pushpull_xr_sim.json)";
 
-// The ones of `wanted` the runtime does not list (comma-separated; all of them when it lists none).
-std::string missing_extensions(const std::vector<const char*>& wanted) {
+// The instance extensions the runtime lists (none when it cannot list them).
+std::vector<XrExtensionProperties> offered_extensions() {
   uint32_t n = 0;
   std::vector<XrExtensionProperties> offered;
   if (XR_SUCCEEDED(xrEnumerateInstanceExtensionProperties(nullptr, 0, &n, nullptr))) {
@@ -37,14 +39,62 @@ std::string missing_extensions(const std::vector<const char*>& wanted) {
     if (XR_FAILED(xrEnumerateInstanceExtensionProperties(nullptr, n, &n, offered.data()))) n = 0;
     offered.resize(n);
   }
+  return offered;
+}
+
+bool lists(const std::vector<XrExtensionProperties>& offered, const char* name) {
+  return std::any_of(offered.begin(), offered.end(),
+                     [&](const XrExtensionProperties& e) { return std::strcmp(e.extensionName, name) == 0; });
+}
+
+// The ones of `wanted` the runtime does not list (comma-separated; all of them when it lists none).
+std::string missing_extensions(const std::vector<const char*>& wanted) {
+  const std::vector<XrExtensionProperties> offered = offered_extensions();
   std::string missing;
-  for (const char* name : wanted) {
-    const bool listed = std::any_of(offered.begin(), offered.end(), [&](const XrExtensionProperties& e) {
-      return std::strcmp(e.extensionName, name) == 0;
-    });
-    if (!listed) missing += (missing.empty() ? "" : ", ") + std::string(name);
-  }
+  for (const char* name : wanted)
+    if (!lists(offered, name)) missing += (missing.empty() ? "" : ", ") + std::string(name);
   return missing.empty() ? "an extension it was asked for" : missing;
+}
+
+// XR_KHR_vulkan_enable's space-separated list of the Vulkan instance or device extensions the runtime needs
+// (xrGetVulkanInstanceExtensionsKHR / xrGetVulkanDeviceExtensionsKHR, which share a signature).
+std::vector<std::string> runtime_vulkan_extensions(XrInstance instance, XrSystemId system,
+                                                   PFN_xrGetVulkanInstanceExtensionsKHR get,
+                                                   const char* call) {
+  uint32_t n = 0;
+  check_xr(get(instance, system, 0, &n, nullptr), instance, call, __FILE__, __LINE__);
+  std::string buffer(n, '\0');
+  if (n > 0) check_xr(get(instance, system, n, &n, buffer.data()), instance, call, __FILE__, __LINE__);
+  buffer.resize(std::min<size_t>(buffer.size(), n));
+  std::vector<std::string> names;
+  std::string name;
+  for (const char c : buffer + ' ') {
+    if (c == ' ' || c == '\0') {
+      if (!name.empty()) names.push_back(name);
+      name.clear();
+    } else {
+      name += c;
+    }
+  }
+  return names;
+}
+
+// Adds the names of `more` that `list` lacks (list's pointers point into `more` or the caller's strings).
+void add_unique(std::vector<const char*>& list, const std::vector<std::string>& more) {
+  for (const std::string& name : more)
+    if (std::none_of(list.begin(), list.end(), [&](const char* e) { return name == e; }))
+      list.push_back(name.c_str());
+}
+
+// The ones of `wanted` that `available` (Vulkan's extension properties) lacks, comma-separated.
+std::string missing_vulkan(const std::vector<const char*>& wanted,
+                           const std::vector<VkExtensionProperties>& available) {
+  std::string missing;
+  for (const char* name : wanted)
+    if (std::none_of(available.begin(), available.end(),
+                     [&](const VkExtensionProperties& e) { return std::strcmp(e.extensionName, name) == 0; }))
+      missing += (missing.empty() ? "" : ", ") + std::string(name);
+  return missing;
 }
 
 template <class Fn>
@@ -90,6 +140,10 @@ struct Session::Impl {
   XrSessionState state = XR_SESSION_STATE_UNKNOWN;
   bool running = false, exit = false, lost = false;
   bool instance_lost = false;  // the instance itself (not only the session): nothing can be recreated
+  // XR_KHR_vulkan_enable2 (the runtime creates the Vulkan instance and device from our create infos), or,
+  // where the runtime offers only XR_KHR_vulkan_enable, that one (we create them with the extensions it
+  // names).
+  bool vulkan_enable2 = true;
   std::string runtime_name, system_name;
   SessionOptions options;  // as created (eye size): a recreated session uses them again
 
@@ -103,7 +157,13 @@ struct Session::Impl {
   }
 
   void create_instance(const SessionOptions& options) {
-    std::vector<const char*> extensions{XR_KHR_VULKAN_ENABLE2_EXTENSION_NAME};
+    {
+      const std::vector<XrExtensionProperties> offered = offered_extensions();
+      vulkan_enable2 = lists(offered, XR_KHR_VULKAN_ENABLE2_EXTENSION_NAME) ||
+                       !lists(offered, XR_KHR_VULKAN_ENABLE_EXTENSION_NAME);
+    }
+    std::vector<const char*> extensions{vulkan_enable2 ? XR_KHR_VULKAN_ENABLE2_EXTENSION_NAME
+                                                       : XR_KHR_VULKAN_ENABLE_EXTENSION_NAME};
     for (const auto& e : options.extensions) extensions.push_back(e.c_str());
     XrInstanceCreateInfo info{XR_TYPE_INSTANCE_CREATE_INFO};
     std::snprintf(info.applicationInfo.applicationName, XR_MAX_APPLICATION_NAME_SIZE, "%s",
@@ -114,8 +174,11 @@ struct Session::Impl {
     info.enabledExtensionNames = extensions.data();
     if (const XrResult r = xrCreateInstance(&info, &instance); XR_FAILED(r)) {
       instance = XR_NULL_HANDLE;
+      std::string missing = missing_extensions(extensions);
+      if (missing.find(XR_KHR_VULKAN_ENABLE2_EXTENSION_NAME) != std::string::npos)  // neither Vulkan one
+        missing += " (nor " XR_KHR_VULKAN_ENABLE_EXTENSION_NAME ")";
       const std::string why = r == XR_ERROR_EXTENSION_NOT_PRESENT
-                                  ? "it does not offer " + missing_extensions(extensions)
+                                  ? "it does not offer " + missing
                                   : "xrCreateInstance failed with " + result_name(XR_NULL_HANDLE, r);
       throw RuntimeUnavailable("no usable OpenXR runtime: looked for " + runtime_looked_for() + ", " + why +
                                    " (the loader's and runtime's messages above say more); " +
@@ -144,21 +207,94 @@ struct Session::Impl {
 
   // The spec requires this call before every xrCreateSession (also the one after a lost session: SteamVR
   // refuses a session whose requirements were not asked for).
+  // (XrGraphicsRequirementsVulkan2KHR is XrGraphicsRequirementsVulkanKHR, the structure type the same.)
   XrGraphicsRequirementsVulkan2KHR graphics_requirements() {
-    auto requirements = instance_function<PFN_xrGetVulkanGraphicsRequirements2KHR>(
-        instance, "xrGetVulkanGraphicsRequirements2KHR");
     XrGraphicsRequirementsVulkan2KHR req{XR_TYPE_GRAPHICS_REQUIREMENTS_VULKAN2_KHR};
-    CHECK(requirements(instance, system, &req));
+    if (vulkan_enable2) {
+      auto requirements = instance_function<PFN_xrGetVulkanGraphicsRequirements2KHR>(
+          instance, "xrGetVulkanGraphicsRequirements2KHR");
+      CHECK(requirements(instance, system, &req));
+    } else {
+      auto requirements = instance_function<PFN_xrGetVulkanGraphicsRequirementsKHR>(
+          instance, "xrGetVulkanGraphicsRequirementsKHR");
+      CHECK(requirements(instance, system, &req));
+    }
     return req;
   }
 
+  // XR_KHR_vulkan_enable: vkCreateInstance with the runtime's instance extensions added to `vci`'s.
+  void create_vk_instance_v1(VkInstanceCreateInfo vci) {
+    const std::vector<std::string> needed = runtime_vulkan_extensions(
+        instance, system,
+        instance_function<PFN_xrGetVulkanInstanceExtensionsKHR>(instance, "xrGetVulkanInstanceExtensionsKHR"),
+        "xrGetVulkanInstanceExtensionsKHR");
+    std::vector<const char*> names(vci.ppEnabledExtensionNames,
+                                   vci.ppEnabledExtensionNames + vci.enabledExtensionCount);
+    add_unique(names, needed);
+    vci.enabledExtensionCount = uint32_t(names.size());
+    vci.ppEnabledExtensionNames = names.data();
+    const VkResult vr = vkCreateInstance(&vci, nullptr, &vk.instance);
+    if (vr == VK_SUCCESS) return;
+    vk.instance = VK_NULL_HANDLE;
+    uint32_t n = 0;
+    std::vector<VkExtensionProperties> available;
+    if (vkEnumerateInstanceExtensionProperties(nullptr, &n, nullptr) == VK_SUCCESS) {
+      available.resize(n);
+      if (vkEnumerateInstanceExtensionProperties(nullptr, &n, available.data()) != VK_SUCCESS) n = 0;
+      available.resize(n);
+    }
+    const std::string missing = missing_vulkan(names, available);
+    if (vr == VK_ERROR_EXTENSION_NOT_PRESENT && !missing.empty())
+      throw RuntimeUnavailable(
+          "the OpenXR runtime \"" + runtime_name + "\" needs Vulkan instance extensions " +
+              "the Vulkan driver does not offer: " + missing + " (update the GPU driver)",
+          XR_ERROR_RUNTIME_FAILURE);
+    throw XrError("vkCreateInstance for the runtime's XR_KHR_vulkan_enable failed with VkResult " +
+                      std::to_string(int(vr)),
+                  XR_ERROR_RUNTIME_FAILURE);
+  }
+
+  // XR_KHR_vulkan_enable: vkCreateDevice with the runtime's device extensions added to `dci`'s.
+  void create_vk_device_v1(VkDeviceCreateInfo dci) {
+    const std::vector<std::string> needed = runtime_vulkan_extensions(
+        instance, system,
+        instance_function<PFN_xrGetVulkanDeviceExtensionsKHR>(instance, "xrGetVulkanDeviceExtensionsKHR"),
+        "xrGetVulkanDeviceExtensionsKHR");
+    std::vector<const char*> names(dci.ppEnabledExtensionNames,
+                                   dci.ppEnabledExtensionNames + dci.enabledExtensionCount);
+    add_unique(names, needed);
+    dci.enabledExtensionCount = uint32_t(names.size());
+    dci.ppEnabledExtensionNames = names.data();
+    const VkResult vr = vkCreateDevice(vk.physical_device, &dci, nullptr, &vk.device);
+    if (vr == VK_SUCCESS) return;
+    vk.device = VK_NULL_HANDLE;
+    uint32_t n = 0;
+    std::vector<VkExtensionProperties> available;
+    if (vkEnumerateDeviceExtensionProperties(vk.physical_device, nullptr, &n, nullptr) == VK_SUCCESS) {
+      available.resize(n);
+      if (vkEnumerateDeviceExtensionProperties(vk.physical_device, nullptr, &n, available.data()) !=
+          VK_SUCCESS)
+        n = 0;
+      available.resize(n);
+    }
+    const std::string missing = missing_vulkan(names, available);
+    if (vr == VK_ERROR_EXTENSION_NOT_PRESENT && !missing.empty())
+      throw RuntimeUnavailable("the OpenXR runtime \"" + runtime_name + "\" needs Vulkan device extensions " +
+                                   "its GPU does not offer: " + missing + " (update the GPU driver)",
+                               XR_ERROR_RUNTIME_FAILURE);
+    throw XrError("vkCreateDevice for the runtime's XR_KHR_vulkan_enable failed with VkResult " +
+                      std::to_string(int(vr)),
+                  XR_ERROR_RUNTIME_FAILURE);
+  }
+
   void create_vulkan(const SessionOptions& options) {
-    auto create_vk_instance =
-        instance_function<PFN_xrCreateVulkanInstanceKHR>(instance, "xrCreateVulkanInstanceKHR");
-    auto get_device =
-        instance_function<PFN_xrGetVulkanGraphicsDevice2KHR>(instance, "xrGetVulkanGraphicsDevice2KHR");
-    auto create_device = instance_function<PFN_xrCreateVulkanDeviceKHR>(instance, "xrCreateVulkanDeviceKHR");
     const XrGraphicsRequirementsVulkan2KHR req = graphics_requirements();
+    if (!vulkan_enable2)
+      std::fprintf(
+          stderr,
+          "pushpull: note: the OpenXR runtime \"%s\" offers XR_KHR_vulkan_enable, not enable2: pushpull "
+          "creates the Vulkan instance and device itself, with the extensions the runtime names\n",
+          runtime_name.c_str());
     if (XR_VERSION_MAJOR(req.maxApiVersionSupported) < 1 ||
         (XR_VERSION_MAJOR(req.maxApiVersionSupported) == 1 &&
          XR_VERSION_MINOR(req.maxApiVersionSupported) < 3))
@@ -187,21 +323,31 @@ struct Session::Impl {
     for (const auto& l : options.vulkan_layers) layers.push_back(l.c_str());
     vci.enabledLayerCount = uint32_t(layers.size());
     vci.ppEnabledLayerNames = layers.data();
-    XrVulkanInstanceCreateInfoKHR xci{XR_TYPE_VULKAN_INSTANCE_CREATE_INFO_KHR};
-    xci.systemId = system;
-    xci.pfnGetInstanceProcAddr = &vkGetInstanceProcAddr;
-    xci.vulkanCreateInfo = &vci;
     VkResult vr = VK_ERROR_UNKNOWN;
-    CHECK(create_vk_instance(instance, &xci, &vk.instance, &vr));
-    if (vr != VK_SUCCESS)
-      throw XrError("vkCreateInstance through xrCreateVulkanInstanceKHR failed with VkResult " +
-                        std::to_string(int(vr)),
-                    XR_ERROR_RUNTIME_FAILURE);
-
-    XrVulkanGraphicsDeviceGetInfoKHR gi{XR_TYPE_VULKAN_GRAPHICS_DEVICE_GET_INFO_KHR};
-    gi.systemId = system;
-    gi.vulkanInstance = vk.instance;
-    CHECK(get_device(instance, &gi, &vk.physical_device));
+    if (vulkan_enable2) {
+      XrVulkanInstanceCreateInfoKHR xci{XR_TYPE_VULKAN_INSTANCE_CREATE_INFO_KHR};
+      xci.systemId = system;
+      xci.pfnGetInstanceProcAddr = &vkGetInstanceProcAddr;
+      xci.vulkanCreateInfo = &vci;
+      auto create_vk_instance =
+          instance_function<PFN_xrCreateVulkanInstanceKHR>(instance, "xrCreateVulkanInstanceKHR");
+      CHECK(create_vk_instance(instance, &xci, &vk.instance, &vr));
+      if (vr != VK_SUCCESS)
+        throw XrError("vkCreateInstance through xrCreateVulkanInstanceKHR failed with VkResult " +
+                          std::to_string(int(vr)),
+                      XR_ERROR_RUNTIME_FAILURE);
+      XrVulkanGraphicsDeviceGetInfoKHR gi{XR_TYPE_VULKAN_GRAPHICS_DEVICE_GET_INFO_KHR};
+      gi.systemId = system;
+      gi.vulkanInstance = vk.instance;
+      auto get_device =
+          instance_function<PFN_xrGetVulkanGraphicsDevice2KHR>(instance, "xrGetVulkanGraphicsDevice2KHR");
+      CHECK(get_device(instance, &gi, &vk.physical_device));
+    } else {
+      create_vk_instance_v1(vci);
+      auto get_device =
+          instance_function<PFN_xrGetVulkanGraphicsDeviceKHR>(instance, "xrGetVulkanGraphicsDeviceKHR");
+      CHECK(get_device(instance, system, vk.instance, &vk.physical_device));
+    }
     {  // A GPU without Vulkan 1.3 cannot run the renderer: say so, and the review opens the desktop window.
       VkPhysicalDeviceProperties gpu{};
       vkGetPhysicalDeviceProperties(vk.physical_device, &gpu);
@@ -242,16 +388,22 @@ struct Session::Impl {
     for (const auto& e : options.vulkan_device_extensions) device_extensions.push_back(e.c_str());
     dci.enabledExtensionCount = uint32_t(device_extensions.size());
     dci.ppEnabledExtensionNames = device_extensions.data();
-    XrVulkanDeviceCreateInfoKHR xdci{XR_TYPE_VULKAN_DEVICE_CREATE_INFO_KHR};
-    xdci.systemId = system;
-    xdci.pfnGetInstanceProcAddr = &vkGetInstanceProcAddr;
-    xdci.vulkanPhysicalDevice = vk.physical_device;
-    xdci.vulkanCreateInfo = &dci;
-    CHECK(create_device(instance, &xdci, &vk.device, &vr));
-    if (vr != VK_SUCCESS)
-      throw XrError(
-          "vkCreateDevice through xrCreateVulkanDeviceKHR failed with VkResult " + std::to_string(int(vr)),
-          XR_ERROR_RUNTIME_FAILURE);
+    if (vulkan_enable2) {
+      XrVulkanDeviceCreateInfoKHR xdci{XR_TYPE_VULKAN_DEVICE_CREATE_INFO_KHR};
+      xdci.systemId = system;
+      xdci.pfnGetInstanceProcAddr = &vkGetInstanceProcAddr;
+      xdci.vulkanPhysicalDevice = vk.physical_device;
+      xdci.vulkanCreateInfo = &dci;
+      auto create_device =
+          instance_function<PFN_xrCreateVulkanDeviceKHR>(instance, "xrCreateVulkanDeviceKHR");
+      CHECK(create_device(instance, &xdci, &vk.device, &vr));
+      if (vr != VK_SUCCESS)
+        throw XrError(
+            "vkCreateDevice through xrCreateVulkanDeviceKHR failed with VkResult " + std::to_string(int(vr)),
+            XR_ERROR_RUNTIME_FAILURE);
+    } else {
+      create_vk_device_v1(dci);
+    }
     vkGetDeviceQueue(vk.device, vk.queue_family_index, 0, &vk.queue);
   }
 

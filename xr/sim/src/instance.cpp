@@ -23,9 +23,14 @@ constexpr ExtensionInfo kExtensions[] = {
     {XR_KHR_COMPOSITION_LAYER_DEPTH_EXTENSION_NAME, XR_KHR_composition_layer_depth_SPEC_VERSION},
 };
 
-// Whether the runtime offers the extension `name` (the vulkan1-only quirk withdraws XR_KHR_vulkan_enable2).
+// Whether the runtime offers the extension `name` (the vulkan1-only quirk withdraws XR_KHR_vulkan_enable2,
+// no-vulkan both Vulkan extensions).
 bool offered(const char* name) {
-  return !(Config::from_env().vulkan1_only && std::strcmp(name, XR_KHR_VULKAN_ENABLE2_EXTENSION_NAME) == 0);
+  const Config config = Config::from_env();
+  if ((config.vulkan1_only || config.no_vulkan) &&
+      std::strcmp(name, XR_KHR_VULKAN_ENABLE2_EXTENSION_NAME) == 0)
+    return false;
+  return !(config.no_vulkan && std::strcmp(name, XR_KHR_VULKAN_ENABLE_EXTENSION_NAME) == 0);
 }
 
 XrResult XRAPI_CALL enumerate_instance_extension_properties(const char* layer_name, uint32_t capacity,

@@ -62,6 +62,7 @@ Config Config::from_env() {
   c.stays_lost = quirk("stays-lost");
   c.ignores_exit = quirk("ignores-exit");
   c.vulkan1_only = quirk("vulkan1-only");
+  c.no_vulkan = quirk("no-vulkan");
   return c;
 }
 

@@ -71,7 +71,10 @@ constexpr XrSystemId kSystemId = 1;
 //                                     XR_ERROR_FORM_FACTOR_UNAVAILABLE), ignores-exit
 //                                     (xrRequestExitSession succeeds but the session goes on),
 //                                     vulkan1-only (XR_KHR_vulkan_enable2 is neither listed nor accepted:
-//                                     a runtime with only the first Vulkan binding)
+//                                     a runtime with only the first Vulkan binding, which names Vulkan
+//                                     extensions the application must enable), no-vulkan (neither
+//                                     XR_KHR_vulkan_enable2 nor XR_KHR_vulkan_enable: a runtime for other
+//                                     graphics APIs)
 struct Config {
   uint32_t width = 1440;
   uint32_t height = 1600;
@@ -101,6 +104,7 @@ struct Config {
   bool stays_lost = false;
   bool ignores_exit = false;
   bool vulkan1_only = false;
+  bool no_vulkan = false;
   static Config from_env();
 };
 

@@ -108,12 +108,29 @@ XrResult XRAPI_CALL get_requirements(XrInstance handle, XrSystemId system,
   return XR_SUCCESS;
 }
 
-XrResult XRAPI_CALL get_extensions(XrInstance handle, XrSystemId system, uint32_t capacity, uint32_t* count,
-                                   char* buffer) {
+// XR_KHR_vulkan_enable: the Vulkan extensions the application must enable, space-separated. The
+// compositor needs none, but a runtime that shares images across processes asks for these (SteamVR on Linux
+// names a similar set), so the application's parsing and enabling of them is exercised; lavapipe has them.
+constexpr const char* kInstanceExtensions =
+    "VK_KHR_external_memory_capabilities VK_KHR_get_physical_device_properties2";
+constexpr const char* kDeviceExtensions =
+    "VK_KHR_external_memory VK_KHR_external_memory_fd VK_KHR_get_memory_requirements2 "
+    "VK_KHR_dedicated_allocation";
+
+XrResult XRAPI_CALL get_instance_extensions(XrInstance handle, XrSystemId system, uint32_t capacity,
+                                            uint32_t* count, char* buffer) {
   Lock lock(big_lock());
   Instance* instance = nullptr;
   if (const XrResult r = check_instance_system(handle, system, &instance); XR_FAILED(r)) return r;
-  return two_call_string("", capacity, count, buffer);  // the runtime needs no extensions of its own
+  return two_call_string(kInstanceExtensions, capacity, count, buffer);
+}
+
+XrResult XRAPI_CALL get_device_extensions(XrInstance handle, XrSystemId system, uint32_t capacity,
+                                          uint32_t* count, char* buffer) {
+  Lock lock(big_lock());
+  Instance* instance = nullptr;
+  if (const XrResult r = check_instance_system(handle, system, &instance); XR_FAILED(r)) return r;
+  return two_call_string(kDeviceExtensions, capacity, count, buffer);
 }
 
 // The physical device the runtime composites on: PUSHPULL_XR_SIM_VK_DEVICE names one, else the
@@ -225,8 +242,8 @@ void add_vulkan_functions(FunctionTable& t) {
   const char* e1 = XR_KHR_VULKAN_ENABLE_EXTENSION_NAME;
   const char* e2 = XR_KHR_VULKAN_ENABLE2_EXTENSION_NAME;
   PUSHPULL_XR_ADD_EXT(t, xrGetVulkanGraphicsRequirementsKHR, get_requirements, e1);
-  PUSHPULL_XR_ADD_EXT(t, xrGetVulkanInstanceExtensionsKHR, get_extensions, e1);
-  PUSHPULL_XR_ADD_EXT(t, xrGetVulkanDeviceExtensionsKHR, get_extensions, e1);
+  PUSHPULL_XR_ADD_EXT(t, xrGetVulkanInstanceExtensionsKHR, get_instance_extensions, e1);
+  PUSHPULL_XR_ADD_EXT(t, xrGetVulkanDeviceExtensionsKHR, get_device_extensions, e1);
   PUSHPULL_XR_ADD_EXT(t, xrGetVulkanGraphicsDeviceKHR, get_graphics_device, e1);
   PUSHPULL_XR_ADD_EXT(t, xrGetVulkanGraphicsRequirements2KHR, get_requirements, e2);
   PUSHPULL_XR_ADD_EXT(t, xrGetVulkanGraphicsDevice2KHR, get_graphics_device2, e2);

@@ -1,4 +1,5 @@
-// pushpull::xr::Session: an OpenXR instance, system, Vulkan device (XR_KHR_vulkan_enable2), session, the
+// pushpull::xr::Session: an OpenXR instance, system, Vulkan device (XR_KHR_vulkan_enable2, or
+// XR_KHR_vulkan_enable with a runtime that offers only the first binding), session, the
 // stage space and one swapchain per eye, with the session state machine and the frame calls.
 //
 //   Session xr(options);                     // throws RuntimeUnavailable when there is no runtime / HMD
@@ -46,7 +47,9 @@ struct SessionOptions {
   std::function<void(VkPhysicalDeviceVulkan13Features&)> require_vulkan13_features;
   // Vulkan extensions beyond the runtime's own (e.g. a mirror window's surface extensions and
   // VK_KHR_swapchain): added to the create infos handed to xrCreateVulkanInstanceKHR /
-  // xrCreateVulkanDeviceKHR.
+  // xrCreateVulkanDeviceKHR (XR_KHR_vulkan_enable2), or, with a runtime that offers only
+  // XR_KHR_vulkan_enable, enabled with the extensions that runtime names in the instance and device the
+  // Session creates itself.
   std::vector<std::string> vulkan_instance_extensions;
   std::vector<std::string> vulkan_device_extensions;
   std::vector<std::string> vulkan_layers;  // instance layers, e.g. VK_LAYER_KHRONOS_validation
@@ -56,7 +59,8 @@ struct SessionOptions {
   // Eye swapchains with transfer-source usage, so a mirror window can copy an eye (Swapchain::transfer_source
   // says whether the runtime allowed it). Off: colour attachment only, which every runtime supports.
   bool eye_transfer_source = false;
-  // Extensions the session must enable beyond XR_KHR_vulkan_enable2 (e.g. for tests); unknown ones fail.
+  // Extensions the session must enable beyond XR_KHR_vulkan_enable2 (or XR_KHR_vulkan_enable where the
+  // runtime offers only that one) (e.g. for tests); unknown ones fail.
   std::vector<std::string> extensions;
   // A runtime whose headset is not connected yet (xrGetSystem: XR_ERROR_FORM_FACTOR_UNAVAILABLE, "temporarily
   // unavailable": streaming runtimes before the headset joins) is asked again for this many seconds before
