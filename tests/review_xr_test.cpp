@@ -688,6 +688,16 @@ TEST(ReviewXr, ARuntimeFailureEndsTheReviewAndKeepsTheCommittedWork) {
   expect_replays_with_commits(recording);
 }
 
+// The OpenXR core validation layer loaded (XR_ENABLE_API_LAYERS) and neither it nor the Vulkan validation
+// layer (--validation) said anything in `output`.
+void expect_validation_layers_silent(const std::string& output) {
+  EXPECT_NE(output.find("Core Validation"), std::string::npos) << "the core validation layer did not load";
+  std::istringstream lines(output);
+  for (std::string line; std::getline(lines, line);)
+    for (const char* bad : {"VUID", "Error", "ERROR", "Warning", "WARNING", "vulkan validation"})
+      EXPECT_EQ(line.find(bad), std::string::npos) << line;
+}
+
 // The OpenXR core validation layer (between the app and the runtime) and VK_LAYER_KHRONOS_validation (on the
 // runtime's instance, --validation fails the run on any message) see a whole push/pull without complaint.
 TEST(ReviewXr, ValidationLayersReportNothingForAPushPull) {
@@ -696,12 +706,7 @@ TEST(ReviewXr, ValidationLayersReportNothingForAPushPull) {
                                    "XR_ENABLE_API_LAYERS=XR_APILAYER_LUNARG_core_validation");
   ASSERT_EQ(run.result.status, 0) << run.result.output;
   EXPECT_EQ(run.of("commit").size(), 1u) << run.result.output;
-  EXPECT_NE(run.result.output.find("Core Validation"), std::string::npos)
-      << "the core validation layer did not load";
-  std::istringstream lines(run.result.output);
-  for (std::string line; std::getline(lines, line);)
-    for (const char* bad : {"VUID", "Error", "ERROR", "Warning", "WARNING", "vulkan validation"})
-      EXPECT_EQ(line.find(bad), std::string::npos) << line;
+  expect_validation_layers_silent(run.result.output);
 }
 
 TEST(ReviewXr, UndoRestoresTheModelAndRedoReappliesIt) {
@@ -1507,12 +1512,20 @@ TEST(ReviewXr, ARuntimeWithOnlyVulkanEnableReviewsThroughIt) {
       << run.result.output;
   EXPECT_NE(run.result.output.find("the headset is back"), std::string::npos) << run.result.output;
   EXPECT_EQ(run.of("commit").size(), 1u) << run.result.output;
-  EXPECT_NE(run.result.output.find("Core Validation"), std::string::npos)
-      << "the core validation layer did not load";
-  std::istringstream lines(run.result.output);
-  for (std::string line; std::getline(lines, line);)
-    for (const char* bad : {"VUID", "Error", "ERROR", "Warning", "WARNING", "vulkan validation"})
-      EXPECT_EQ(line.find(bad), std::string::npos) << line;
+  expect_validation_layers_silent(run.result.output);
+}
+
+// A runtime (with only XR_KHR_vulkan_enable) that needs a Vulkan extension the driver lacks is told by name.
+TEST(ReviewXr, AVulkanExtensionTheDriverLacksIsNamed) {
+  const auto result = run_command(
+      "env -u DISPLAY -u WAYLAND_DISPLAY "
+      "PUSHPULL_XR_SIM_QUIRKS=vulkan1-only,unknown-vk-extension " +
+      pushpull::testing::xr_sim_environment() + " " + PUSHPULL_EXECUTABLE + " review " + kHood);
+  EXPECT_NE(result.status, 0);
+  EXPECT_NE(result.output.find("needs Vulkan instance extensions the Vulkan driver does not offer: "
+                               "VK_PUSHPULL_sim_unknown (update the GPU driver)"),
+            std::string::npos)
+      << result.output;
 }
 
 // The eyes look the same through either Vulkan binding.

@@ -86,15 +86,40 @@ void add_unique(std::vector<const char*>& list, const std::vector<std::string>& 
       list.push_back(name.c_str());
 }
 
-// The ones of `wanted` that `available` (Vulkan's extension properties) lacks, comma-separated.
-std::string missing_vulkan(const std::vector<const char*>& wanted,
-                           const std::vector<VkExtensionProperties>& available) {
+// XR_KHR_vulkan_enable: create(info) (vkCreateInstance or vkCreateDevice, named `call`, which leaves its
+// handle null on failure) with the runtime's extensions `needed` added to info's. On failure, the extensions
+// that enumerate (a two-call vkEnumerate*ExtensionProperties) does not list are named: "the OpenXR runtime
+// "R" needs Vulkan <lacking> does not offer: ..." (RuntimeUnavailable), else an XrError with the VkResult.
+template <class CreateInfo, class Create, class Enumerate>
+void create_with_runtime_extensions(CreateInfo info, const std::vector<std::string>& needed, Create create,
+                                    Enumerate enumerate, const char* call, const char* lacking,
+                                    const std::string& runtime_name) {
+  std::vector<const char*> names(info.ppEnabledExtensionNames,
+                                 info.ppEnabledExtensionNames + info.enabledExtensionCount);
+  add_unique(names, needed);
+  info.enabledExtensionCount = uint32_t(names.size());
+  info.ppEnabledExtensionNames = names.data();
+  const VkResult vr = create(info);
+  if (vr == VK_SUCCESS) return;
+  uint32_t n = 0;
+  std::vector<VkExtensionProperties> available;
+  if (enumerate(&n, nullptr) == VK_SUCCESS) {
+    available.resize(n);
+    if (enumerate(&n, available.data()) != VK_SUCCESS) n = 0;
+    available.resize(n);
+  }
   std::string missing;
-  for (const char* name : wanted)
+  for (const char* name : names)
     if (std::none_of(available.begin(), available.end(),
                      [&](const VkExtensionProperties& e) { return std::strcmp(e.extensionName, name) == 0; }))
       missing += (missing.empty() ? "" : ", ") + std::string(name);
-  return missing;
+  if (vr == VK_ERROR_EXTENSION_NOT_PRESENT && !missing.empty())
+    throw RuntimeUnavailable("the OpenXR runtime \"" + runtime_name + "\" needs Vulkan " + lacking +
+                                 " does not offer: " + missing + " (update the GPU driver)",
+                             XR_ERROR_RUNTIME_FAILURE);
+  throw XrError(std::string(call) + " for the runtime's XR_KHR_vulkan_enable failed with VkResult " +
+                    std::to_string(int(vr)),
+                XR_ERROR_RUNTIME_FAILURE);
 }
 
 template <class Fn>
@@ -223,68 +248,41 @@ struct Session::Impl {
   }
 
   // XR_KHR_vulkan_enable: vkCreateInstance with the runtime's instance extensions added to `vci`'s.
-  void create_vk_instance_v1(VkInstanceCreateInfo vci) {
-    const std::vector<std::string> needed = runtime_vulkan_extensions(
-        instance, system,
-        instance_function<PFN_xrGetVulkanInstanceExtensionsKHR>(instance, "xrGetVulkanInstanceExtensionsKHR"),
-        "xrGetVulkanInstanceExtensionsKHR");
-    std::vector<const char*> names(vci.ppEnabledExtensionNames,
-                                   vci.ppEnabledExtensionNames + vci.enabledExtensionCount);
-    add_unique(names, needed);
-    vci.enabledExtensionCount = uint32_t(names.size());
-    vci.ppEnabledExtensionNames = names.data();
-    const VkResult vr = vkCreateInstance(&vci, nullptr, &vk.instance);
-    if (vr == VK_SUCCESS) return;
-    vk.instance = VK_NULL_HANDLE;
-    uint32_t n = 0;
-    std::vector<VkExtensionProperties> available;
-    if (vkEnumerateInstanceExtensionProperties(nullptr, &n, nullptr) == VK_SUCCESS) {
-      available.resize(n);
-      if (vkEnumerateInstanceExtensionProperties(nullptr, &n, available.data()) != VK_SUCCESS) n = 0;
-      available.resize(n);
-    }
-    const std::string missing = missing_vulkan(names, available);
-    if (vr == VK_ERROR_EXTENSION_NOT_PRESENT && !missing.empty())
-      throw RuntimeUnavailable(
-          "the OpenXR runtime \"" + runtime_name + "\" needs Vulkan instance extensions " +
-              "the Vulkan driver does not offer: " + missing + " (update the GPU driver)",
-          XR_ERROR_RUNTIME_FAILURE);
-    throw XrError("vkCreateInstance for the runtime's XR_KHR_vulkan_enable failed with VkResult " +
-                      std::to_string(int(vr)),
-                  XR_ERROR_RUNTIME_FAILURE);
+  void create_vk_instance_v1(const VkInstanceCreateInfo& vci) {
+    create_with_runtime_extensions(
+        vci,
+        runtime_vulkan_extensions(instance, system,
+                                  instance_function<PFN_xrGetVulkanInstanceExtensionsKHR>(
+                                      instance, "xrGetVulkanInstanceExtensionsKHR"),
+                                  "xrGetVulkanInstanceExtensionsKHR"),
+        [&](const VkInstanceCreateInfo& info) {
+          const VkResult r = vkCreateInstance(&info, nullptr, &vk.instance);
+          if (r != VK_SUCCESS) vk.instance = VK_NULL_HANDLE;
+          return r;
+        },
+        [](uint32_t* n, VkExtensionProperties* p) {
+          return vkEnumerateInstanceExtensionProperties(nullptr, n, p);
+        },
+        "vkCreateInstance", "instance extensions the Vulkan driver", runtime_name);
   }
 
   // XR_KHR_vulkan_enable: vkCreateDevice with the runtime's device extensions added to `dci`'s.
-  void create_vk_device_v1(VkDeviceCreateInfo dci) {
-    const std::vector<std::string> needed = runtime_vulkan_extensions(
-        instance, system,
-        instance_function<PFN_xrGetVulkanDeviceExtensionsKHR>(instance, "xrGetVulkanDeviceExtensionsKHR"),
-        "xrGetVulkanDeviceExtensionsKHR");
-    std::vector<const char*> names(dci.ppEnabledExtensionNames,
-                                   dci.ppEnabledExtensionNames + dci.enabledExtensionCount);
-    add_unique(names, needed);
-    dci.enabledExtensionCount = uint32_t(names.size());
-    dci.ppEnabledExtensionNames = names.data();
-    const VkResult vr = vkCreateDevice(vk.physical_device, &dci, nullptr, &vk.device);
-    if (vr == VK_SUCCESS) return;
-    vk.device = VK_NULL_HANDLE;
-    uint32_t n = 0;
-    std::vector<VkExtensionProperties> available;
-    if (vkEnumerateDeviceExtensionProperties(vk.physical_device, nullptr, &n, nullptr) == VK_SUCCESS) {
-      available.resize(n);
-      if (vkEnumerateDeviceExtensionProperties(vk.physical_device, nullptr, &n, available.data()) !=
-          VK_SUCCESS)
-        n = 0;
-      available.resize(n);
-    }
-    const std::string missing = missing_vulkan(names, available);
-    if (vr == VK_ERROR_EXTENSION_NOT_PRESENT && !missing.empty())
-      throw RuntimeUnavailable("the OpenXR runtime \"" + runtime_name + "\" needs Vulkan device extensions " +
-                                   "its GPU does not offer: " + missing + " (update the GPU driver)",
-                               XR_ERROR_RUNTIME_FAILURE);
-    throw XrError("vkCreateDevice for the runtime's XR_KHR_vulkan_enable failed with VkResult " +
-                      std::to_string(int(vr)),
-                  XR_ERROR_RUNTIME_FAILURE);
+  void create_vk_device_v1(const VkDeviceCreateInfo& dci) {
+    create_with_runtime_extensions(
+        dci,
+        runtime_vulkan_extensions(
+            instance, system,
+            instance_function<PFN_xrGetVulkanDeviceExtensionsKHR>(instance, "xrGetVulkanDeviceExtensionsKHR"),
+            "xrGetVulkanDeviceExtensionsKHR"),
+        [&](const VkDeviceCreateInfo& info) {
+          const VkResult r = vkCreateDevice(vk.physical_device, &info, nullptr, &vk.device);
+          if (r != VK_SUCCESS) vk.device = VK_NULL_HANDLE;
+          return r;
+        },
+        [&](uint32_t* n, VkExtensionProperties* p) {
+          return vkEnumerateDeviceExtensionProperties(vk.physical_device, nullptr, n, p);
+        },
+        "vkCreateDevice", "device extensions its GPU", runtime_name);
   }
 
   void create_vulkan(const SessionOptions& options) {

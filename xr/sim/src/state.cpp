@@ -63,6 +63,7 @@ Config Config::from_env() {
   c.ignores_exit = quirk("ignores-exit");
   c.vulkan1_only = quirk("vulkan1-only");
   c.no_vulkan = quirk("no-vulkan");
+  c.unknown_vk_extension = quirk("unknown-vk-extension");
   return c;
 }
 

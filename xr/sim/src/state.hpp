@@ -72,7 +72,8 @@ constexpr XrSystemId kSystemId = 1;
 //                                     (xrRequestExitSession succeeds but the session goes on),
 //                                     vulkan1-only (XR_KHR_vulkan_enable2 is neither listed nor accepted:
 //                                     a runtime with only the first Vulkan binding, which names Vulkan
-//                                     extensions the application must enable), no-vulkan (neither
+//                                     extensions the application must enable; with unknown-vk-extension
+//                                     also one no Vulkan driver has), no-vulkan (neither
 //                                     XR_KHR_vulkan_enable2 nor XR_KHR_vulkan_enable: a runtime for other
 //                                     graphics APIs)
 struct Config {
@@ -105,6 +106,7 @@ struct Config {
   bool ignores_exit = false;
   bool vulkan1_only = false;
   bool no_vulkan = false;
+  bool unknown_vk_extension = false;
   static Config from_env();
 };
 

@@ -117,20 +117,25 @@ constexpr const char* kDeviceExtensions =
     "VK_KHR_external_memory VK_KHR_external_memory_fd VK_KHR_get_memory_requirements2 "
     "VK_KHR_dedicated_allocation";
 
-XrResult XRAPI_CALL get_instance_extensions(XrInstance handle, XrSystemId system, uint32_t capacity,
-                                            uint32_t* count, char* buffer) {
+XrResult extensions_for(XrInstance handle, XrSystemId system, const char* names, uint32_t capacity,
+                        uint32_t* count, char* buffer) {
   Lock lock(big_lock());
   Instance* instance = nullptr;
   if (const XrResult r = check_instance_system(handle, system, &instance); XR_FAILED(r)) return r;
-  return two_call_string(kInstanceExtensions, capacity, count, buffer);
+  return two_call_string(names, capacity, count, buffer);
+}
+
+XrResult XRAPI_CALL get_instance_extensions(XrInstance handle, XrSystemId system, uint32_t capacity,
+                                            uint32_t* count, char* buffer) {
+  // unknown-vk-extension: also one no Vulkan driver has (the application must say which).
+  const std::string names = std::string(kInstanceExtensions) +
+                            (Config::from_env().unknown_vk_extension ? " VK_PUSHPULL_sim_unknown" : "");
+  return extensions_for(handle, system, names.c_str(), capacity, count, buffer);
 }
 
 XrResult XRAPI_CALL get_device_extensions(XrInstance handle, XrSystemId system, uint32_t capacity,
                                           uint32_t* count, char* buffer) {
-  Lock lock(big_lock());
-  Instance* instance = nullptr;
-  if (const XrResult r = check_instance_system(handle, system, &instance); XR_FAILED(r)) return r;
-  return two_call_string(kDeviceExtensions, capacity, count, buffer);
+  return extensions_for(handle, system, kDeviceExtensions, capacity, count, buffer);
 }
 
 // The physical device the runtime composites on: PUSHPULL_XR_SIM_VK_DEVICE names one, else the
