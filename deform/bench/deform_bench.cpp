@@ -9,6 +9,14 @@
 // accuracy, equal energy and equal thread count (one). Times are wall-clock milliseconds;
 // per-iter is the median of 5 solves of 20 iterations each with the factorization in place.
 //
+// arap-sr at 100K stops unconverged at the 1000-iteration cap (1000*), and says so. Measured on 2026-12-03:
+// the height field's dimple at (0.2, 0.7) snaps through. Its depth (centre height minus the mean over the
+// ring 0.08-0.12 around it) is -0.0073 at rest; after 1000 accelerated iterations it is +0.0053 (inverted;
+// the centre moved 0.085) at energy 1.35116e-3, while 1000 plain iterations (no Anderson) keep it at -0.0095
+// at the higher energy 1.36372e-3. Buckling is nearly isometric, so the energy falls very slowly along it.
+// The 10K and 30K fields keep the dimple (-0.0050 after 37 iterations, -0.0069 after 108), and so does asan,
+// stiff across d, at 100K (-0.0064, converged after 229).
+//
 // Usage: deform_bench [--quick] [--no-peer] [--no-reference] [--side N]...
 //   --quick: the 10K problem only, for CI smoke runs; --no-peer: skip the CGAL rows, which take minutes at
 //   100K, when comparing our own changes; --side N: an N x N problem instead of the default sizes
