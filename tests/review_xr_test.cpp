@@ -136,12 +136,16 @@ size_t count_pixels(const pushpull::renderer::TextureRGBA8& image, Predicate pre
 
 // The left eye at t = 0.3 s (frame 9 at the tests' 30 Hz) of a review that only aims at the bonnet, with the
 // simulated runtime's extra settings `extra_env`; the run must end cleanly.
-pushpull::renderer::TextureRGBA8 left_eye_while_aiming(const fs::path& dir, const std::string& extra_env) {
+// `output`, when given, receives what the review printed. An earlier run's captures in dir are removed first.
+pushpull::renderer::TextureRGBA8 left_eye_while_aiming(const fs::path& dir, const std::string& extra_env,
+                                                       std::string* output = nullptr) {
+  fs::remove_all(dir / "capture");
   const ReviewRun run = run_review(dir, script_start() + R"({"t":0.3,"event":"capture"}
 {"t":0.6,"event":"exit"}
 )",
                                    "", extra_env);
   EXPECT_EQ(run.result.status, 0) << run.result.output;
+  if (output) *output = run.result.output;
   return pushpull::renderer::read_png(dir / "capture" / "frame_000009_left.png");
 }
 
@@ -1526,13 +1530,27 @@ TEST(ReviewXr, AVulkanExtensionTheDriverLacksIsNamed) {
                                "VK_PUSHPULL_sim_unknown (update the GPU driver)"),
             std::string::npos)
       << result.output;
+  const auto device = run_command(
+      "env -u DISPLAY -u WAYLAND_DISPLAY "
+      "PUSHPULL_XR_SIM_QUIRKS=vulkan1-only,unknown-vk-device-extension " +
+      pushpull::testing::xr_sim_environment() + " " + PUSHPULL_EXECUTABLE + " review " + kHood);
+  EXPECT_NE(device.status, 0);
+  EXPECT_NE(device.output.find("needs Vulkan device extensions its GPU does not offer: "
+                               "VK_PUSHPULL_sim_unknown_device (update the GPU driver)"),
+            std::string::npos)
+      << device.output;
 }
 
 // The eyes look the same through either Vulkan binding.
 TEST(ReviewXr, EyesLookTheSameThroughEitherVulkanBinding) {
   const fs::path dir = test_dir();
-  const auto usual = left_eye_while_aiming(dir, "");
-  const auto first_binding = left_eye_while_aiming(dir, "PUSHPULL_XR_SIM_QUIRKS=vulkan1-only");
+  std::string usual_output, first_binding_output;
+  const auto usual = left_eye_while_aiming(dir, "", &usual_output);
+  const auto first_binding =
+      left_eye_while_aiming(dir, "PUSHPULL_XR_SIM_QUIRKS=vulkan1-only", &first_binding_output);
+  const std::string note = "offers XR_KHR_vulkan_enable, not enable2";
+  EXPECT_EQ(usual_output.find(note), std::string::npos) << usual_output;
+  EXPECT_NE(first_binding_output.find(note), std::string::npos) << first_binding_output;
   ASSERT_EQ(usual.width, first_binding.width);
   ASSERT_EQ(usual.height, first_binding.height);
   ASSERT_GT(usual.width, 0u);

@@ -48,11 +48,17 @@ bool lists(const std::vector<XrExtensionProperties>& offered, const char* name) 
 }
 
 // The ones of `wanted` the runtime does not list (comma-separated; all of them when it lists none).
-std::string missing_extensions(const std::vector<const char*>& wanted) {
-  const std::vector<XrExtensionProperties> offered = offered_extensions();
+// A runtime with neither Vulkan binding is told as "XR_KHR_vulkan_enable2 (nor XR_KHR_vulkan_enable)".
+std::string missing_extensions(const std::vector<XrExtensionProperties>& offered,
+                               const std::vector<const char*>& wanted) {
   std::string missing;
   for (const char* name : wanted)
-    if (!lists(offered, name)) missing += (missing.empty() ? "" : ", ") + std::string(name);
+    if (!lists(offered, name)) {
+      missing += (missing.empty() ? "" : ", ") + std::string(name);
+      if (std::strcmp(name, XR_KHR_VULKAN_ENABLE2_EXTENSION_NAME) == 0 &&
+          !lists(offered, XR_KHR_VULKAN_ENABLE_EXTENSION_NAME))
+        missing += " (nor " XR_KHR_VULKAN_ENABLE_EXTENSION_NAME ")";
+    }
   return missing.empty() ? "an extension it was asked for" : missing;
 }
 
@@ -86,40 +92,93 @@ void add_unique(std::vector<const char*>& list, const std::vector<std::string>& 
       list.push_back(name.c_str());
 }
 
-// XR_KHR_vulkan_enable: create(info) (vkCreateInstance or vkCreateDevice, named `call`, which leaves its
-// handle null on failure) with the runtime's extensions `needed` added to info's. On failure, the extensions
-// that enumerate (a two-call vkEnumerate*ExtensionProperties) does not list are named: "the OpenXR runtime
-// "R" needs Vulkan <lacking> does not offer: ..." (RuntimeUnavailable), else an XrError with the VkResult.
-template <class CreateInfo, class Create, class Enumerate>
+// The Vulkan extensions an enumerate function (a two-call vkEnumerate*ExtensionProperties for one layer,
+// nullptr: the driver's and implicit layers') lists; none when it fails.
+template <class Enumerate>
+void append_listed(std::vector<VkExtensionProperties>& listed, Enumerate enumerate) {
+  uint32_t n = 0;
+  if (enumerate(&n, nullptr) != VK_SUCCESS) return;
+  std::vector<VkExtensionProperties> more(n);
+  if (enumerate(&n, more.data()) != VK_SUCCESS) return;
+  more.resize(std::min<size_t>(n, more.size()));
+  listed.insert(listed.end(), more.begin(), more.end());
+}
+
+// vkCreateInstance or vkCreateDevice (`call`, with how the runtime got there) failed with `vr`. With
+// VK_ERROR_EXTENSION_NOT_PRESENT the extensions `listed` lacks are named, the runtime's (`runtime_needs`,
+// XR_KHR_vulkan_enable) apart from pushpull's own (`own`): "the OpenXR runtime "R" needs Vulkan <what>
+// <lacking> does not offer: ..." (RuntimeUnavailable, as the review then opens the desktop window);
+// otherwise an XrError naming the call, the VkResult and `file`:`line`.
+[[noreturn]] void throw_vulkan_create_failure(VkResult vr, const std::string& call, const char* file,
+                                              int line, const std::vector<const char*>& own,
+                                              const std::vector<std::string>& runtime_needs,
+                                              const std::vector<VkExtensionProperties>& listed,
+                                              const char* what, const char* lacking,
+                                              const std::string& runtime_name) {
+  auto absent = [&](const char* name) {
+    return std::none_of(listed.begin(), listed.end(), [&](const VkExtensionProperties& e) {
+      return std::strcmp(e.extensionName, name) == 0;
+    });
+  };
+  std::string runtime_missing, own_missing;
+  for (const std::string& name : runtime_needs)
+    if (absent(name.c_str())) runtime_missing += (runtime_missing.empty() ? "" : ", ") + name;
+  for (const char* name : own)
+    if (absent(name) && std::find(runtime_needs.begin(), runtime_needs.end(), name) == runtime_needs.end())
+      own_missing += (own_missing.empty() ? "" : ", ") + std::string(name);
+  if (vr == VK_ERROR_EXTENSION_NOT_PRESENT && !(runtime_missing.empty() && own_missing.empty())) {
+    std::string message;
+    if (!runtime_missing.empty())
+      message = "the OpenXR runtime \"" + runtime_name + "\" needs Vulkan " + what + " " + lacking +
+                " does not offer: " + runtime_missing;
+    if (!own_missing.empty())
+      message += (message.empty() ? "" : "; ") + std::string("pushpull needs Vulkan ") + what + " " +
+                 lacking + " does not offer: " + own_missing;
+    throw RuntimeUnavailable(message + " (update the GPU driver)", XR_ERROR_RUNTIME_FAILURE);
+  }
+  throw XrError(
+      std::string(file) + ":" + std::to_string(line) + ": " + call + " failed with " + vk_result_name(vr),
+      XR_ERROR_RUNTIME_FAILURE);
+}
+
+// XR_KHR_vulkan_enable: create(info) (vkCreateInstance or vkCreateDevice, which leaves its handle null on
+// failure) with the runtime's extensions `needed` added to info's; on failure, throw_vulkan_create_failure
+// with the extensions listed() returns.
+template <class CreateInfo, class Create, class Listed>
 void create_with_runtime_extensions(CreateInfo info, const std::vector<std::string>& needed, Create create,
-                                    Enumerate enumerate, const char* call, const char* lacking,
+                                    Listed listed, const char* call, const char* what, const char* lacking,
                                     const std::string& runtime_name) {
-  std::vector<const char*> names(info.ppEnabledExtensionNames,
-                                 info.ppEnabledExtensionNames + info.enabledExtensionCount);
+  const std::vector<const char*> own(info.ppEnabledExtensionNames,
+                                     info.ppEnabledExtensionNames + info.enabledExtensionCount);
+  std::vector<const char*> names = own;
   add_unique(names, needed);
   info.enabledExtensionCount = uint32_t(names.size());
   info.ppEnabledExtensionNames = names.data();
   const VkResult vr = create(info);
-  if (vr == VK_SUCCESS) return;
-  uint32_t n = 0;
-  std::vector<VkExtensionProperties> available;
-  if (enumerate(&n, nullptr) == VK_SUCCESS) {
-    available.resize(n);
-    if (enumerate(&n, available.data()) != VK_SUCCESS) n = 0;
-    available.resize(n);
-  }
-  std::string missing;
-  for (const char* name : names)
-    if (std::none_of(available.begin(), available.end(),
-                     [&](const VkExtensionProperties& e) { return std::strcmp(e.extensionName, name) == 0; }))
-      missing += (missing.empty() ? "" : ", ") + std::string(name);
-  if (vr == VK_ERROR_EXTENSION_NOT_PRESENT && !missing.empty())
-    throw RuntimeUnavailable("the OpenXR runtime \"" + runtime_name + "\" needs Vulkan " + lacking +
-                                 " does not offer: " + missing + " (update the GPU driver)",
-                             XR_ERROR_RUNTIME_FAILURE);
-  throw XrError(std::string(call) + " for the runtime's XR_KHR_vulkan_enable failed with VkResult " +
-                    std::to_string(int(vr)),
-                XR_ERROR_RUNTIME_FAILURE);
+  if (vr != VK_SUCCESS)
+    throw_vulkan_create_failure(vr, std::string(call) + " for the runtime's XR_KHR_vulkan_enable", __FILE__,
+                                __LINE__, own, needed, listed(), what, lacking, runtime_name);
+}
+
+// The instance extensions the Vulkan loader lists: the driver's, implicit layers' and those of `layers`.
+std::vector<VkExtensionProperties> listed_instance_extensions(const VkInstanceCreateInfo& info) {
+  std::vector<VkExtensionProperties> listed;
+  append_listed(listed, [](uint32_t* n, VkExtensionProperties* p) {
+    return vkEnumerateInstanceExtensionProperties(nullptr, n, p);
+  });
+  for (uint32_t i = 0; i < info.enabledLayerCount; ++i)
+    append_listed(listed, [&](uint32_t* n, VkExtensionProperties* p) {
+      return vkEnumerateInstanceExtensionProperties(info.ppEnabledLayerNames[i], n, p);
+    });
+  return listed;
+}
+
+std::vector<VkExtensionProperties> listed_device_extensions(VkPhysicalDevice device) {
+  std::vector<VkExtensionProperties> listed;
+  append_listed(listed, [&](uint32_t* n, VkExtensionProperties* p) {
+    return vkEnumerateDeviceExtensionProperties(device, nullptr, n, p);
+  });
+  return listed;
 }
 
 template <class Fn>
@@ -182,11 +241,9 @@ struct Session::Impl {
   }
 
   void create_instance(const SessionOptions& options) {
-    {
-      const std::vector<XrExtensionProperties> offered = offered_extensions();
-      vulkan_enable2 = lists(offered, XR_KHR_VULKAN_ENABLE2_EXTENSION_NAME) ||
-                       !lists(offered, XR_KHR_VULKAN_ENABLE_EXTENSION_NAME);
-    }
+    const std::vector<XrExtensionProperties> offered = offered_extensions();
+    vulkan_enable2 = lists(offered, XR_KHR_VULKAN_ENABLE2_EXTENSION_NAME) ||
+                     !lists(offered, XR_KHR_VULKAN_ENABLE_EXTENSION_NAME);
     std::vector<const char*> extensions{vulkan_enable2 ? XR_KHR_VULKAN_ENABLE2_EXTENSION_NAME
                                                        : XR_KHR_VULKAN_ENABLE_EXTENSION_NAME};
     for (const auto& e : options.extensions) extensions.push_back(e.c_str());
@@ -199,9 +256,7 @@ struct Session::Impl {
     info.enabledExtensionNames = extensions.data();
     if (const XrResult r = xrCreateInstance(&info, &instance); XR_FAILED(r)) {
       instance = XR_NULL_HANDLE;
-      std::string missing = missing_extensions(extensions);
-      if (missing.find(XR_KHR_VULKAN_ENABLE2_EXTENSION_NAME) != std::string::npos)  // neither Vulkan one
-        missing += " (nor " XR_KHR_VULKAN_ENABLE_EXTENSION_NAME ")";
+      const std::string missing = missing_extensions(offered, extensions);
       const std::string why = r == XR_ERROR_EXTENSION_NOT_PRESENT
                                   ? "it does not offer " + missing
                                   : "xrCreateInstance failed with " + result_name(XR_NULL_HANDLE, r);
@@ -233,18 +288,34 @@ struct Session::Impl {
   // The spec requires this call before every xrCreateSession (also the one after a lost session: SteamVR
   // refuses a session whose requirements were not asked for).
   // (XrGraphicsRequirementsVulkan2KHR is XrGraphicsRequirementsVulkanKHR, the structure type the same.)
+  // Both bindings' functions have the same signature.
   XrGraphicsRequirementsVulkan2KHR graphics_requirements() {
     XrGraphicsRequirementsVulkan2KHR req{XR_TYPE_GRAPHICS_REQUIREMENTS_VULKAN2_KHR};
-    if (vulkan_enable2) {
-      auto requirements = instance_function<PFN_xrGetVulkanGraphicsRequirements2KHR>(
-          instance, "xrGetVulkanGraphicsRequirements2KHR");
-      CHECK(requirements(instance, system, &req));
-    } else {
-      auto requirements = instance_function<PFN_xrGetVulkanGraphicsRequirementsKHR>(
-          instance, "xrGetVulkanGraphicsRequirementsKHR");
-      CHECK(requirements(instance, system, &req));
-    }
+    const char* name =
+        vulkan_enable2 ? "xrGetVulkanGraphicsRequirements2KHR" : "xrGetVulkanGraphicsRequirementsKHR";
+    check_xr(
+        instance_function<PFN_xrGetVulkanGraphicsRequirements2KHR>(instance, name)(instance, system, &req),
+        instance, name, __FILE__, __LINE__);
     return req;
+  }
+
+  // The GPU the runtime renders on (vk.instance created).
+  VkPhysicalDevice runtime_physical_device() {
+    VkPhysicalDevice device = VK_NULL_HANDLE;
+    if (vulkan_enable2) {
+      XrVulkanGraphicsDeviceGetInfoKHR gi{XR_TYPE_VULKAN_GRAPHICS_DEVICE_GET_INFO_KHR};
+      gi.systemId = system;
+      gi.vulkanInstance = vk.instance;
+      const char* name = "xrGetVulkanGraphicsDevice2KHR";
+      check_xr(instance_function<PFN_xrGetVulkanGraphicsDevice2KHR>(instance, name)(instance, &gi, &device),
+               instance, name, __FILE__, __LINE__);
+    } else {
+      const char* name = "xrGetVulkanGraphicsDeviceKHR";
+      check_xr(instance_function<PFN_xrGetVulkanGraphicsDeviceKHR>(instance, name)(instance, system,
+                                                                                   vk.instance, &device),
+               instance, name, __FILE__, __LINE__);
+    }
+    return device;
   }
 
   // XR_KHR_vulkan_enable: vkCreateInstance with the runtime's instance extensions added to `vci`'s.
@@ -260,10 +331,8 @@ struct Session::Impl {
           if (r != VK_SUCCESS) vk.instance = VK_NULL_HANDLE;
           return r;
         },
-        [](uint32_t* n, VkExtensionProperties* p) {
-          return vkEnumerateInstanceExtensionProperties(nullptr, n, p);
-        },
-        "vkCreateInstance", "instance extensions the Vulkan driver", runtime_name);
+        [&] { return listed_instance_extensions(vci); }, "vkCreateInstance", "instance extensions",
+        "the Vulkan driver", runtime_name);
   }
 
   // XR_KHR_vulkan_enable: vkCreateDevice with the runtime's device extensions added to `dci`'s.
@@ -279,10 +348,8 @@ struct Session::Impl {
           if (r != VK_SUCCESS) vk.device = VK_NULL_HANDLE;
           return r;
         },
-        [&](uint32_t* n, VkExtensionProperties* p) {
-          return vkEnumerateDeviceExtensionProperties(vk.physical_device, nullptr, n, p);
-        },
-        "vkCreateDevice", "device extensions its GPU", runtime_name);
+        [&] { return listed_device_extensions(vk.physical_device); }, "vkCreateDevice", "device extensions",
+        "its GPU", runtime_name);
   }
 
   void create_vulkan(const SessionOptions& options) {
@@ -310,6 +377,17 @@ struct Session::Impl {
     app.pApplicationName = options.application_name.c_str();
     app.pEngineName = "pushpull";
     app.apiVersion = VK_API_VERSION_1_3;
+    // A runtime that supports only newer instance versions gets its minimum: pushpull's 1.3 calls work on a
+    // newer instance (apiVersion is the newest version the application uses, the GPU decides below).
+    const uint32_t min_major = uint32_t(XR_VERSION_MAJOR(req.minApiVersionSupported));
+    const uint32_t min_minor = uint32_t(XR_VERSION_MINOR(req.minApiVersionSupported));
+    if (min_major > 1 || (min_major == 1 && min_minor > 3)) {
+      std::fprintf(stderr,
+                   "pushpull: note: the OpenXR runtime supports Vulkan %u.%u and newer; pushpull's Vulkan "
+                   "instance asks for %u.%u (it uses 1.3)\n",
+                   unsigned(min_major), unsigned(min_minor), unsigned(min_major), unsigned(min_minor));
+      app.apiVersion = VK_MAKE_API_VERSION(0, min_major, min_minor, 0);
+    }
     VkInstanceCreateInfo vci{};
     vci.sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO;
     vci.pApplicationInfo = &app;
@@ -327,25 +405,20 @@ struct Session::Impl {
       xci.systemId = system;
       xci.pfnGetInstanceProcAddr = &vkGetInstanceProcAddr;
       xci.vulkanCreateInfo = &vci;
-      auto create_vk_instance =
-          instance_function<PFN_xrCreateVulkanInstanceKHR>(instance, "xrCreateVulkanInstanceKHR");
-      CHECK(create_vk_instance(instance, &xci, &vk.instance, &vr));
-      if (vr != VK_SUCCESS)
-        throw XrError("vkCreateInstance through xrCreateVulkanInstanceKHR failed with VkResult " +
-                          std::to_string(int(vr)),
-                      XR_ERROR_RUNTIME_FAILURE);
-      XrVulkanGraphicsDeviceGetInfoKHR gi{XR_TYPE_VULKAN_GRAPHICS_DEVICE_GET_INFO_KHR};
-      gi.systemId = system;
-      gi.vulkanInstance = vk.instance;
-      auto get_device =
-          instance_function<PFN_xrGetVulkanGraphicsDevice2KHR>(instance, "xrGetVulkanGraphicsDevice2KHR");
-      CHECK(get_device(instance, &gi, &vk.physical_device));
+      const char* name = "xrCreateVulkanInstanceKHR";
+      check_xr(
+          instance_function<PFN_xrCreateVulkanInstanceKHR>(instance, name)(instance, &xci, &vk.instance, &vr),
+          instance, name, __FILE__, __LINE__);
+      if (vr != VK_SUCCESS) {
+        vk.instance = VK_NULL_HANDLE;
+        throw_vulkan_create_failure(vr, "vkCreateInstance through xrCreateVulkanInstanceKHR", __FILE__,
+                                    __LINE__, instance_extensions, {}, listed_instance_extensions(vci),
+                                    "instance extensions", "the Vulkan driver", runtime_name);
+      }
     } else {
       create_vk_instance_v1(vci);
-      auto get_device =
-          instance_function<PFN_xrGetVulkanGraphicsDeviceKHR>(instance, "xrGetVulkanGraphicsDeviceKHR");
-      CHECK(get_device(instance, system, vk.instance, &vk.physical_device));
     }
+    vk.physical_device = runtime_physical_device();
     {  // A GPU without Vulkan 1.3 cannot run the renderer: say so, and the review opens the desktop window.
       VkPhysicalDeviceProperties gpu{};
       vkGetPhysicalDeviceProperties(vk.physical_device, &gpu);
@@ -392,13 +465,16 @@ struct Session::Impl {
       xdci.pfnGetInstanceProcAddr = &vkGetInstanceProcAddr;
       xdci.vulkanPhysicalDevice = vk.physical_device;
       xdci.vulkanCreateInfo = &dci;
-      auto create_device =
-          instance_function<PFN_xrCreateVulkanDeviceKHR>(instance, "xrCreateVulkanDeviceKHR");
-      CHECK(create_device(instance, &xdci, &vk.device, &vr));
-      if (vr != VK_SUCCESS)
-        throw XrError(
-            "vkCreateDevice through xrCreateVulkanDeviceKHR failed with VkResult " + std::to_string(int(vr)),
-            XR_ERROR_RUNTIME_FAILURE);
+      const char* name = "xrCreateVulkanDeviceKHR";
+      check_xr(
+          instance_function<PFN_xrCreateVulkanDeviceKHR>(instance, name)(instance, &xdci, &vk.device, &vr),
+          instance, name, __FILE__, __LINE__);
+      if (vr != VK_SUCCESS) {
+        vk.device = VK_NULL_HANDLE;
+        throw_vulkan_create_failure(vr, "vkCreateDevice through xrCreateVulkanDeviceKHR", __FILE__, __LINE__,
+                                    device_extensions, {}, listed_device_extensions(vk.physical_device),
+                                    "device extensions", "its GPU", runtime_name);
+      }
     } else {
       create_vk_device_v1(dci);
     }
@@ -700,6 +776,13 @@ bool Session::recreate_after_loss(double timeout_s, const std::function<bool()>&
                       std::to_string(s.system) + "): the Vulkan device belongs to the old one; start again",
                   XR_ERROR_SYSTEM_INVALID);
   (void)s.graphics_requirements();
+  // The runtime may also name the GPU again (the spec asks for the call before a session); the device
+  // pushpull renders with must still be that one.
+  if (s.runtime_physical_device() != s.vk.physical_device)
+    throw XrError("the OpenXR runtime \"" + s.runtime_name +
+                      "\" renders on another GPU since the session was lost: the Vulkan device belongs to "
+                      "the old one; start again",
+                  XR_ERROR_GRAPHICS_DEVICE_INVALID);
   s.create_session();
   s.create_stage_space();
   s.create_swapchains(s.options);

@@ -64,6 +64,7 @@ Config Config::from_env() {
   c.vulkan1_only = quirk("vulkan1-only");
   c.no_vulkan = quirk("no-vulkan");
   c.unknown_vk_extension = quirk("unknown-vk-extension");
+  c.unknown_vk_device_extension = quirk("unknown-vk-device-extension");
   return c;
 }
 

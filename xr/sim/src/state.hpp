@@ -72,8 +72,10 @@ constexpr XrSystemId kSystemId = 1;
 //                                     (xrRequestExitSession succeeds but the session goes on),
 //                                     vulkan1-only (XR_KHR_vulkan_enable2 is neither listed nor accepted:
 //                                     a runtime with only the first Vulkan binding, which names Vulkan
-//                                     extensions the application must enable; with unknown-vk-extension
-//                                     also one no Vulkan driver has), no-vulkan (neither
+//                                     extensions the application must enable, and refuses a session whose
+//                                     instance or device lacks them; with unknown-vk-extension also an
+//                                     instance extension no Vulkan driver has, with
+//                                     unknown-vk-device-extension a device extension), no-vulkan (neither
 //                                     XR_KHR_vulkan_enable2 nor XR_KHR_vulkan_enable: a runtime for other
 //                                     graphics APIs)
 struct Config {
@@ -106,7 +108,8 @@ struct Config {
   bool ignores_exit = false;
   bool vulkan1_only = false;
   bool no_vulkan = false;
-  bool unknown_vk_extension = false;
+  bool unknown_vk_extension = false;         // an instance extension no driver has (XR_KHR_vulkan_enable)
+  bool unknown_vk_device_extension = false;  // a device extension no driver has (XR_KHR_vulkan_enable)
   static Config from_env();
 };
 

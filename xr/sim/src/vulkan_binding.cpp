@@ -19,6 +19,12 @@ XrResult bind_vulkan(const Instance& instance, const void* next, VulkanBinding* 
   if (binding->instance == VK_NULL_HANDLE || binding->physicalDevice == VK_NULL_HANDLE ||
       binding->device == VK_NULL_HANDLE)
     return XR_ERROR_GRAPHICS_DEVICE_INVALID;
+  // XR_KHR_vulkan_enable: the application must have enabled the extensions the runtime named (Vulkan
+  // returns no function of an extension that was not enabled): one of each list is checked.
+  if (Config::from_env().vulkan1_only &&
+      (vkGetInstanceProcAddr(binding->instance, "vkGetPhysicalDeviceFeatures2KHR") == nullptr ||
+       vkGetDeviceProcAddr(binding->device, "vkGetMemoryFdKHR") == nullptr))
+    return XR_ERROR_GRAPHICS_DEVICE_INVALID;
   uint32_t families = 0;
   vkGetPhysicalDeviceQueueFamilyProperties(binding->physicalDevice, &families, nullptr);
   if (binding->queueFamilyIndex >= families) return XR_ERROR_VALIDATION_FAILURE;
@@ -135,7 +141,11 @@ XrResult XRAPI_CALL get_instance_extensions(XrInstance handle, XrSystemId system
 
 XrResult XRAPI_CALL get_device_extensions(XrInstance handle, XrSystemId system, uint32_t capacity,
                                           uint32_t* count, char* buffer) {
-  return extensions_for(handle, system, kDeviceExtensions, capacity, count, buffer);
+  // unknown-vk-device-extension: also one no Vulkan driver has.
+  const std::string names =
+      std::string(kDeviceExtensions) +
+      (Config::from_env().unknown_vk_device_extension ? " VK_PUSHPULL_sim_unknown_device" : "");
+  return extensions_for(handle, system, names.c_str(), capacity, count, buffer);
 }
 
 // The physical device the runtime composites on: PUSHPULL_XR_SIM_VK_DEVICE names one, else the

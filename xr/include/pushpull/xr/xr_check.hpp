@@ -31,6 +31,10 @@ class XrError : public std::runtime_error {
 // "XR_ERROR_SESSION_LOST" (through xrResultToString when an instance is given, else the number).
 [[nodiscard]] std::string result_name(XrInstance instance, XrResult result);
 
+// "VK_ERROR_EXTENSION_NOT_PRESENT (-7)" for the results creating a Vulkan instance or device can give, else
+// "VkResult n".
+[[nodiscard]] std::string vk_result_name(VkResult result);
+
 // Throws XrError when XR_FAILED(result); returns result otherwise (it may be a success code).
 XrResult check_xr(XrResult result, XrInstance instance, const char* expression, const char* file, int line);
 
