@@ -20,7 +20,8 @@
 // the 2.5K height field only; --random-pulls: only the random pulls, drawn with seed S (default 20261202;
 // the rate probe's settings were chosen on it and eight more seeds, and checked on 1111, 2222 and 3333: see
 // the README); --details: each pull's triangle, region radius and d in full precision, to reproduce it in a
-// test; --method: only these methods' rows, repeatable)
+// test; --trace: also the first iteration whose true distance was within the tolerance, with its estimate;
+// --method: only these methods' rows, repeatable)
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -85,9 +86,24 @@ const pd::DeformResult& reference_of(const Problem& p, pd::Method method, Refere
 
 // The default solve of `method` on p, or nullopt with `refusal` set when the method refuses the problem
 // (arap-s may: its energy is not PSD).
-std::optional<pd::DeformResult> default_solve(const Problem& p, pd::Method method, std::string& refusal) {
+// `trace`, when given, receives each iteration's positions and error estimate (NaN before there is one).
+struct Trace {
+  std::vector<std::shared_ptr<const Eigen::MatrixXd>> V;
+  std::vector<double> estimate, move;
+};
+std::optional<pd::DeformResult> default_solve(const Problem& p, pd::Method method, std::string& refusal,
+                                              Trace* trace = nullptr) {
   pd::DeformOptions options;
   options.method = method;
+  if (trace)
+    options.progress = [trace](const pd::IterationReport& report) {
+      if (report.probe_step == 0) {
+        trace->V.push_back(report.V);
+        trace->estimate.push_back(report.error_estimate.value_or(NAN));
+        trace->move.push_back(report.max_move);
+      }
+      return true;
+    };
   try {
     return pd::deform(p.mesh, p.roi, p.d, options);
   } catch (const std::exception& error) {
@@ -175,7 +191,8 @@ int run_warm(const Problem& p, References& references) {
 
 #ifdef PUSHPULL_BENCH_WITH_ASSETS
 // See the header comment. Returns the number of dishonest runs (converged, true error > 2x the estimate).
-int run_random_pulls(int per_model, unsigned seed, const std::vector<pd::Method>& methods, bool details) {
+int run_random_pulls(int per_model, unsigned seed, const std::vector<pd::Method>& methods, bool details,
+                     bool traced) {
   struct Model {
     const char* file;
     double region;  // fraction of the bounding-box diagonal
@@ -222,7 +239,9 @@ int run_random_pulls(int per_model, unsigned seed, const std::vector<pd::Method>
       References references;
       for (const pd::Method method : methods) {
         std::string refusal;
-        const std::optional<pd::DeformResult> solved = default_solve(p, method, refusal);
+        Trace trace;
+        const std::optional<pd::DeformResult> solved =
+            default_solve(p, method, refusal, traced ? &trace : nullptr);
         if (!solved) {
           std::printf("%-22s %5d %6zu %-8s | refused: %.60s\n", path.filename().c_str(), pull, p.roi.size(),
                       std::string(pd::method_name(method)).c_str(), refusal.c_str());
@@ -243,6 +262,15 @@ int run_random_pulls(int per_model, unsigned seed, const std::vector<pd::Method>
                     p.roi.size(), std::string(pd::method_name(method)).c_str(), r.iterations,
                     r.converged ? " " : "*", estimate, truth, truth / estimate,
                     dishonest ? "   <-- optimistic > 2x" : "");
+        if (traced) {  // the first iteration whose true distance is within the tolerance, and the estimate
+                       // then
+          int first = -1;
+          for (size_t k = 0; k < trace.V.size() && first < 0; ++k)
+            if (true_error(*trace.V[k], reference.V, p.d) <= pd::DeformOptions{}.tolerance) first = int(k);
+          std::printf("    trace: within the tolerance from iteration %d (estimate then %.1e, move %.1e)\n",
+                      first + 1, first >= 0 ? trace.estimate[size_t(first)] : NAN,
+                      first >= 0 ? trace.move[size_t(first)] : NAN);
+        }
         std::fflush(stdout);
       }
     }
@@ -258,7 +286,7 @@ int run_random_pulls(int per_model, unsigned seed, const std::vector<pd::Method>
 }  // namespace
 
 int main(int argc, char** argv) {
-  bool quick = false, details = false;
+  bool quick = false, details = false, traced = false;
   int random_pulls = 0;
   unsigned seed = 20261202;
   std::vector<pd::Method> methods;
@@ -273,6 +301,8 @@ int main(int argc, char** argv) {
       }
     } else if (std::strcmp(argv[a], "--details") == 0) {
       details = true;
+    } else if (std::strcmp(argv[a], "--trace") == 0) {
+      traced = true;
     } else if (std::strcmp(argv[a], "--seed") == 0 && a + 1 < argc) {
       seed = static_cast<unsigned>(std::strtoul(argv[++a], nullptr, 10));
     } else if (std::strcmp(argv[a], "--method") == 0 && a + 1 < argc) {
@@ -284,8 +314,8 @@ int main(int argc, char** argv) {
       }
     } else {
       std::fprintf(stderr,
-                   "usage: stopping_bench [--quick] [--random-pulls N [--seed S] [--details]] [--method "
-                   "NAME]...\n");
+                   "usage: stopping_bench [--quick] [--random-pulls N [--seed S] [--details] [--trace]] "
+                   "[--method NAME]...\n");
       return 2;
     }
   }
@@ -294,7 +324,8 @@ int main(int argc, char** argv) {
 #ifdef PUSHPULL_BENCH_WITH_ASSETS
     const int dishonest = run_random_pulls(
         random_pulls, seed,
-        methods.empty() ? std::vector<pd::Method>{pd::Method::Asan, pd::Method::ArapSR} : methods, details);
+        methods.empty() ? std::vector<pd::Method>{pd::Method::Asan, pd::Method::ArapSR} : methods, details,
+        traced);
     std::printf("\n%d run(s) failed the honesty check\n", dishonest);
     return 0;
 #else
