@@ -76,7 +76,7 @@ std::vector<std::string> runtime_vulkan_extensions(XrInstance instance, XrSystem
   std::string name;
   for (const char c : buffer + ' ') {
     if (c == ' ' || c == '\0') {
-      if (!name.empty()) names.push_back(name);
+      if (!name.empty() && std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
       name.clear();
     } else {
       name += c;
@@ -136,6 +136,11 @@ void append_listed(std::vector<VkExtensionProperties>& listed, Enumerate enumera
                  lacking + " does not offer: " + own_missing;
     throw RuntimeUnavailable(message + " (update the GPU driver)", XR_ERROR_RUNTIME_FAILURE);
   }
+  if (vr == VK_ERROR_EXTENSION_NOT_PRESENT)  // XR_KHR_vulkan_enable2: the runtime added some out of sight
+    throw RuntimeUnavailable("the OpenXR runtime \"" + runtime_name + "\" asked " + lacking + " for Vulkan " +
+                                 what + " it does not offer (" + call + ": " + vk_result_name(vr) +
+                                 "; update the GPU driver)",
+                             XR_ERROR_RUNTIME_FAILURE);
   throw XrError(
       std::string(file) + ":" + std::to_string(line) + ": " + call + " failed with " + vk_result_name(vr),
       XR_ERROR_RUNTIME_FAILURE);
@@ -179,6 +184,19 @@ std::vector<VkExtensionProperties> listed_device_extensions(VkPhysicalDevice dev
     return vkEnumerateDeviceExtensionProperties(device, nullptr, n, p);
   });
   return listed;
+}
+
+// A GPU's VkPhysicalDeviceIDProperties::deviceUUID (Vulkan 1.1).
+std::array<uint8_t, VK_UUID_SIZE> device_uuid(VkPhysicalDevice device) {
+  VkPhysicalDeviceIDProperties id{};
+  id.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ID_PROPERTIES;
+  VkPhysicalDeviceProperties2 properties{};
+  properties.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2;
+  properties.pNext = &id;
+  vkGetPhysicalDeviceProperties2(device, &properties);
+  std::array<uint8_t, VK_UUID_SIZE> uuid{};
+  std::copy(std::begin(id.deviceUUID), std::end(id.deviceUUID), uuid.begin());
+  return uuid;
 }
 
 template <class Fn>
@@ -349,7 +367,7 @@ struct Session::Impl {
           return r;
         },
         [&] { return listed_device_extensions(vk.physical_device); }, "vkCreateDevice", "device extensions",
-        "its GPU", runtime_name);
+        "the runtime's GPU", runtime_name);
   }
 
   void create_vulkan(const SessionOptions& options) {
@@ -381,7 +399,9 @@ struct Session::Impl {
     // newer instance (apiVersion is the newest version the application uses, the GPU decides below).
     const uint32_t min_major = uint32_t(XR_VERSION_MAJOR(req.minApiVersionSupported));
     const uint32_t min_minor = uint32_t(XR_VERSION_MINOR(req.minApiVersionSupported));
-    if (min_major > 1 || (min_major == 1 && min_minor > 3)) {
+    // (Vulkan packs major in 7 bits and minor in 10: a value beyond them is malformed and left alone.)
+    if ((min_major > 1 || (min_major == 1 && min_minor > 3)) && min_major < 128 && min_minor < 1024 &&
+        req.minApiVersionSupported <= req.maxApiVersionSupported) {
       std::fprintf(stderr,
                    "pushpull: note: the OpenXR runtime supports Vulkan %u.%u and newer; pushpull's Vulkan "
                    "instance asks for %u.%u (it uses 1.3)\n",
@@ -473,7 +493,7 @@ struct Session::Impl {
         vk.device = VK_NULL_HANDLE;
         throw_vulkan_create_failure(vr, "vkCreateDevice through xrCreateVulkanDeviceKHR", __FILE__, __LINE__,
                                     device_extensions, {}, listed_device_extensions(vk.physical_device),
-                                    "device extensions", "its GPU", runtime_name);
+                                    "device extensions", "the runtime's GPU", runtime_name);
       }
     } else {
       create_vk_device_v1(dci);
@@ -776,9 +796,10 @@ bool Session::recreate_after_loss(double timeout_s, const std::function<bool()>&
                       std::to_string(s.system) + "): the Vulkan device belongs to the old one; start again",
                   XR_ERROR_SYSTEM_INVALID);
   (void)s.graphics_requirements();
-  // The runtime may also name the GPU again (the spec asks for the call before a session); the device
-  // pushpull renders with must still be that one.
-  if (s.runtime_physical_device() != s.vk.physical_device)
+  // The GPU the runtime names now must still be the one pushpull's device was made on. Compared by its UUID:
+  // Vulkan does not promise the same VkPhysicalDevice handle on every enumeration (older loaders rebuilt
+  // them).
+  if (device_uuid(s.runtime_physical_device()) != device_uuid(s.vk.physical_device))
     throw XrError("the OpenXR runtime \"" + s.runtime_name +
                       "\" renders on another GPU since the session was lost: the Vulkan device belongs to "
                       "the old one; start again",
