@@ -269,6 +269,8 @@ void run_review(const ReviewCommandOptions& o) {
     FrameStats stats;
     SizeSteering sizes;
     const bool format_6 = o.behaviour_of_format >= 6;
+    const bool format_7 = o.behaviour_of_format >= 7;
+    bool trackpad_steps = false;  // the right hand's "thumbstick" is a trackpad (size_steering.hpp; format 7)
     GrabPlacement grab(placement, /*scale_on_floor=*/format_6);
     AnchorSchedule anchor_schedule(o.recorded_anchor);  // when the model moves in front of the reviewer
     ReviewMenu menu;
@@ -411,8 +413,10 @@ void run_review(const ReviewCommandOptions& o) {
                 Eigen::Quaterniond(l.orientation.w, l.orientation.x, l.orientation.y, l.orientation.z) *
                 Eigen::Vector3d(0.0, 0.0, -1.0);
           }
+          const std::string profile = input->current_profile(xr::Hand::Right);
+          trackpad_steps = format_7 && profile == kTrackpadProfile;
           recorder.write_frame_input(t, head, {input->hand(xr::Hand::Left), input->hand(xr::Hand::Right)},
-                                     input->current_profile(xr::Hand::Right));
+                                     profile);
           // The model in front of the reviewer, wherever they stand (head_anchor.hpp): once per review, at
           // the first frame whose head position is located (live; a headset tracked in orientation only never
           // is), or at the recorded frame (replay).
@@ -476,8 +480,17 @@ void run_review(const ReviewCommandOptions& o) {
         }
         // The method and colour-map panel (menu button): opens in front of the reviewer; while open the right
         // stick chooses, the trigger applies, and nothing is pushed or pulled.
+        // A trackpad's click on its rim steps the sizes instead (size_steering.hpp).
         for (int h = 0; h < 2 && !interaction.dragging(); ++h) {
-          if (!input->hand(xr::Hand(h)).menu_pressed) continue;
+          const xr::HandInput& pressed = input->hand(xr::Hand(h));
+          if (!pressed.menu_pressed) continue;
+          if (trackpad_steps && h == int(xr::Hand::Right) && !menu.is_open()) {
+            if (const auto step = trackpad_click_step(pressed.thumbstick.x, pressed.thumbstick.y)) {
+              interaction.scale_sizes(step->handle, step->region);
+              report_sizes(interaction, log, life, !o.quiet);
+              break;
+            }
+          }
           menu.toggle(interaction.method());
           if (menu.is_open()) {  // 0.5 m along the gaze, centred on it, where it was opened (world-locked)
             menu_label.set_text(menu.lines(interaction.method(), scene.colour()), menu.selected_line());
@@ -576,7 +589,7 @@ void run_review(const ReviewCommandOptions& o) {
         {
           const XrVector2f stick = input->hand(xr::Hand::Right).thumbstick;
           sizes.frame(interaction, stick.x, stick.y, recording_frame_period_s(double(recording_rate_hz)),
-                      !menu.is_open(), log, life, !o.quiet);
+                      !menu.is_open() && !trackpad_steps, log, life, !o.quiet);
         }
         // Replay: a frame that is kept shows the solver's settled state, not whichever preview timing left.
         if (o.settle_drawn_frames && frame.should_render && o.draw_frame && o.draw_frame(t))

@@ -27,6 +27,16 @@ void report_sizes(const ReviewInteraction& interaction, EventLog& log, const Lif
                 life.to_mm(interaction.handle_radius()), life.to_mm(interaction.roi_radius()));
 }
 
+std::optional<SizeFactors> trackpad_click_step(float x, float y) {
+  if (x * x + y * y < 0.25f) return std::nullopt;
+  SizeFactors f;
+  if (std::abs(y) >= std::abs(x))
+    f.handle = y > 0.0f ? kSizeStep : 1.0 / kSizeStep;
+  else
+    f.region = x > 0.0f ? kSizeStep : 1.0 / kSizeStep;
+  return f;
+}
+
 double recording_frame_period_s(double rate_hz) {
   return double(std::int64_t(1e9 / rate_hz)) * 1e-9;
 }

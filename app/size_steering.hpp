@@ -6,6 +6,8 @@
 // once the stick is back at rest. Thread-safety: the loop's thread.
 #pragma once
 
+#include <optional>
+
 #include "life_size.hpp"
 #include "review_interaction.hpp"
 #include "review_setup.hpp"
@@ -33,5 +35,17 @@ void report_sizes(const ReviewInteraction& interaction, EventLog& log, const Lif
 
 // One press of the desktop's size keys scales a radius by this.
 inline constexpr double kSizeStep = 1.25;
+
+// A trackpad (htc/vive) reads a position whenever a thumb rests on it, so it does not steer the sizes: a
+// click on its rim steps them, kSizeStep a click (top/bottom: the handle up/down, right/left: the region),
+// and a click within 0.5 of its centre is the menu button. (x, y): the trackpad where it was clicked, -1..1.
+// Returns the factors {handle, region}, or nullopt for a centre click.
+struct SizeFactors {
+  double handle = 1.0, region = 1.0;
+};
+[[nodiscard]] std::optional<SizeFactors> trackpad_click_step(float x, float y);
+
+// The interaction profile whose thumbstick action is a trackpad.
+inline constexpr const char* kTrackpadProfile = "/interaction_profiles/htc/vive_controller";
 
 }  // namespace pushpull::app

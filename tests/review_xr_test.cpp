@@ -1019,6 +1019,38 @@ TEST(ReviewXr, ThumbstickBetweenDragsScalesHandleAndRegion) {
   EXPECT_NEAR(double(sizes[0].at("roi_radius")), 0.45, 0.05);    // 0.9 m halved
 }
 
+// A Vive trackpad reads a position whenever the thumb rests on it: resting does not resize, a click on its
+// rim steps the handle (top) by 1.25, a click in its centre opens the panel (whose choice the trigger
+// applies), and the recording replays.
+TEST(ReviewXr, ViveTrackpadStepsSizesByRimClicksAndOpensThePanelInItsCentre) {
+  const fs::path dir = test_dir();
+  const std::string pad = "/user/hand/right/input/trackpad";
+  const std::string script = R"({"t":0.0,"path":")" + pad + R"(","value":[0.0,0.0]}
+{"t":0.5,"path":")" + pad + R"(","value":[0.0,0.9]}
+{"t":1.5,"path":")" + pad + R"(/click","value":1.0}
+{"t":1.6,"path":")" + pad + R"(/click","value":0.0}
+{"t":1.7,"path":")" + pad + R"(","value":[0.0,0.0]}
+{"t":1.8,"path":")" + pad + R"(/click","value":1.0}
+{"t":1.9,"path":")" + pad + R"(/click","value":0.0}
+{"t":2.0,"path":")" + pad + R"(","value":[0.0,1.0]}
+{"t":2.1,"path":")" + pad + R"(","value":[0.0,0.0]}
+{"t":2.2,"path":"/user/hand/right/input/trigger/value","value":1.0}
+{"t":2.3,"path":"/user/hand/right/input/trigger/value","value":0.0}
+{"t":2.6,"event":"exit"}
+)";
+  const fs::path recording = dir / "session.jsonl";
+  const ReviewRun run = run_review(dir, script, "--record " + recording.string(),
+                                   "PUSHPULL_XR_SIM_PROFILE=/interaction_profiles/htc/vive_controller");
+  ASSERT_EQ(run.result.status, 0) << run.result.output;
+  const auto sizes = run.of("sizes");
+  ASSERT_EQ(sizes.size(), 1u) << run.result.output;  // the click; a second of resting thumb changed nothing
+  EXPECT_EQ(double(sizes[0].at("handle_radius")), 0.25 * 1.25);
+  EXPECT_EQ(double(sizes[0].at("roi_radius")), 0.9);
+  EXPECT_EQ(recording_records(recording, "method").size(), 1u) << "the centre click opened the panel";
+  EXPECT_EQ(run.of("press").size(), 0u) << "the trigger was the panel's";
+  expect_replays_with_commits(recording, 0);
+}
+
 // The headset's own panel and readouts: aiming shows the handle-to-be and a readout by the hand; the menu
 // button opens the method panel, the stick moves to the row above the current method, the trigger applies it
 // (and does not push or pull while the panel is open); the next push/pull is solved with that method.
@@ -1419,7 +1451,7 @@ wait $pid
     std::ifstream in(recording);
     std::ofstream o(legacy);
     for (std::string line; std::getline(in, line);) {
-      if (const auto at = line.find("pushpull-session-6"); at != std::string::npos) line[at + 17] = '3';
+      if (const auto at = line.find("pushpull-session-7"); at != std::string::npos) line[at + 17] = '3';
       if (line.find("\"record\":\"colour\"") == std::string::npos) {
         o << line << "\n";
         continue;
