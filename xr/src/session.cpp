@@ -336,6 +336,22 @@ struct Session::Impl {
     return device;
   }
 
+  // XR_KHR_vulkan_enable2: the runtime's `name` (xrCreateVulkanInstanceKHR / xrCreateVulkanDeviceKHR) runs
+  // `vk_call` for xinfo into `handle`; a failed VkResult leaves it null and is told by
+  // throw_vulkan_create_failure (pushpull's extensions `own` against listed(); the runtime's are unknown).
+  template <class Pfn, class XrInfo, class Handle, class Listed>
+  void create_through_runtime(const char* name, const char* vk_call, const XrInfo& xinfo, Handle& handle,
+                              const std::vector<const char*>& own, Listed listed, const char* what,
+                              const char* lacking) {
+    VkResult vr = VK_ERROR_UNKNOWN;
+    check_xr(instance_function<Pfn>(instance, name)(instance, &xinfo, &handle, &vr), instance, name, __FILE__,
+             __LINE__);
+    if (vr == VK_SUCCESS) return;
+    handle = VK_NULL_HANDLE;
+    throw_vulkan_create_failure(vr, std::string(vk_call) + " through " + name, __FILE__, __LINE__, own, {},
+                                listed(), what, lacking, runtime_name);
+  }
+
   // XR_KHR_vulkan_enable: vkCreateInstance with the runtime's instance extensions added to `vci`'s.
   void create_vk_instance_v1(const VkInstanceCreateInfo& vci) {
     create_with_runtime_extensions(
@@ -419,22 +435,14 @@ struct Session::Impl {
     for (const auto& l : options.vulkan_layers) layers.push_back(l.c_str());
     vci.enabledLayerCount = uint32_t(layers.size());
     vci.ppEnabledLayerNames = layers.data();
-    VkResult vr = VK_ERROR_UNKNOWN;
     if (vulkan_enable2) {
       XrVulkanInstanceCreateInfoKHR xci{XR_TYPE_VULKAN_INSTANCE_CREATE_INFO_KHR};
       xci.systemId = system;
       xci.pfnGetInstanceProcAddr = &vkGetInstanceProcAddr;
       xci.vulkanCreateInfo = &vci;
-      const char* name = "xrCreateVulkanInstanceKHR";
-      check_xr(
-          instance_function<PFN_xrCreateVulkanInstanceKHR>(instance, name)(instance, &xci, &vk.instance, &vr),
-          instance, name, __FILE__, __LINE__);
-      if (vr != VK_SUCCESS) {
-        vk.instance = VK_NULL_HANDLE;
-        throw_vulkan_create_failure(vr, "vkCreateInstance through xrCreateVulkanInstanceKHR", __FILE__,
-                                    __LINE__, instance_extensions, {}, listed_instance_extensions(vci),
-                                    "instance extensions", "the Vulkan driver", runtime_name);
-      }
+      create_through_runtime<PFN_xrCreateVulkanInstanceKHR>(
+          "xrCreateVulkanInstanceKHR", "vkCreateInstance", xci, vk.instance, instance_extensions,
+          [&] { return listed_instance_extensions(vci); }, "instance extensions", "the Vulkan driver");
     } else {
       create_vk_instance_v1(vci);
     }
@@ -485,16 +493,10 @@ struct Session::Impl {
       xdci.pfnGetInstanceProcAddr = &vkGetInstanceProcAddr;
       xdci.vulkanPhysicalDevice = vk.physical_device;
       xdci.vulkanCreateInfo = &dci;
-      const char* name = "xrCreateVulkanDeviceKHR";
-      check_xr(
-          instance_function<PFN_xrCreateVulkanDeviceKHR>(instance, name)(instance, &xdci, &vk.device, &vr),
-          instance, name, __FILE__, __LINE__);
-      if (vr != VK_SUCCESS) {
-        vk.device = VK_NULL_HANDLE;
-        throw_vulkan_create_failure(vr, "vkCreateDevice through xrCreateVulkanDeviceKHR", __FILE__, __LINE__,
-                                    device_extensions, {}, listed_device_extensions(vk.physical_device),
-                                    "device extensions", "the runtime's GPU", runtime_name);
-      }
+      create_through_runtime<PFN_xrCreateVulkanDeviceKHR>(
+          "xrCreateVulkanDeviceKHR", "vkCreateDevice", xdci, vk.device, device_extensions,
+          [&] { return listed_device_extensions(vk.physical_device); }, "device extensions",
+          "the runtime's GPU");
     } else {
       create_vk_device_v1(dci);
     }
