@@ -164,6 +164,18 @@ void Deformer::Impl::setup() {
     global_to_local[static_cast<std::size_t>(local_to_global[static_cast<std::size_t>(i)])] = i;
     P.col(i) = m.V.row(local_to_global[static_cast<std::size_t>(i)]).transpose();
   }
+  // The origin: the centroid, rounded to a multiple of a power of two near a sixteenth of the region's
+  // extent, so that a model moved by a multiple of that step (e.g. 1024 m) gives the same centred positions,
+  // hence the same solve, bit for bit (subtractions of nearby multiples of a power of two are exact).
+  if (n > 0) {
+    const double extent = (P.rowwise().maxCoeff() - P.rowwise().minCoeff()).maxCoeff();
+    const Eigen::Vector3d centroid = P.rowwise().mean();
+    if (extent > 0.0 && std::isfinite(extent) && centroid.allFinite()) {
+      const double step = std::ldexp(1.0, std::ilogb(extent) - 4);
+      origin = (centroid / step).array().round().matrix() * step;
+    }
+  }
+  P.colwise() -= origin;
   faces.resize(static_cast<Eigen::Index>(omega_faces.size()), 3);
   for (std::size_t k = 0; k < omega_faces.size(); ++k) {
     for (int c = 0; c < 3; ++c) {
@@ -264,8 +276,10 @@ double Deformer::Impl::prepare_weights(const Eigen::Vector3d& push_direction,
 
 Eigen::MatrixXd Deformer::Impl::to_full(const Eigen::Matrix3Xd& X) const {
   Eigen::MatrixXd V = mesh->V;
-  for (Eigen::Index i = 0; i < X.cols(); ++i)
-    V.row(local_to_global[static_cast<std::size_t>(i)]) = X.col(i).transpose();
+  for (int i = 0; i < n_free; ++i)
+    V.row(local_to_global[static_cast<std::size_t>(i)]) = (X.col(i) + origin).transpose();
+  for (Eigen::Index k = 0; k < constrained_model.cols(); ++k)
+    V.row(local_to_global[static_cast<std::size_t>(n_free + k)]) = constrained_model.col(k).transpose();
   return V;
 }
 
@@ -334,15 +348,23 @@ DeformResult Deformer::solve(const ConstraintTargets& targets, const ProgressCal
                                 std::to_string(*targets.rate_hint));
   }
   const int nc = s.n_handle + s.n_fixed + s.n_pinned;
-  Eigen::Matrix3Xd X_c = s.P.rightCols(nc);
-  X_c.leftCols(s.n_handle) = targets.handle_positions.transpose();
+  // Model coordinates, then relative to the solver's origin.
+  s.constrained_model.resize(3, nc);
+  for (int k = 0; k < nc; ++k)
+    s.constrained_model.col(k) =
+        s.mesh->V.row(s.local_to_global[static_cast<std::size_t>(s.n_free + k)]).transpose();
+  s.constrained_model.leftCols(s.n_handle) = targets.handle_positions.transpose();
   if (targets.fixed_positions.size() != 0)
-    X_c.middleCols(s.n_handle, s.n_fixed) = targets.fixed_positions.transpose();
+    s.constrained_model.middleCols(s.n_handle, s.n_fixed) = targets.fixed_positions.transpose();
+  Eigen::Matrix3Xd X_c = s.constrained_model.colwise() - s.origin;
   Eigen::Vector3d push = Eigen::Vector3d::Zero();
   if (targets.push_direction) {
     push = *targets.push_direction;
   } else {
-    push = (X_c.leftCols(s.n_handle) - s.P.middleCols(s.n_free, s.n_handle)).rowwise().mean();
+    for (int k = 0; k < s.n_handle; ++k)
+      push += s.constrained_model.col(k) -
+              s.mesh->V.row(s.local_to_global[static_cast<std::size_t>(s.n_free + k)]).transpose();
+    if (s.n_handle > 0) push /= s.n_handle;
   }
   DeformResult result = s.run(X_c, push, targets.initial_guess, targets.rate_hint, targets.rate_hint_settled,
                               progress ? progress : s.options.progress);
@@ -373,7 +395,7 @@ double Deformer::energy(const Eigen::MatrixXd& V) const {
     throw std::invalid_argument("deformer: energy needs #V by 3 positions");
   Eigen::Matrix3Xd X(3, s.P.cols());
   for (Eigen::Index i = 0; i < X.cols(); ++i)
-    X.col(i) = V.row(s.local_to_global[static_cast<std::size_t>(i)]).transpose();
+    X.col(i) = V.row(s.local_to_global[static_cast<std::size_t>(i)]).transpose() - s.origin;
   std::vector<Eigen::Matrix3d> R(static_cast<std::size_t>(s.model.cluster_count),
                                  Eigen::Matrix3d::Identity());
   std::vector<Eigen::Quaterniond> q(R.size(), Eigen::Quaterniond::Identity());

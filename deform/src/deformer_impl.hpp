@@ -27,7 +27,16 @@ struct Deformer::Impl {
   // Local numbering of Omega: [0, n_free) free, then handle, fixed, pinned (constrained, in that order).
   std::vector<int> local_to_global;
   int n_free = 0, n_handle = 0, n_fixed = 0, n_pinned = 0;
-  Eigen::Matrix3Xd P;      // 3 by n rest positions
+  // Rest positions relative to `origin`, the region's centroid on a coarse grid (model units; deformer.cpp),
+  // as are the solver's iterates:
+  // with the model's own coordinates a region far from the model's origin lost digits in tr(X Q X^T) (the
+  // energy the Anderson safeguard compares) and in asan's stretched copy; the bonnet (examples/hood.off)
+  // moved 3 m from its origin took 158 asan iterations instead of 117, 100 km off 663.
+  Eigen::Matrix3Xd P;  // 3 by n
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+  // The constrained vertices' positions of the current solve in model coordinates (3 by n - n_free: handle
+  // targets, fixed targets or rest, pinned at rest), written back as given so that they round-trip exactly.
+  Eigen::Matrix3Xd constrained_model;
   Eigen::MatrixX3i faces;  // Omega's triangles in local indices
   Eigen::VectorXd rest_half_cot;
   double mollify_eps = 0.0;  // triangle-inequality margin of the mollified weights (cotangent.hpp)
@@ -67,6 +76,8 @@ struct Deformer::Impl {
   // `threads`, when given, splits the triangular solves over two threads (same results as without).
   void global_step(const Eigen::Matrix3Xd& B, const Eigen::Matrix3Xd& rhs_c, double constrained_quadratic,
                    Eigen::Matrix3Xd& G, double& quadratic, detail::HelperThread* threads = nullptr) const;
+  // Whole-mesh positions (model coordinates): the free columns of X (relative to origin) and
+  // constrained_model.
   [[nodiscard]] Eigen::MatrixXd to_full(const Eigen::Matrix3Xd& X) const;
   // rate_hint, rate_hint_settled: ConstraintTargets' (with a warm start).
   DeformResult run(const Eigen::Matrix3Xd& X_c, const Eigen::Vector3d& push_direction,

@@ -63,7 +63,7 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
   Eigen::Matrix3Xd X = P;
   if (initial_guess.size() != 0) {
     for (int i = 0; i < n_free; ++i)
-      X.col(i) = initial_guess.row(local_to_global[static_cast<std::size_t>(i)]).transpose();
+      X.col(i) = initial_guess.row(local_to_global[static_cast<std::size_t>(i)]).transpose() - origin;
   }
   X.rightCols(n - n_free) = X_c;
 
