@@ -160,11 +160,37 @@ AttachedParts::AttachedParts(const Mesh& rest, const RegionOfInterest& roi, cons
     offset_.push_back(p - hit->point);
   }
   // How a part rides (see the header): on the surface when nearly all of its vertices lie within reach of
-  // the solved surface, else as a rigid whole when the surface under it moves coherently.
+  // the solved surface, else as a rigid whole when the surface under it moves coherently, unless it is
+  // larger than the region (the body is no part of a windscreen).
+  const double region_size = (hi - lo).norm();
+  std::vector<int> kept_index(parts_.size(), -1);
+  std::vector<AttachedPart> kept;
   for (std::size_t k = 0; k < parts_.size(); ++k) {
     parts_[k].on_surface = static_cast<double>(near[k]) >=
                            kOnSurfaceShare * static_cast<double>(parts_[k].vertices.size());
+    Eigen::Vector3d part_lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()),
+                    part_hi = -part_lo;
+    for (const int v : parts_[k].vertices) {
+      part_lo = part_lo.cwiseMin(rest.V.row(v).transpose());
+      part_hi = part_hi.cwiseMax(rest.V.row(v).transpose());
+    }
+    if (!parts_[k].on_surface && (part_hi - part_lo).norm() > region_size) continue;
+    kept_index[k] = static_cast<int>(kept.size());
+    kept.push_back(std::move(parts_[k]));
   }
+  if (kept.size() != parts_.size()) {  // drop the bindings of the parts left out
+    std::size_t out = 0;
+    for (std::size_t b = 0; b < bound_vertex_.size(); ++b) {
+      const int part = kept_index[static_cast<std::size_t>(bound_part_[b])];
+      if (part < 0) continue;
+      bound_vertex_[out] = bound_vertex_[b], bound_part_[out] = part, carrier_face_[out] = carrier_face_[b];
+      carrier_slot_[out] = carrier_slot_[b], bary_[out] = bary_[b], offset_[out] = offset_[b];
+      ++out;
+    }
+    bound_vertex_.resize(out), bound_part_.resize(out), carrier_face_.resize(out);
+    carrier_slot_.resize(out), bary_.resize(out), offset_.resize(out);
+  }
+  parts_ = std::move(kept);
 }
 
 void AttachedParts::apply(Eigen::MatrixXd& V) const {

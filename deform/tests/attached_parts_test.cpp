@@ -96,6 +96,27 @@ TEST(AttachedParts, PartOverAnUnmovedTriangleKeepsItsExactValues) {
   EXPECT_EQ(V, s.mesh.V);
 }
 
+// Grabbing a part itself (a windscreen, a lamp: the region is its whole component, no border to hold it)
+// moves that part; the body under it is no part of it and stays. Before the body counted as a part lying near
+// the region, every one of its vertices bound to the grabbed part, and it moved with it as one rigid piece.
+TEST(AttachedParts, ABodyLargerThanTheRegionDoesNotFollowAGrabbedPart) {
+  const Scene s = make_scene();
+  std::vector<int> handle;
+  for (int v = s.plate_first; v < s.plate_first + s.plate_count; ++v)
+    if (std::abs(s.mesh.V(v, 0)) < 0.06) handle.push_back(v);
+  const RegionOfInterest roi = build_roi(s.mesh, handle, {}, 1.0);  // the whole plate, nothing fixed
+  const AttachedParts parts(s.mesh, roi);
+  EXPECT_TRUE(parts.parts().empty());  // the body is 20x the plate; the badge is out of reach
+
+  DeformOptions options;
+  options.method = Method::Asan;
+  Deformer deformer(std::make_shared<const Mesh>(s.mesh), roi, options);
+  Eigen::MatrixXd V = deformer.solve(Eigen::Vector3d(0.0, 0.0, 0.1)).V;
+  EXPECT_NEAR(V(s.plate_first, 2) - s.mesh.V(s.plate_first, 2), 0.1, 1e-9);  // the plate moved whole
+  parts.apply(V);
+  EXPECT_EQ(V.topRows(s.body_vertices), s.mesh.V.topRows(s.body_vertices));
+}
+
 TEST(AttachedParts, MismatchedRegionIsRefused) {
   const Scene s = make_scene();
   RegionOfInterest roi;

@@ -8,7 +8,11 @@
 //
 // - Which parts: every component with no vertex in the region that has a vertex within `reach` of a region
 //   triangle at rest. A component is either solved (it holds region vertices) or moves whole: no part is
-//   ever split between moving and staying.
+//   ever split between moving and staying. A part that does not lie on the surface (below) and is larger than
+//   the region (bounding-box diagonals at rest) is left out: a reviewer who grabs a windscreen or a lamp (the
+//   region is then that whole component, with no border to hold it) moves that part, and the car's body under
+//   it, within reach but no part of it, used to follow it as one rigid piece (the ToyCar's windscreen lifted
+//   the whole body by the pull).
 // - How, for a part lying on the surface (at least 90% of its vertices within reach of the solved surface:
 //   a lamp lens, a plate, a trim, a window): each vertex binds to its closest point on the carrier surface
 //   (all triangles of the solved components, moving or not) as that triangle, its barycentric coordinates
