@@ -1,5 +1,7 @@
 #include "review_interaction.hpp"
 
+#include "solver_state.hpp"
+
 #include <glm/vec3.hpp>
 
 #include <algorithm>
@@ -36,7 +38,7 @@ std::vector<std::string> readout_lines(const ReviewInteraction& interaction, con
   }
   std::snprintf(a, sizeof a, "|d| %.1f mm", life.to_mm(interaction.current_d().norm()));
   if (s.kind == deform::Snapshot::Kind::Error) return {a, method + "  error:", error_gist(s.error)};
-  std::snprintf(b, sizeof b, "%s  %d it  %s", method.c_str(), s.iteration, solver_state(s));
+  std::snprintf(b, sizeof b, "%s  %d it  %s", method.c_str(), drag_iterations(s), solver_state(s));
   std::vector<std::string> lines{a, b};
   if (!notice.empty()) lines.push_back(notice);  // e.g. a key pressed mid-drag
   // A pull much longer than the handle is wide makes a spike, not a bulge: said while there is time to let go
@@ -55,10 +57,6 @@ std::vector<std::string> readout_lines(const ReviewInteraction& interaction, con
     lines.emplace_back(c);
   }
   return lines;
-}
-
-const char* solver_state(const deform::Snapshot& s) {
-  return s.final ? (s.converged ? "converged" : "not converged") : "solving";
 }
 
 deform::Method next_method(deform::Method method) {

@@ -73,10 +73,6 @@ inline constexpr double kOvershoot = 1.5;
                                                      const deform::Snapshot& s, const LifeSize& life,
                                                      bool press_held = false, const std::string& notice = "");
 
-// The solver's state in a snapshot, as the readouts say it: "solving" until it is final, then "converged" or
-// "not converged".
-[[nodiscard]] const char* solver_state(const deform::Snapshot& s);
-
 // The method after `method` in deform::kAllMethods, the first after the last (a key cycles through them).
 [[nodiscard]] deform::Method next_method(deform::Method method);
 

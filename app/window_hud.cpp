@@ -1,5 +1,7 @@
 #include "window_hud.hpp"
 
+#include "solver_state.hpp"
+
 #include <cstdio>
 
 namespace pushpull::app {
@@ -20,7 +22,8 @@ std::vector<std::string> window_hud_lines(const ReviewInteraction& interaction,
     std::snprintf(state, sizeof state, "%s  error: %s", method.c_str(), error_gist(snapshot.error).c_str());
   } else if (interaction.dragging()) {
     std::snprintf(state, sizeof state, "%s  |d| %.1f mm  %d it  %s", method.c_str(),
-                  life.to_mm(interaction.current_d().norm()), snapshot.iteration, solver_state(snapshot));
+                  life.to_mm(interaction.current_d().norm()), drag_iterations(snapshot),
+                  solver_state(snapshot));
   } else if (!snapshot.final) {
     std::snprintf(state, sizeof state, "%s  solving  %d it", method.c_str(), snapshot.iteration);
   } else {
@@ -50,8 +53,9 @@ std::string window_title(const std::string& name, deform::Method method, bool dr
   char text[320];
   if (dragging)
     std::snprintf(text, sizeof text, "%s | %s (dragging) | |d| %.1f mm | %d it %s | %s", name.c_str(),
-                  std::string(deform::method_name(method)).c_str(), life.to_mm(snapshot.d.norm()),
-                  snapshot.iteration, snapshot.converged ? "converged" : "not converged", colour.c_str());
+                  std::string(deform::method_name(method)).c_str(),
+                  life.to_mm(is_drag_preview(snapshot) ? snapshot.d.norm() : 0.0), drag_iterations(snapshot),
+                  solver_state(snapshot), colour.c_str());
   else
     std::snprintf(text, sizeof text, "%s | %s | %s | %s", name.c_str(),
                   std::string(deform::method_name(method)).c_str(),
