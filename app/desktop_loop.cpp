@@ -2,6 +2,7 @@
 
 #include "commands.hpp"
 #include "commit_reports.hpp"
+#include "frame_stats.hpp"
 #include "hand_sample.hpp"
 #include "history_steps.hpp"
 #include "interrupt_requests.hpp"
@@ -159,7 +160,11 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
     // Ctrl-C or SIGTERM: the review ends as with Esc (the committed work is written); a second one ends it at
     // once.
     const InterruptRequests interrupts;
+    FrameStats stats;  // --benchmark
+    stats.span = "window events .. present, CPU";
     while (!window.should_close() && (o.frames <= 0 || frames < o.frames)) {
+      const auto frame_start = std::chrono::steady_clock::now();
+      const double frame_start_cpu = thread_cpu_ms();
       if (interrupts.requested()) {
         std::printf("pushpull review: interrupted; ending the review (again to quit at once)\n");
         break;
@@ -282,8 +287,18 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
         take_commits();
 
         const std::shared_ptr<const deform::Snapshot> snapshot = service.latest();
+        const bool solving = interaction.dragging() || !snapshot->final;
+        if (snapshot->region)
+          stats.region_vertices = std::max(stats.region_vertices, snapshot->region->size());
         interaction.sync_committed(*snapshot);
-        scene.update(snapshot);
+        {
+          const std::uint64_t generation = scene.generation();
+          scene.update(snapshot);
+          if (scene.generation() != generation) {
+            stats.snapshot_ms += scene.last_cpu_ms();
+            ++stats.snapshots;
+          }
+        }
         // The readout by the cursor (where the press is, or where it would grab), the same size on screen at
         // any camera distance: a line about 3.5% of the view's height.
         std::vector<renderer::Draw> draws = scene.draws();
@@ -353,6 +368,13 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
             window_title("pushpull review (desktop)", interaction.method(), dragging, *snapshot, life,
                          colour_name(scene.colour()), "", history_text(), notice.text(now()));
         if (title != text) window.set_title(title = text);
+        if (frame && ++stats.frames > FrameStats::kWarmUpFrames) {
+          const double ms =
+              std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - frame_start)
+                  .count();
+          (solving ? stats.solving_ms : stats.idle_ms).push_back(ms);
+          (solving ? stats.solving_cpu_ms : stats.idle_cpu_ms).push_back(thread_cpu_ms() - frame_start_cpu);
+        }
       } catch (const std::exception& e) {
         failure = e.what();
         std::fprintf(stderr, "pushpull review: %s; ending the review (the committed work is kept)\n",
@@ -370,6 +392,7 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
     service.wait_idle();
     guarded(failure, take_commits);
     std::printf("pushpull review: desktop window presented %d frames\n", frames);
+    if (o.benchmark) stats.print();
     finish_review(failure, recorder, log, t, service, o.out, setup.model, /*print_out=*/true);
   }
   if (o.validation && context.validation_message_count() > 0)

@@ -26,11 +26,11 @@ double FrameStats::percentile(std::vector<double> v, double q) {
 void FrameStats::print() const {
   auto ratio = [](double a, double b) { return b > 0.0 ? a / b : 0.0; };
   std::printf(
-      "frame time (xrBeginFrame .. xrEndFrame, CPU; the first %zu frames left out as warm-up): "
+      "frame time (%s; the first %zu frames left out as warm-up): "
       "idle %.2f ms mean, %.2f median, %.2f p95 (%zu frames); "
       "solver running %.2f ms mean, %.2f median, %.2f p95 (%zu frames); "
       "ratio %.3f of the means, %.3f of the medians\n",
-      kWarmUpFrames, mean(idle_ms), percentile(idle_ms, 0.5), percentile(idle_ms, 0.95), idle_ms.size(),
+      span, kWarmUpFrames, mean(idle_ms), percentile(idle_ms, 0.5), percentile(idle_ms, 0.95), idle_ms.size(),
       mean(solving_ms), percentile(solving_ms, 0.5), percentile(solving_ms, 0.95), solving_ms.size(),
       ratio(mean(solving_ms), mean(idle_ms)), ratio(percentile(solving_ms, 0.5), percentile(idle_ms, 0.5)));
   std::printf(

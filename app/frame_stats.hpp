@@ -1,6 +1,7 @@
-// The headset loop's frame-time benchmark (`pushpull review --benchmark`): the work of each frame, from
-// xrWaitFrame's return to xrEndFrame's return, in wall-clock and in the frame thread's own CPU time, split by
-// whether the deformation service was solving meanwhile; printed as means, medians and 95th percentiles.
+// The review loops' frame-time benchmark (`pushpull review --benchmark`): the work of each frame (headset:
+// from xrWaitFrame's return to xrEndFrame's return; desktop: from the window's events to the present), in
+// wall-clock and in the frame thread's own CPU time, split by whether the deformation service was solving
+// meanwhile; printed as means, medians and 95th percentiles.
 //
 // Units: milliseconds. Thread-safety: one thread (the frame loop).
 #pragma once
@@ -23,6 +24,8 @@ struct FrameStats {
   size_t region_vertices = 0;                       // the largest region solved meanwhile
   double snapshot_ms = 0.0;                         // total time spent turning new snapshots into vertex data
   size_t snapshots = 0;
+  // What a frame's time spans, as the first line prints it (the headset loop's by default).
+  const char* span = "xrBeginFrame .. xrEndFrame, CPU";
   // Mean and q-quantile (0..1) of v; 0 when empty.
   static double mean(const std::vector<double>& v);
   static double percentile(std::vector<double> v, double q);
