@@ -1,5 +1,6 @@
 #include "review_interaction.hpp"
 
+#include "drag_notes.hpp"
 #include "solver_state.hpp"
 
 #include <glm/vec3.hpp>
@@ -41,21 +42,8 @@ std::vector<std::string> readout_lines(const ReviewInteraction& interaction, con
   std::snprintf(b, sizeof b, "%s  %d it  %s", method.c_str(), drag_iterations(s), solver_state(s));
   std::vector<std::string> lines{a, b};
   if (!notice.empty()) lines.push_back(notice);  // e.g. a key pressed mid-drag
-  // A pull much longer than the handle is wide makes a spike, not a bulge: said while there is time to let go
-  // and grow the handle.
-  const double ratio = interaction.current_d().norm() / std::max(interaction.handle_radius(), 1e-12);
-  char c[96];
-  if (ratio > kSteepPull) {
-    std::snprintf(c, sizeof c, "steep: %.0fx the handle radius", ratio);
-    lines.emplace_back(c);
-  }
-  // The surface moving much further than the hand (a narrow strip held at one end swings like a flap).
-  const double solved_pull = s.d.norm();  // the snapshot's own request (the hand may be ahead of it)
-  if (s.kind == deform::Snapshot::Kind::Preview && solved_pull > 0.0 &&
-      s.max_displacement > kOvershoot * solved_pull) {
-    std::snprintf(c, sizeof c, "the surface moves %.1fx the pull", s.max_displacement / solved_pull);
-    lines.emplace_back(c);
-  }
+  for (std::string& note : drag_notes(interaction.current_d().norm(), interaction.handle_radius(), s))
+    lines.push_back(std::move(note));
   return lines;
 }
 

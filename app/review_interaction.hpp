@@ -59,16 +59,11 @@ struct InteractionEvent {
 class ReviewInteraction;
 
 // The readout shown by the hand (headset) or the cursor (desktop): while dragging "|d| 70.7 mm" and the
-// method, iterations and solver state ("asan  10 it  converged", "solving", or the error); while aiming the
+// method, iterations and solver state ("asan  10 it  converged", "waiting", "solving", or the error) and the
+// drag's notes (drag_notes.hpp: steep, the surface overshooting, a whole part moving); while aiming the
 // method and the handle and region sizes, or with press_held (a press held back until the last commit lands)
 // that it waits; a notice ("nothing to undo") follows the method while aiming, and is a line of its own while
-// dragging; a further line while dragging
-// when |d| is over kSteepPull handle radii ("steep: 7x the handle radius": a spike rather than a bulge).
-// Lengths in life-size mm.
-inline constexpr double kSteepPull = 4.0;
-// ... and a line when the surface moves over kOvershoot times |d| ("the surface moves 2.0x the pull": a
-// narrow region swinging like a flap).
-inline constexpr double kOvershoot = 1.5;
+// dragging. Lengths in life-size mm.
 [[nodiscard]] std::vector<std::string> readout_lines(const ReviewInteraction& interaction,
                                                      const deform::Snapshot& s, const LifeSize& life,
                                                      bool press_held = false, const std::string& notice = "");

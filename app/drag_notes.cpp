@@ -1,0 +1,26 @@
+#include "drag_notes.hpp"
+
+#include <algorithm>
+#include <cstdio>
+
+namespace pushpull::app {
+
+std::vector<std::string> drag_notes(double pull, double handle_radius, const deform::Snapshot& s) {
+  std::vector<std::string> lines;
+  char c[96];
+  const double ratio = pull / std::max(handle_radius, 1e-12);
+  if (ratio > kSteepPull) {
+    std::snprintf(c, sizeof c, "steep: %.0fx the handle radius", ratio);
+    lines.emplace_back(c);
+  }
+  if (s.kind != deform::Snapshot::Kind::Preview) return lines;  // not this drag's yet
+  const double solved_pull = s.d.norm();  // the snapshot's own request (the hand may be ahead of it)
+  if (solved_pull > 0.0 && s.max_displacement > kOvershoot * solved_pull) {
+    std::snprintf(c, sizeof c, "the surface moves %.1fx the pull", s.max_displacement / solved_pull);
+    lines.emplace_back(c);
+  }
+  if (s.region && s.region->fixed.empty()) lines.emplace_back("the whole part moves: no border holds it");
+  return lines;
+}
+
+}  // namespace pushpull::app

@@ -1,0 +1,25 @@
+// The warnings the readouts add while dragging (by the hand, by the cursor): what the reviewer should know
+// about the push/pull under way while there is still time to let go. Lengths in model units (the ratios need
+// no unit). Thread-safety: pure functions.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "pushpull/deform/service.hpp"
+
+namespace pushpull::app {
+
+// A pull over kSteepPull handle radii makes a spike rather than a bulge ("steep: 7x the handle radius").
+inline constexpr double kSteepPull = 4.0;
+// The surface moving over kOvershoot times its pull: a narrow region swinging like a flap ("the surface moves
+// 2.0x the pull").
+inline constexpr double kOvershoot = 1.5;
+
+// The lines for a drag of |d| = pull with handles of `handle_radius`, given the newest snapshot: steep, the
+// surface moving more than the pull, and a region that is a whole part with no border to hold it (a lamp, a
+// windscreen: the part moves as one piece; "the whole part moves: no border holds it").
+[[nodiscard]] std::vector<std::string> drag_notes(double pull, double handle_radius,
+                                                  const deform::Snapshot& s);
+
+}  // namespace pushpull::app

@@ -1,0 +1,57 @@
+// app/drag_notes: the warnings a drag's readout adds (steep pull, the surface overshooting, a whole part
+// moving with no border to hold it), and none of the preview-based ones before this drag's first preview.
+#include "drag_notes.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <memory>
+#include <string>
+
+namespace pushpull::app {
+namespace {
+
+bool has(const std::vector<std::string>& lines, const std::string& start) {
+  return std::any_of(lines.begin(), lines.end(),
+                     [&](const std::string& l) { return l.rfind(start, 0) == 0; });
+}
+
+deform::Snapshot preview(double pull, double max_displacement, bool region_has_border) {
+  deform::Snapshot s;
+  s.kind = deform::Snapshot::Kind::Preview;
+  s.d = Eigen::Vector3d(0.0, 0.0, pull);
+  s.max_displacement = max_displacement;
+  auto region = std::make_shared<deform::RegionOfInterest>();
+  region->handle = {0, 1};
+  region->free = {2, 3};
+  if (region_has_border) region->fixed = {4, 5};
+  s.region = region;
+  return s;
+}
+
+TEST(DragNotes, AnOrdinaryPullSaysNothing) {
+  EXPECT_TRUE(drag_notes(0.1, 0.05, preview(0.1, 0.1, true)).empty());
+}
+
+TEST(DragNotes, ASteepPullAndAnOvershootingSurfaceAreSaid) {
+  const auto lines = drag_notes(0.25, 0.05, preview(0.25, 0.5, true));
+  EXPECT_TRUE(has(lines, "steep: 5x the handle radius"));
+  EXPECT_TRUE(has(lines, "the surface moves 2.0x the pull"));
+}
+
+TEST(DragNotes, AGrabbedWholePartIsSaidToMoveWhole) {
+  EXPECT_TRUE(has(drag_notes(0.1, 0.05, preview(0.1, 0.1, false)), "the whole part moves"));
+  EXPECT_FALSE(has(drag_notes(0.1, 0.05, preview(0.1, 0.1, true)), "the whole part moves"));
+}
+
+TEST(DragNotes, BeforeTheDragsFirstPreviewOnlyTheHandsPullCounts) {
+  deform::Snapshot committed = preview(0.1, 0.5, false);  // the previous push/pull's commit
+  committed.kind = deform::Snapshot::Kind::Committed;
+  const auto lines = drag_notes(0.3, 0.05, committed);
+  EXPECT_TRUE(has(lines, "steep"));  // the hand's |d| against the handle: known at once
+  EXPECT_FALSE(has(lines, "the surface moves"));
+  EXPECT_FALSE(has(lines, "the whole part moves"));
+}
+
+}  // namespace
+}  // namespace pushpull::app
