@@ -65,9 +65,11 @@ void add_review_command(CLI::App& root) {
   cmd->add_option("--eye-size", o->eye_size, "Per-eye image size W H (default: the runtime's recommendation)")
       ->expected(2)
       ->check(CLI::Range(16, 16384));
-  cmd->add_option("--samples", o->samples, "MSAA samples")
-      ->check(CLI::IsMember({1, 2, 4, 8}))
-      ->capture_default_str();
+  CLI::Option* samples =
+      cmd->add_option("--samples", o->samples,
+                      "MSAA samples (desktop mode on a CPU renderer such as lavapipe: 1 unless given)")
+          ->check(CLI::IsMember({1, 2, 4, 8}))
+          ->capture_default_str();
   cmd->add_option("--color", o->colour, "Colour map at start (the headset's panel and the C key switch it)")
       ->check(CLI::IsMember({"material", "displacement", "curvature-sign"}))
       ->capture_default_str();
@@ -135,7 +137,10 @@ void add_review_command(CLI::App& root) {
           },
           "CPU list");
   add_life_size_options(*cmd, o->life_size);
-  cmd->callback([o] { run_review(*o); });
+  cmd->callback([o, samples] {
+    o->samples_given = samples->count() > 0;
+    run_review(*o);
+  });
 }
 
 }  // namespace pushpull::app

@@ -74,7 +74,8 @@ constexpr const char* kDesktopProfile = "/interaction_profiles/oculus/touch_cont
 
 }  // namespace
 
-void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
+void run_desktop(const ReviewCommandOptions& given, const ReviewSetup& setup) {
+  ReviewCommandOptions o = given;  // the samples may change (below); the recording's header says which
   renderer::ContextOptions context_options;
   try {
     context_options.instance_extensions = renderer::MirrorWindow::required_instance_extensions();
@@ -84,6 +85,13 @@ void run_desktop(const ReviewCommandOptions& o, const ReviewSetup& setup) {
   context_options.swapchain = true;
   context_options.validation = o.validation;
   renderer::Context context = renderer::Context::create(context_options);
+  if (!o.samples_given && context.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU && o.samples > 1) {
+    if (!o.quiet)
+      std::printf(
+          "pushpull review: %s renders on the CPU: no MSAA in the desktop window (--samples %d for it)\n",
+          context.properties().deviceName, o.samples);
+    o.samples = 1;
+  }
   EventLog log(o.events, !o.quiet);
   log.write_start(o, setup, "desktop");
   SessionRecorder recorder(o.record.empty() ? default_recording_path() : o.record, !o.record.empty());
