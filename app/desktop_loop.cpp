@@ -302,10 +302,7 @@ void run_desktop(const ReviewCommandOptions& given, const ReviewSetup& setup) {
         {
           const std::uint64_t generation = scene.generation();
           scene.update(snapshot);
-          if (scene.generation() != generation) {
-            stats.snapshot_ms += scene.last_cpu_ms();
-            ++stats.snapshots;
-          }
+          if (scene.generation() != generation) stats.add_snapshot(scene.last_cpu_ms());
         }
         // The readout by the cursor (where the press is, or where it would grab), the same size on screen at
         // any camera distance: a line about 3.5% of the view's height.
@@ -376,13 +373,12 @@ void run_desktop(const ReviewCommandOptions& given, const ReviewSetup& setup) {
             window_title("pushpull review (desktop)", interaction.method(), dragging, *snapshot, life,
                          colour_name(scene.colour()), "", history_text(), notice.text(now()));
         if (title != text) window.set_title(title = text);
-        if (frame && ++stats.frames > FrameStats::kWarmUpFrames) {
-          const double ms =
+        if (frame)
+          stats.add_frame(
+              solving,
               std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - frame_start)
-                  .count();
-          (solving ? stats.solving_ms : stats.idle_ms).push_back(ms);
-          (solving ? stats.solving_cpu_ms : stats.idle_cpu_ms).push_back(thread_cpu_ms() - frame_start_cpu);
-        }
+                  .count(),
+              thread_cpu_ms() - frame_start_cpu);
       } catch (const std::exception& e) {
         failure = e.what();
         std::fprintf(stderr, "pushpull review: %s; ending the review (the committed work is kept)\n",

@@ -23,6 +23,12 @@ double FrameStats::percentile(std::vector<double> v, double q) {
   return v[std::min(v.size() - 1, size_t(q * double(v.size())))];
 }
 
+void FrameStats::add_frame(bool solving, double ms, double cpu_ms) {
+  if (++frames <= kWarmUpFrames) return;
+  (solving ? solving_ms : idle_ms).push_back(ms);
+  (solving ? solving_cpu_ms : idle_cpu_ms).push_back(cpu_ms);
+}
+
 void FrameStats::print() const {
   auto ratio = [](double a, double b) { return b > 0.0 ? a / b : 0.0; };
   std::printf(

@@ -26,6 +26,13 @@ struct FrameStats {
   size_t snapshots = 0;
   // What a frame's time spans, as the first line prints it (the headset loop's by default).
   const char* span = "xrBeginFrame .. xrEndFrame, CPU";
+  // One frame's wall-clock and frame-thread CPU time; the first kWarmUpFrames are counted, not kept.
+  void add_frame(bool solving, double ms, double cpu_ms);
+  // A new snapshot drawn, `cpu_ms` to turn it into vertex data.
+  void add_snapshot(double cpu_ms) {
+    snapshot_ms += cpu_ms;
+    ++snapshots;
+  }
   // Mean and q-quantile (0..1) of v; 0 when empty.
   static double mean(const std::vector<double>& v);
   static double percentile(std::vector<double> v, double q);

@@ -603,10 +603,7 @@ void run_review(const ReviewCommandOptions& o) {
         {
           const std::uint64_t generation = scene.generation();
           scene.update(snapshot, /*wait=*/o.settle_drawn_frames);
-          if (scene.generation() != generation) {
-            stats.snapshot_ms += scene.last_cpu_ms();
-            ++stats.snapshots;
-          }
+          if (scene.generation() != generation) stats.add_snapshot(scene.last_cpu_ms());
         }
         // The handle a press would grab, highlighted on the surface; |d| and the solver's state by the hand.
         {
@@ -670,11 +667,8 @@ void run_review(const ReviewCommandOptions& o) {
                                          *snapshot, life, colour_name(scene.colour()), mirror->mode_text(),
                                          history_text(), notice.text(t)));
         }
-        const double ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-        if (++stats.frames > FrameStats::kWarmUpFrames) {
-          (solving ? stats.solving_ms : stats.idle_ms).push_back(ms);
-          (solving ? stats.solving_cpu_ms : stats.idle_cpu_ms).push_back(thread_cpu_ms() - start_cpu_ms);
-        }
+        stats.add_frame(solving, std::chrono::duration<double, std::milli>(Clock::now() - start).count(),
+                        thread_cpu_ms() - start_cpu_ms);
       } catch (const xr::XrError& e) {
         guarded(failure, abandon_mirror_frame);
         if (e.result() == XR_ERROR_SESSION_LOST || e.result() == XR_ERROR_INSTANCE_LOST) {

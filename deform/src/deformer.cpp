@@ -353,19 +353,18 @@ DeformResult Deformer::solve(const ConstraintTargets& targets, const ProgressCal
   for (int k = 0; k < nc; ++k)
     s.constrained_model.col(k) =
         s.mesh->V.row(s.local_to_global[static_cast<std::size_t>(s.n_free + k)]).transpose();
+  // d when the caller gives no direction: the handle's mean move from rest.
+  const Eigen::Vector3d mean_move =
+      s.n_handle > 0
+          ? Eigen::Vector3d((targets.handle_positions.transpose() - s.constrained_model.leftCols(s.n_handle))
+                                .rowwise()
+                                .mean())
+          : Eigen::Vector3d::Zero();
   s.constrained_model.leftCols(s.n_handle) = targets.handle_positions.transpose();
   if (targets.fixed_positions.size() != 0)
     s.constrained_model.middleCols(s.n_handle, s.n_fixed) = targets.fixed_positions.transpose();
   Eigen::Matrix3Xd X_c = s.constrained_model.colwise() - s.origin;
-  Eigen::Vector3d push = Eigen::Vector3d::Zero();
-  if (targets.push_direction) {
-    push = *targets.push_direction;
-  } else {
-    for (int k = 0; k < s.n_handle; ++k)
-      push += s.constrained_model.col(k) -
-              s.mesh->V.row(s.local_to_global[static_cast<std::size_t>(s.n_free + k)]).transpose();
-    if (s.n_handle > 0) push /= s.n_handle;
-  }
+  const Eigen::Vector3d push = targets.push_direction.value_or(mean_move);
   DeformResult result = s.run(X_c, push, targets.initial_guess, targets.rate_hint, targets.rate_hint_settled,
                               progress ? progress : s.options.progress);
   // arap-s is the one method whose energy is not PSD (negative spoke weights): a negative energy proves the

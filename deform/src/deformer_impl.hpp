@@ -31,7 +31,7 @@ struct Deformer::Impl {
   // as are the solver's iterates:
   // with the model's own coordinates a region far from the model's origin lost digits in tr(X Q X^T) (the
   // energy the Anderson safeguard compares) and in asan's stretched copy; the bonnet (examples/hood.off)
-  // moved 3 m from its origin took 158 asan iterations instead of 117, 100 km off 663.
+  // moved 3 m from its origin took 158 asan iterations instead of 117, (100, 200, 1) km off 663.
   Eigen::Matrix3Xd P;  // 3 by n
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();
   // The constrained vertices' positions of the current solve in model coordinates (3 by n - n_free: handle
