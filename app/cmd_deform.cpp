@@ -47,6 +47,7 @@ struct DeformCommandOptions {
   bool paper_iterations = false;
   std::optional<double> energy_tolerance;
   std::optional<int> anderson;  // unset: the solver's default window
+  std::optional<int> smooth_start_min_free;  // unset: the solver's default
   std::optional<double> roi_radius;
   std::vector<double> stretch_direction;
   std::string asan_base = "arap-sr";
@@ -197,6 +198,7 @@ deform::DeformOptions solver_options(const DeformCommandOptions& o) {
   options.tolerance = o.tolerance;  // --tolerance 0 (and no --energy-tolerance): exactly --iterations
   options.energy_tolerance = o.energy_tolerance.value_or(options.energy_tolerance);
   if (o.anderson) options.anderson_window = *o.anderson;
+  if (o.smooth_start_min_free) options.smooth_start_min_free = *o.smooth_start_min_free;
   if (o.paper_iterations) options = deform::paper_iterations(options);
   options.sr_arap_alpha = o.alpha;
   options.arap_h_lambda = o.lambda;
@@ -356,6 +358,11 @@ void run_deform(DeformCommandOptions o) {
               r.iterations, r.converged ? "converged" : "not converged",
               stop_text(r.stop_reason, o, options).c_str(), error_text(r, d, life).c_str(), r.timing.per_iteration,
               r.timing.factorize, record.total_ms);
+  if (r.smooth_start)
+    std::printf(
+        "  started from the handle's move spread biharmonically over the region (asan, at least %d free "
+        "vertices: --smooth-start-min-free)\n",
+        options.smooth_start_min_free);
   if (r.probe_rate)
     std::printf(
         "  rate probe (an early stop checked): %d extra local-global steps, slowest rate found %.5f; the "
@@ -441,6 +448,12 @@ void add_deform_command(CLI::App& root) {
                   "Anderson acceleration window, 0 = plain local-global iterations (default: " +
                       std::to_string(deform::DeformOptions{}.anderson_window) + ")")
       ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--smooth-start-min-free", o->smooth_start_min_free,
+                  "Regions with at least this many free vertices start from the handle's move spread "
+                  "biharmonically (same result, fewer iterations on large regions); -1 = always from rest "
+                  "(default: " +
+                      std::to_string(deform::DeformOptions{}.smooth_start_min_free) + ")")
+      ->check(CLI::Range(-1, std::numeric_limits<int>::max()));
   cmd->add_option("--sections", o->sections, "Number of section planes (perpendicular to d) in the metrics")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);

@@ -55,6 +55,10 @@ std::string metrics_json(const DeformRunRecord& record) {
   doc["tolerance"] = options.tolerance;
   doc["energy_tolerance"] = options.energy_tolerance;
   doc["anderson"] = options.anderson_window;
+  // Cold solves of regions with at least this many free vertices start from the biharmonic spread (-1:
+  // never); smooth_start: this one did.
+  doc["smooth_start_min_free"] = options.smooth_start_min_free;
+  doc["smooth_start"] = result.smooth_start;
   doc["converged"] = result.converged;
   doc["stop_reason"] = std::string(deform::stop_reason_name(result.stop_reason));
   // Estimated largest vertex distance to the exact minimiser, relative to |d| (null before it is known).

@@ -164,6 +164,15 @@ void run_replay(const ReplayOptions& o) {
     review.behaviour_of_format =
         header.value("behaviour_format", std::min(rec.format_version, kNewestRecordingFormat));
   review.mu = o.mu.value_or(h.at("mu").get<double>());
+  // Recordings made before the smooth start existed solved every cold start from rest.
+  review.smooth_start_min_free = -1;
+  if (header.contains("solver") && header["solver"].is_object()) {
+    const json& solver = header["solver"];
+    if (solver.contains("smooth_start_min_free") && solver["smooth_start_min_free"].is_number_integer() &&
+        solver["smooth_start_min_free"].get<long long>() >= -1 &&
+        solver["smooth_start_min_free"].get<long long>() <= std::numeric_limits<int>::max())
+      review.smooth_start_min_free = solver["smooth_start_min_free"].get<int>();
+  }
   review.handle_radius_m = h.at("handle_radius_m");
   review.roi_radius_m = h.at("roi_radius_m");
   review.up = h.at("up").get<std::vector<double>>();

@@ -83,6 +83,7 @@ ReviewSetup prepare_review(const ReviewCommandOptions& o) {
     throw CommandError(std::string("--method: ") + e.what());
   }
   s.interaction.solver.mu = o.mu;
+  if (o.smooth_start_min_free) s.interaction.solver.smooth_start_min_free = *o.smooth_start_min_free;
   s.colour = parse_colour(o.colour).value_or(ReviewColour::Displacement);
   return s;
 }

@@ -141,6 +141,31 @@ TEST_F(CliMessages, StoppingRulesAndTheirDefaultsAreNamed) {
       << paper.output;
 }
 
+TEST_F(CliMessages, TheSmoothStartIsSaidAndWrittenDown) {
+  const std::string pull =
+      "deform " + kHemisphere.string() +
+      " --handle-at 0 0 1 --handle-radius 0.2 --roi-radius 0.8 --displacement 0 0 0.1 --out " +
+      path("s.off") + " --metrics " + path("s.json");
+  // A small region starts from rest by default; 0 starts every asan solve smooth.
+  const CommandResult rest = run_pushpull(pull);
+  ASSERT_EQ(rest.status, 0) << rest.output;
+  EXPECT_EQ(rest.output.find("spread biharmonically"), std::string::npos) << rest.output;
+  const CommandResult smooth = run_pushpull(pull + " --smooth-start-min-free 0");
+  ASSERT_EQ(smooth.status, 0) << smooth.output;
+  EXPECT_NE(
+      smooth.output.find("started from the handle's move spread biharmonically over the region (asan, at "
+                         "least 0 free vertices"),
+      std::string::npos)
+      << smooth.output;
+  std::ifstream metrics(path("s.json"));
+  const nlohmann::json written = nlohmann::json::parse(metrics);
+  EXPECT_EQ(written.at("smooth_start"), true);
+  EXPECT_EQ(written.at("smooth_start_min_free"), 0);
+  const CommandResult bad = run_pushpull(pull + " --smooth-start-min-free -2");
+  EXPECT_NE(bad.status, 0);
+  EXPECT_NE(bad.output.find("--smooth-start-min-free"), std::string::npos) << bad.output;
+}
+
 TEST_F(CliMessages, BenchmarkOfOneViewDoesNotSayStereo) {
   const CommandResult mono =
       run_pushpull("render " + kHemisphere.string() + " --size 32 24 --benchmark 1 --out " + path("a.png"));

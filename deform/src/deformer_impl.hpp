@@ -13,6 +13,7 @@
 #include "global_system.hpp"
 #include "helper_thread.hpp"
 #include "pushpull/deform/deformer.hpp"
+#include "smooth_start.hpp"
 
 namespace pushpull::deform {
 
@@ -46,6 +47,11 @@ struct Deformer::Impl {
   bool factored = false;
   long factorizations = 0;  // numeric factorizations done so far (weights recomputed or first solve)
   std::optional<Eigen::Vector3d> weight_direction;  // unit d_o of the current ASAN weights
+  // asan cold solves' biharmonic start (DeformOptions::smooth_start_min_free), prepared at the first one
+  // (its factorization is independent of the weights and of d); smooth_start_failed: L_ff could not be
+  // factored, cold solves start from rest.
+  detail::SmoothStart smooth_start;
+  bool smooth_start_failed = false;
 
   // The local step runs in two fixed parts, clusters [0, split_cluster) and [split_cluster, #clusters),
   // whatever the thread count, so results do not depend on it. Right-hand-side contributions of part 1

@@ -48,6 +48,21 @@ class CholmodFactor {
   CholmodFactor(const CholmodFactor&) = delete;
   CholmodFactor& operator=(const CholmodFactor&) = delete;
 
+  // The analysis of `A`, a matrix with the pattern `other` analysed, with `other`'s fill-reducing ordering
+  // (no METIS run: the elimination tree and column counts only).
+  void analyze_like(Eigen::SparseMatrix<double>& A, const CholmodFactor& other) {
+    cholmod_sparse a = view(A);
+    common_.method[0].ordering = CHOLMOD_GIVEN;
+    L_ = cholmod_analyze_p(&a, static_cast<int*>(other.L_->Perm), nullptr, 0, &common_);
+    common_.method[0].ordering = CHOLMOD_METIS;
+    if (!L_) {
+      throw FactorizationError(
+          "the global matrix (" + std::to_string(A.cols()) +
+          " free vertices) could not be analysed with a given ordering (CHOLMOD status " +
+          std::to_string(common_.status) + ")");
+    }
+  }
+
   // Symbolic analysis of the lower triangle `A` (ordering, elimination tree, column counts).
   void analyze(Eigen::SparseMatrix<double>& A) {
     cholmod_sparse a = view(A);
@@ -142,6 +157,29 @@ void GlobalSystem::analyze_factor(Backend backend) {
   (void)backend;
 #endif
   factor_->eigen.analyzePattern(qff_);
+}
+
+void GlobalSystem::analyze_like(const GlobalSystem& analysed) {
+  n_free_ = analysed.n_free_;
+  qff_ = analysed.qff_;
+  qfc_ = analysed.qfc_;
+  qff_source_ = analysed.qff_source_;
+  qfc_source_ = analysed.qfc_source_;
+  l_column_ = l_row_ = nullptr;
+  l_value_ = nullptr;
+  factor_.reset();
+  if (n_free_ == 0) return;
+  if (!analysed.factor_)
+    throw std::logic_error("GlobalSystem::analyze_like: the system given is not analysed");
+  factor_ = std::make_unique<Factor>();
+#if PUSHPULL_HAVE_CHOLMOD
+  if (analysed.factor_->cholmod) {
+    factor_->cholmod = std::make_unique<CholmodFactor>();
+    factor_->cholmod->analyze_like(qff_, *analysed.factor_->cholmod);
+    return;
+  }
+#endif
+  factor_->eigen.analyzePattern(qff_);  // AMD on the regions Eigen factors is cheap beside the factorization
 }
 
 void GlobalSystem::factor_numeric() {

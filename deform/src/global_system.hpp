@@ -40,6 +40,11 @@ class GlobalSystem {
   // Q: n by n symmetric (both triangles stored), local vertices [0, n_free) free, the rest constrained.
   // Extracts the blocks' patterns and runs the symbolic analysis (fill-reducing ordering, elimination tree).
   void analyze(const Eigen::SparseMatrix<double>& Q, int n_free, Backend backend = Backend::Automatic);
+  // The same as analyze(Q', n_free, its backend) for a Q' with the pattern `analysed` was analysed for,
+  // reusing its analysis (the ordering: METIS takes longer than a numeric factorization at 100K) instead of
+  // redoing it. `analysed` must be analysed; it is not changed.
+  void analyze_like(const GlobalSystem& analysed);
+  [[nodiscard]] int free_count() const { return n_free_; }
   // Copies Q's current values into the blocks and refactors (reusing the analysis). Throws FactorizationError
   // if Q_ff is singular or indefinite (a pivot of its LDL^T at most 1e-13 times the largest). Deterministic:
   // the same Q gives a bit-identical factor.

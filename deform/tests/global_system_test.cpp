@@ -132,6 +132,32 @@ TEST_P(GlobalSystemBackends, ZeroBlockIsNotPositiveDefinite) {
   EXPECT_THROW(system.factorize(Q), FactorizationError);
 }
 
+TEST_P(GlobalSystemBackends, AnalyzeLikeSolvesAnotherMatrixOfThePatternAndLeavesTheFirst) {
+  const Eigen::SparseMatrix<double> Q = grid_matrix(24, 1);
+  const Eigen::SparseMatrix<double> other = grid_matrix(24, 5);  // same pattern, other weights
+  const int n_free = static_cast<int>(Q.cols()) - 30;
+  GlobalSystem first;
+  first.analyze(Q, n_free, GetParam());
+  first.factorize(Q);
+  GlobalSystem second;
+  second.analyze_like(first);
+  EXPECT_EQ(second.free_count(), n_free);
+  second.factorize(other);
+  const Eigen::Matrix3Xd B = random_columns(n_free, 6);
+  Eigen::Matrix3Xd Y = B, Y_first = B;
+  second.solve_in_place(Y);
+  first.solve_in_place(Y_first);
+  const Eigen::Matrix3Xd expected = dense_solve(other, n_free, B);
+  const Eigen::Matrix3Xd expected_first = dense_solve(Q, n_free, B);
+  EXPECT_LT((Y - expected).cwiseAbs().maxCoeff(), 1e-9 * expected.cwiseAbs().maxCoeff());
+  EXPECT_LT((Y_first - expected_first).cwiseAbs().maxCoeff(), 1e-9 * expected_first.cwiseAbs().maxCoeff());
+  // The constrained block holds the new matrix's values too.
+  const Eigen::MatrixXd other_fc = Eigen::MatrixXd(other).topRightCorner(n_free, 30);
+  const Eigen::Matrix3Xd X_c = random_columns(30, 7);
+  const Eigen::Matrix3Xd expected_rhs = -(X_c * other_fc.transpose());
+  EXPECT_LT((second.constrained_rhs(X_c) - expected_rhs).cwiseAbs().maxCoeff(), 1e-12);
+}
+
 INSTANTIATE_TEST_SUITE_P(Backends, GlobalSystemBackends,
                          ::testing::Values(Backend::Eigen, Backend::Cholmod, Backend::Automatic),
                          [](const ::testing::TestParamInfo<Backend>& info) {

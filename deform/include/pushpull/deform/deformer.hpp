@@ -157,6 +157,20 @@ struct DeformOptions {
   // differences (plain steps until then, at the start and after each rejected step; deform/src/anderson.hpp
   // says why), so a larger window also means more plain steps for asan.
   int anderson_window = 5;
+  // An asan cold solve (no initial guess) of a region with at least this many free vertices starts from the
+  // constrained vertices' displacements spread biharmonically over the region (uniform graph Laplacian;
+  // deform/src/smooth_start.hpp) instead of from the rest positions with only the constrained vertices
+  // moved, whose first global step is a membrane-like cone the iterations then spend tens of steps rounding.
+  // Same minimiser, same stopping rule. Measured (deform_bench, 2 threads, 2026-12-05): the 100K height field
+  // in 143 iterations and 4.8 s instead of 281 and 9.5 s (its factorization 606 ms instead of 268: L_ff is
+  // factored once per region), the 30K one in 89 instead of 128, even in time (1.14 s, 1.19 s). Smaller
+  // regions stop within the rate probe's window (deformer.hpp: DeformResult::probe_rate), whose 40 steps eat
+  // the gain: the 10K field took 54 iterations and 357 ms instead of 85 and 170 (stopping_bench
+  // --smooth-start-min-free 0). asan only: arap-sr's estimate ran 3.1x optimistic from it (30K field: 3.0e-2
+  // |d| from the reference solved from rest, estimate 9.6e-3; 1.1e-2 from rest); whether it found another
+  // local minimum there was not checked. -1: never (paper_iterations() uses it: the paper's iterations start
+  // from rest); 0: every asan cold solve.
+  int smooth_start_min_free = 25000;
   int arap_n_rings = 2;         // arap-n: n >= 1
   double sr_arap_alpha = 0.02;  // sr-arap: alpha >= 0 (dimensionless)
   double arap_h_lambda = 1.0;   // arap-h, arap-sr-h: lambda / mean vertex area (dimensionless), >= 0
@@ -171,9 +185,11 @@ struct DeformOptions {
 
 struct TimingMs {
   double precompute = 0.0;     // constructor: validation, clusters, right-hand-side map, symbolic analysis
-  double factorize = 0.0;      // this solve: weights + numeric factorization (0 when reused)
+  double factorize = 0.0;      // this solve: weights + numeric factorization (0 when reused), and at a
+                               // region's first cold solve the smooth start's factorization
   double solve = 0.0;          // this solve: all iterations, and the rate probe's evaluations if any
-  double per_iteration = 0.0;  // solve / (iterations + DeformResult::probe_evaluations)
+  double per_iteration = 0.0;  // solve without the smooth start's spread / (iterations +
+                               // DeformResult::probe_evaluations)
 };
 
 struct DeformResult {
@@ -211,6 +227,8 @@ struct DeformResult {
   // This solve computed weights and a numeric factorization (the first solve; asan when the line of d_o
   // changed); false when it reused the previous ones.
   bool refactored = false;
+  // This cold solve started from the biharmonic spread (DeformOptions::smooth_start_min_free).
+  bool smooth_start = false;
   TimingMs timing;
   std::vector<std::string> warnings;  // validation, region and solver warnings
 };
@@ -223,7 +241,9 @@ struct ConstraintTargets {
   // asan: the push/pull direction d that sets d_o when DeformOptions::stretch_direction is unset; default =
   // mean handle displacement.
   std::optional<Eigen::Vector3d> push_direction;
-  Eigen::MatrixXd initial_guess;  // empty = rest positions with constrained vertices at targets; else #V by 3
+  // empty = a cold start: rest positions with constrained vertices at targets (large regions: the targets'
+  // biharmonic spread, DeformOptions::smooth_start_min_free); else #V by 3
+  Eigen::MatrixXd initial_guess;
   // With a warm start: the contraction rate of the solve the initial guess came from
   // (DeformResult::contraction_rate). A warm start begins close to the minimiser, so its first iterations
   // see too little of the slowly contracting modes to estimate the rate, and the estimate of a few
