@@ -448,11 +448,13 @@ void add_deform_command(CLI::App& root) {
                   "Anderson acceleration window, 0 = plain local-global iterations (default: " +
                       std::to_string(deform::DeformOptions{}.anderson_window) + ")")
       ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--smooth-start-min-free", o->smooth_start_min_free,
-                  "Regions with at least this many free vertices start from the handle's move spread "
-                  "biharmonically (same result, fewer iterations on large regions); -1 = always from rest "
-                  "(default: " +
-                      std::to_string(deform::DeformOptions{}.smooth_start_min_free) + ")")
+  cmd->add_option(
+         "--smooth-start-min-free", o->smooth_start_min_free,
+         "asan: regions with at least this many free vertices start from the handle's move spread "
+         "biharmonically (the same minimiser in fewer iterations on large regions); -1 = always from "
+         "rest "
+         "(default: " +
+             std::to_string(deform::DeformOptions{}.smooth_start_min_free) + ")")
       ->check(CLI::Range(-1, std::numeric_limits<int>::max()));
   cmd->add_option("--sections", o->sections, "Number of section planes (perpendicular to d) in the metrics")
       ->capture_default_str()
