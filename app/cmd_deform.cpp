@@ -451,8 +451,7 @@ void add_deform_command(CLI::App& root) {
   cmd->add_option(
          "--smooth-start-min-free", o->smooth_start_min_free,
          "asan: regions with at least this many free vertices start from the handle's move spread "
-         "biharmonically (the same minimiser in fewer iterations on large regions); -1 = always from "
-         "rest "
+         "biharmonically (the same minimiser in fewer iterations on large regions); -1 = always from rest "
          "(default: " +
              std::to_string(deform::DeformOptions{}.smooth_start_min_free) + ")")
       ->check(CLI::Range(-1, std::numeric_limits<int>::max()));

@@ -166,12 +166,12 @@ void run_replay(const ReplayOptions& o) {
   review.mu = o.mu.value_or(h.at("mu").get<double>());
   // Recordings made before the smooth start existed solved every cold start from rest.
   review.smooth_start_min_free = -1;
-  if (header.contains("solver") && header["solver"].is_object()) {
-    const json& solver = header["solver"];
-    if (solver.contains("smooth_start_min_free") && solver["smooth_start_min_free"].is_number_integer() &&
-        solver["smooth_start_min_free"].get<long long>() >= -1 &&
-        solver["smooth_start_min_free"].get<long long>() <= std::numeric_limits<int>::max())
-      review.smooth_start_min_free = solver["smooth_start_min_free"].get<int>();
+  if (header.contains("solver") && header["solver"].is_object() &&
+      header["solver"].contains("smooth_start_min_free")) {
+    const json& value = header["solver"]["smooth_start_min_free"];
+    if (value.is_number_integer() && value.get<long long>() >= -1 &&
+        value.get<long long>() <= std::numeric_limits<int>::max())
+      review.smooth_start_min_free = value.get<int>();
   }
   review.handle_radius_m = h.at("handle_radius_m");
   review.roi_radius_m = h.at("roi_radius_m");

@@ -55,8 +55,8 @@ struct OurRun {
   double converge_ms = 0.0;  // factorize + iterations to the stopping rule (precompute: once per region)
   int iterations = 0;
   bool converged = false;
-  bool smooth_start =
-      false;  // the solve started from the biharmonic spread (DeformOptions::smooth_start_min_free)
+  // The solve started from the biharmonic spread (DeformOptions::smooth_start_min_free).
+  bool smooth_start = false;
   double estimate = 0.0;  // the solver's own error estimate / |d|
   double error = 0.0;     // measured: distance to the reference / |d|
   Eigen::MatrixXd V;

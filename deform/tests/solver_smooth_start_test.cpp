@@ -103,7 +103,6 @@ TEST(SmoothStart, SolvesTheUniformBiharmonicSystem) {
   const Eigen::Matrix3Xd expected = dense_biharmonic(g, D_c);
   EXPECT_LT((spread.free - expected).cwiseAbs().maxCoeff(), 1e-2 * D_c.cwiseAbs().maxCoeff());
   // The harmonic spread (the CG's start) is farther: the iterations did something.
-  Eigen::Matrix3Xd harmonic = system.constrained_rhs(D_c);
   detail::GlobalSystem uniform;  // harmonic with uniform weights, for comparison
   Eigen::SparseMatrix<double> L = g.Q;
   for (int j = 0; j < L.outerSize(); ++j) {
@@ -115,7 +114,7 @@ TEST(SmoothStart, SolvesTheUniformBiharmonicSystem) {
   }
   uniform.analyze(L, g.n_free);
   uniform.factorize(L);
-  harmonic = uniform.constrained_rhs(D_c);
+  Eigen::Matrix3Xd harmonic = uniform.constrained_rhs(D_c);
   uniform.solve_in_place(harmonic);
   EXPECT_GT((harmonic - expected).cwiseAbs().maxCoeff(),
             5.0 * (spread.free - expected).cwiseAbs().maxCoeff());
