@@ -10,35 +10,46 @@
 // rejected one (each rejection an extra local step): on the real car's nose (stopping_bench, AsamVehicle,
 // asan), every other iteration from 29 to 159 of the 2 m region's 277. Waiting for a full window there took
 // 167 iterations (1 m region: 217 -> 145).
+// The secant pairs come from a SecantHistory (secant_history.hpp) that the solver shares with its error
+// estimate; a standalone Anderson (the three-argument constructor) keeps one of its own.
 #pragma once
 
 #include <Eigen/Core>
-#include <vector>
+#include <optional>
 
 #include "helper_thread.hpp"
+#include "secant_history.hpp"
 
 namespace pushpull::deform::detail {
 
 class Anderson {
  public:
-  Anderson(int window, Eigen::Index dimension, int min_pairs = 1);
-  // window >= 1; min_pairs is clamped to [1, window].
-  // x: current iterate, g = G(x). Returns the accelerated next iterate (g itself for the first min_pairs
-  // calls after construction or reset, and after a window whose normal equations give no finite solution,
-  // which also resets). The vectors' two halves are processed and their dot products summed separately (on
-  // two threads when `threads` is given; the same results either way).
+  // window >= 1; min_pairs is clamped to [1, window]. Reads its pairs from the caller's history, whose window
+  // must be at least this one.
+  explicit Anderson(int window, int min_pairs = 1);
+  // The same with a history of its own for vectors of `dimension` (the step(x, g) form).
+  Anderson(int window, Eigen::Index dimension, int min_pairs);
+
+  // history: the pairs so far, its last recorded (x, g) being the current iterate x and g = G(x). Writes the
+  // extrapolated next iterate into `next` and returns true; returns false (next untouched: the next iterate
+  // is g itself) for the first min_pairs calls after construction or reset, and after a window whose normal
+  // equations give no finite solution (which also resets) or whose extrapolation is not finite.
+  bool step(const SecantHistory& history, const Eigen::Ref<const Eigen::VectorXd>& g,
+            Eigen::Ref<Eigen::VectorXd> next, HelperThread* threads = nullptr);
+  // Standalone (own history): records (x, g) and returns the next iterate (g itself where step returns
+  // false).
   [[nodiscard]] Eigen::VectorXd step(const Eigen::Ref<const Eigen::VectorXd>& x,
                                      const Eigen::Ref<const Eigen::VectorXd>& g,
                                      HelperThread* threads = nullptr);
-  void reset() { count_ = 0; }
+  // Forgets the pairs so far: the next call's pair (which reaches back before the reset) is not used either.
+  void reset() { reset_pending_ = true; }
 
  private:
   int window_;
   int min_pairs_;
-  int count_ = 0;  // iterations since reset
-  Eigen::VectorXd prev_f_, prev_g_;
-  Eigen::MatrixXd dF_, dG_;  // dimension by window, circular
-  Eigen::MatrixXd gram_;     // window by window, dF^T dF, updated one column per step
+  long base_ = 0;  // the history's pair count when the usable pairs began
+  bool reset_pending_ = false;
+  std::optional<SecantHistory> own_;
 };
 
 }  // namespace pushpull::deform::detail

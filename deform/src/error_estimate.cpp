@@ -13,57 +13,34 @@ ContractionEstimate::ContractionEstimate(int window, Eigen::Index dimension, Pol
     : window_(window),
       policy_(policy),
       contracting_only_(exact_local_fit && policy != Policy::Cautious),
-      dX_(dimension, window),
-      dG_(dimension, window),
-      xx_(Eigen::MatrixXd::Zero(window, window)),
-      xg_(Eigen::MatrixXd::Zero(window, window)) {}
+      dimension_(dimension) {}
 
 void ContractionEstimate::add(const Eigen::Ref<const Eigen::VectorXd>& x,
                               const Eigen::Ref<const Eigen::VectorXd>& g, HelperThread* threads) {
-  if (!has_previous_) {
-    previous_x_ = x;
-    previous_g_ = g;
-    has_previous_ = true;
-    return;
-  }
-  const int column = pairs_ % window_;
-  ++pairs_;
-  // The new secant pair, and the Gram matrices dX^T dX and dX^T dG with one row and column refreshed per
-  // pair (O(window n) per call), over the two halves of the vectors.
-  const int m = std::min(pairs_, window_);
-  const Eigen::Index n = x.size(), half = n / 2;
-  Eigen::MatrixXd partial = Eigen::MatrixXd::Zero(3 * m, 2);
-  auto part = [&](int p) {
-    const Eigen::Index begin = p == 0 ? 0 : half, size = p == 0 ? half : n - half;
-    auto dx = dX_.col(column).segment(begin, size);
-    auto dg = dG_.col(column).segment(begin, size);
-    dx = x.segment(begin, size) - previous_x_.segment(begin, size);
-    dg = g.segment(begin, size) - previous_g_.segment(begin, size);
-    previous_x_.segment(begin, size) = x.segment(begin, size);
-    previous_g_.segment(begin, size) = g.segment(begin, size);
-    for (int k = 0; k < m; ++k) {
-      partial(3 * k, p) = dx.dot(dX_.col(k).segment(begin, size));
-      partial(3 * k + 1, p) = dx.dot(dG_.col(k).segment(begin, size));
-      partial(3 * k + 2, p) = dX_.col(k).segment(begin, size).dot(dg);
+  if (!own_) own_.emplace(window_, dimension_);
+  (void)own_->add(x, g, threads);
+  add(*own_);
+}
+
+void ContractionEstimate::add(const SecantHistory& history) {
+  pairs_ = history.pairs();
+  if (history.pairs() < window_ || history.stored() < window_) return;
+  // The newest `window` pairs: dX^T dX and dX^T dG from the stored dF and dG (dX = dG - dF).
+  const int m = window_;
+  Eigen::MatrixXd xx(m, m), xg(m, m);
+  for (int a = 0; a < m; ++a) {
+    const int ca = history.column(a);
+    for (int b = 0; b < m; ++b) {
+      const int cb = history.column(b);
+      xg(a, b) = history.gg()(ca, cb) - history.fg()(ca, cb);
+      xx(a, b) = history.gg()(ca, cb) - history.fg()(ca, cb) - history.fg()(cb, ca) + history.ff()(ca, cb);
     }
-  };
-  if (threads) {
-    threads->run_both(part);
-  } else {
-    part(0);
-    part(1);
   }
-  for (int k = 0; k < m; ++k) {
-    xx_(column, k) = xx_(k, column) = partial(3 * k, 0) + partial(3 * k, 1);
-    xg_(column, k) = partial(3 * k + 1, 0) + partial(3 * k + 1, 1);
-    xg_(k, column) = partial(3 * k + 2, 0) + partial(3 * k + 2, 1);
-  }
-  if (pairs_ < window_) return;
   // C = argmin |dX C - dG| through the normal equations (regularised: dX may be nearly rank deficient once
   // converged).
-  Eigen::MatrixXd normal = xx_;
+  Eigen::MatrixXd normal = xx;
   normal.diagonal().array() += 1e-12 * std::max(normal.diagonal().maxCoeff(), 1e-300);
-  const Eigen::MatrixXd C = normal.ldlt().solve(xg_);
+  const Eigen::MatrixXd C = normal.ldlt().solve(xg);
   if (!C.allFinite()) return;
   const Eigen::EigenSolver<Eigen::MatrixXd> eigen(C, /*computeEigenvectors=*/false);
   if (eigen.info() != Eigen::Success) return;

@@ -69,6 +69,7 @@
 #include <utility>
 
 #include "helper_thread.hpp"
+#include "secant_history.hpp"
 
 namespace pushpull::deform::detail {
 
@@ -79,9 +80,11 @@ class ContractionEstimate {
   // Gauss-Seidel sweeps do not); only then are Ritz values with a non-positive real part left out.
   ContractionEstimate(int window, Eigen::Index dimension, Policy policy = Policy::Recent,
                       bool exact_local_fit = true);
-  // x: the iterate, g = G(x). Call once per iteration. The vectors' two halves are updated and their dot
-  // products summed separately (the halves on two threads when `threads` is given; the same sums either
-  // way, so results do not depend on it).
+  // Call once per iteration, after history.add(x, g) (x the iterate, g = G(x)); the history's window must be
+  // at least this one. Reads the Gram entries of the newest `window` pairs (secant_history.hpp).
+  void add(const SecantHistory& history);
+  // Standalone: records (x, g) in a history of its own (the same sums with or without `threads`), then the
+  // above.
   void add(const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Ref<const Eigen::VectorXd>& g,
            HelperThread* threads = nullptr);
   // The estimated rate in [0, kMaxRate] (Cautious: [0, kCautiousMaxRate]), once `window` estimates have been
@@ -104,11 +107,9 @@ class ContractionEstimate {
   int window_;
   Policy policy_;
   bool contracting_only_;  // leave out Ritz values with a non-positive real part
-  int pairs_ = 0;  // secant pairs seen
-  bool has_previous_ = false;
-  Eigen::VectorXd previous_x_, previous_g_;
-  Eigen::MatrixXd dX_, dG_;          // dimension by window, circular
-  Eigen::MatrixXd xx_, xg_;          // window by window: dX^T dX, dX^T dG
+  Eigen::Index dimension_;
+  long pairs_ = 0;                    // secant pairs seen
+  std::optional<SecantHistory> own_;  // the standalone add's
   double rate_ = 0.0;  // largest |Ritz value| of the later half (Warm: the last 10; Cautious: the solve)
   double recent_only_ = 0.0;         // Recent and Warm: the last 10 estimates' largest, clamped
   double whole_solve_ = 0.0;         // largest |Ritz value| of the whole solve (Cautious)

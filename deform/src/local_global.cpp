@@ -10,6 +10,7 @@
 #include "deformer_impl.hpp"
 #include "error_estimate.hpp"
 #include "rate_probe.hpp"
+#include "secant_history.hpp"
 
 namespace pushpull::deform {
 namespace {
@@ -123,12 +124,14 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
   const int sweeps = options.method == Method::SrArap ? kSrArapSweeps : 1;
   double energy = local_step(X, R, q, /*R_valid=*/false, 1, std::nullopt, &B, threads);
   result.initial_energy = energy;
+  constexpr int kRateWindow = 8;
+  // The secant pairs, shared by Anderson and the error estimate (secant_history.hpp).
+  detail::SecantHistory history(std::max(kRateWindow, options.anderson_window),
+                                3 * static_cast<Eigen::Index>(n_free));
   std::optional<detail::Anderson> anderson;
   // asan extrapolates only from a full window (anderson.hpp says why); the other methods from the first pair.
   if (options.anderson_window > 0 && n_free > 0)
-    anderson.emplace(options.anderson_window, 3 * n_free,
-                     options.method == Method::Asan ? options.anderson_window : 1);
-  constexpr int kRateWindow = 8;
+    anderson.emplace(options.anderson_window, options.method == Method::Asan ? options.anderson_window : 1);
   // Per-triangle rotations: the cautious rate (error_estimate.hpp says why).
   const bool triangle_rotations = options.method == Method::ArapM || options.method == Method::ArapH ||
                                   (options.method == Method::Asan && options.asan_base == Method::ArapM);
@@ -231,16 +234,16 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
   for (int iteration = 1; iteration <= options.max_iterations && n_free > 0; ++iteration) {
     double plain_quadratic = 0.0;
     global_step(B, rhs_c, constrained_quadratic, G, plain_quadratic, threads);
+    const Eigen::Map<const Eigen::VectorXd> x_vec(X.data(), 3 * n_free), g_vec(G.data(), 3 * n_free);
+    // The plain step's move (the fixed-point residual's largest vertex norm), also with Anderson, whose
+    // iterate differences can stall before convergence.
+    const double move = std::sqrt(history.add(x_vec, g_vec, threads)) / reference;
     bool accelerated = false;
     if (anderson) {
-      const Eigen::Map<const Eigen::VectorXd> x_vec(X.data(), 3 * n_free);
-      const Eigen::Map<const Eigen::VectorXd> g_vec(G.data(), 3 * n_free);
-      const Eigen::VectorXd next = anderson->step(x_vec, g_vec, threads);
-      accelerated = !next.isApprox(g_vec, 0.0) && next.allFinite();
-      X_next.leftCols(n_free) = accelerated ? Eigen::Map<const Eigen::Matrix3Xd>(next.data(), 3, n_free) : G;
-    } else {
-      X_next.leftCols(n_free) = G;
+      Eigen::Map<Eigen::VectorXd> next(X_next.data(), 3 * n_free);
+      accelerated = anderson->step(history, g_vec, next, threads);
     }
+    if (!accelerated) X_next.leftCols(n_free) = G;
     // R only warm-starts the next local step (R is a function of X), so it is updated in place.
     double next_energy = accelerated ? local_step(X_next, R, q, true, sweeps, std::nullopt, &B, threads)
                                      : local_step(X_next, R, q, true, sweeps, plain_quadratic, &B, threads);
@@ -249,15 +252,8 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
       next_energy = local_step(X_next, R, q, true, sweeps, plain_quadratic, &B, threads);
       anderson->reset();
     }
-    // The plain step's move (the fixed-point residual), also with Anderson, whose iterate differences can
-    // stall before convergence.
-    double largest_move2 = 0.0;
-    for (int i = 0; i < n_free; ++i)
-      largest_move2 = std::max(largest_move2, (G.col(i) - X.col(i)).squaredNorm());
-    const double move = std::sqrt(largest_move2) / reference;
     // Distance to the minimiser: |x - x*| <= |G(x) - x| / (1 - rho) (error_estimate.hpp).
-    contraction.add(Eigen::Map<const Eigen::VectorXd>(X.data(), 3 * n_free),
-                    Eigen::Map<const Eigen::VectorXd>(G.data(), 3 * n_free), threads);
+    contraction.add(history);
     std::optional<double> error;
     const std::optional<double> rate = contraction.rate();
     if (rate) error = move / (1.0 - *rate);

@@ -36,7 +36,11 @@ DeformResult pull(const SheetSetup& s, Method method) {
   DeformOptions options;
   options.method = method;
   options.max_iterations = 300;
-  options.tolerance = 1e-5;
+  // 1e-4 |d| (0.1 mm on this 1 m pull): asan's plain-step move here levels off near 7e-9 |d| where the
+  // energy's changes reach its rounding, Anderson's safeguard decides on noise and the Ritz values with it;
+  // 1e-5 then asked the estimate to pass on a rate below 0.9993, which happened (102 iterations) or not (300,
+  // the cap) with the last bits of the dot products (secant_history.hpp's summation order).
+  options.tolerance = 1e-4;
   options.energy_tolerance = 0;
   options.anderson_window = 5;
   return deform(s.mesh, s.roi, Eigen::Vector3d(1.0, 0.0, 0.0), options);
