@@ -17,6 +17,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <memory>
+#include <span>
 
 namespace pushpull::app {
 namespace {
@@ -63,7 +65,7 @@ View make_view(const RenderCommandOptions& o, const Bounds& bounds, float aspect
 // ends inside the model's bounding box is reported too (parts of the model are behind it).
 void warn_if_inside(const View& view, const RenderInputs& inputs, const Bounds& bounds, bool orbit) {
   const glm::vec3 eye(glm::inverse(view.view)[3]);
-  const double winding = winding_number(inputs.positions, inputs.render.mesh.indices, eye);
+  const double winding = winding_number(inputs.positions, inputs.render->mesh.indices, eye);
   const bool in_box = glm::all(glm::greaterThan(eye, bounds.min)) && glm::all(glm::lessThan(eye, bounds.max));
   const double s = inputs.life_size_scale;
   if (std::abs(winding) >= 0.5)
@@ -100,7 +102,7 @@ void benchmark(Renderer& renderer, MeshId mesh, std::span<const View> views, std
                const FrameSettings& settings, const RenderTargets& targets, const RenderInputs& inputs,
                int frames) {
   std::printf("benchmark: %zu triangles, %u vertices, %zu view(s) of %ux%u, %d frames per measurement\n",
-              inputs.render.mesh.indices.size() / 3, inputs.render.mesh.vertex_count(), views.size(),
+              inputs.render->mesh.indices.size() / 3, inputs.render->mesh.vertex_count(), views.size(),
               targets.extent.width, targets.extent.height, frames);
   std::vector<float> positions = inputs.positions;
   std::vector<float> normals(positions.size());
@@ -117,7 +119,7 @@ void benchmark(Renderer& renderer, MeshId mesh, std::span<const View> views, std
         const float wobble = 1.0f + 1e-4f * float(f % 2);
         for (float& x : positions) x *= wobble;
         const auto t0 = Clock::now();
-        compute_vertex_normals(positions, inputs.render.mesh.indices, normals);
+        compute_vertex_normals(positions, inputs.render->mesh.indices, normals);
         normals_ms += std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
         renderer.update_vertices(mesh, positions, normals);
       }
@@ -147,103 +149,163 @@ void benchmark(Renderer& renderer, MeshId mesh, std::span<const View> views, std
 
 }  // namespace
 
-void render_to_png(const RenderInputs& inputs, const RenderCommandOptions& o) {
-  const auto width = uint32_t(o.size[0]), height = uint32_t(o.size[1]);
-  ContextOptions context_options;
-  context_options.validation = o.validation;
-  Context context = Context::create(context_options);
-  TextureRGBA8 image;
-  {
-    RendererOptions renderer_options;
-    renderer_options.samples = VkSampleCountFlagBits(o.samples);
-    Renderer renderer(context, renderer_options);
+struct PictureRenderer::Impl {
+  std::shared_ptr<const RenderModel> render;
+  Context context;
+  std::unique_ptr<Renderer> renderer;  // after the context: destroyed before it
+  std::unique_ptr<OffscreenTarget> target;
+  MeshId model_mesh = 0;
+  int arrow_material = -1, section_material = -1;
+  std::vector<float> zero_scalars;
+  std::vector<OverlayWeights> no_overlays;
+  // The last picture's frame, for benchmark().
+  std::vector<View> views;
+  std::vector<Draw> draws;
+  FrameSettings settings;
 
+  Impl(std::shared_ptr<const RenderModel> model, int samples, bool validation)
+      : render(std::move(model)), context(make_context(validation)) {
+    RendererOptions renderer_options;
+    renderer_options.samples = VkSampleCountFlagBits(samples);
+    renderer = std::make_unique<Renderer>(context, renderer_options);
     std::vector<TextureId> texture_ids;
-    for (const auto& t : inputs.render.textures) texture_ids.push_back(renderer.add_texture(t));
+    for (const auto& t : render->textures) texture_ids.push_back(renderer->add_texture(t));
     auto tex = [&](int i) { return i >= 0 ? int(texture_ids[size_t(i)]) : -1; };
     std::vector<int> material_ids;
-    for (Material m : inputs.render.materials) {
+    for (Material m : render->materials) {
       m.base_colour_texture = tex(m.base_colour_texture);
       m.metallic_roughness_texture = tex(m.metallic_roughness_texture);
       m.normal_texture = tex(m.normal_texture);
       m.occlusion_texture = tex(m.occlusion_texture);
       m.emissive_texture = tex(m.emissive_texture);
-      material_ids.push_back(int(renderer.add_material(m)));
+      material_ids.push_back(int(renderer->add_material(m)));
     }
-    RenderMesh mesh = inputs.render.mesh;
-    mesh.positions = inputs.positions;
-    mesh.normals = inputs.normals;
-    mesh.scalars = inputs.scalars;
-    mesh.overlays = inputs.overlays;
+    RenderMesh mesh = render->mesh;
+    mesh.normals = render->file_normals;
     for (auto& sub : mesh.submeshes)
       sub.material = sub.material >= 0 ? material_ids[size_t(sub.material)] : -1;
-    const MeshId model_mesh = renderer.add_mesh(mesh, o.benchmark_frames > 0);
-
-    const Bounds bounds = compute_bounds(inputs.positions);
-    const float size = std::max(bounds.radius(), 1e-6f);
-    std::vector<Draw> draws{Draw{model_mesh, glm::mat4(1.0f)}};
-    if (inputs.arrow) {
-      Material arrow;
-      arrow.base_colour = glm::vec4(kArrowColour, 1.0f);
-      arrow.unlit = true;  // the same colour in light and shadow, drawn on top of the surface
-      const int id = int(renderer.add_material(arrow));
-      // Thick enough to see at the model's size, thin enough to stay an arrow for a short pull.
-      const float length = float((inputs.arrow->second - inputs.arrow->first).norm());
-      const float radius = std::clamp(0.08f * length, 0.004f * size, 0.02f * size);
-      const RenderMesh arrow_mesh =
-          make_arrow(to_glm(inputs.arrow->first), to_glm(inputs.arrow->second), radius, id);
-      if (!arrow_mesh.indices.empty())
-        draws.push_back({renderer.add_mesh(arrow_mesh), glm::mat4(1.0f), false, true});
-    }
-    if (!inputs.sections.empty()) {
-      Material section;
-      section.base_colour = glm::vec4(kSectionColour, 1.0f);
-      section.unlit = true;
-      const int id = int(renderer.add_material(section));
-      draws.push_back(
-          {renderer.add_mesh(make_tubes(inputs.sections, 0.0015f * size, id)), glm::mat4(1.0f), false});
-    }
-
-    FrameSettings settings;
-    settings.up = to_glm(o.up);
-    settings.lighting = !o.flat;
-    const double unit_scale = 1000.0 * inputs.life_size_scale;  // model units -> life-size mm
-    const std::string unit = "mm";
-    const LegendLayout legend = legend_layout(width, height);
-    if (o.color == "displacement") {
-      settings.color_mode = ColorMode::displacement;
-      double max = o.scalar_max.value_or(inputs.scalar_max);
-      if (max <= 0.0) max = 1e-9;  // nothing moved: everything at the bottom of the map
-      settings.scalar_max = float(max);
-      if (!o.no_legend)
-        renderer.set_legend(
-            make_displacement_legend(float(max * unit_scale), "|d| " + unit, legend.width_px, legend.height_px),
-            legend.rect);
-    } else if (o.color == "curvature-sign") {
-      settings.color_mode = ColorMode::curvature_sign;
-      settings.curvature_epsilon = 0.5f;  // scalars are the signs -1 / 0 / +1
-      if (!o.no_legend)
-        renderer.set_legend(make_curvature_legend(legend.width_px, legend.height_px / 2), legend.curvature_rect);
-    }
-
-    const float aspect = float(width) / float(height);
-    const View mono = make_view(o, bounds, aspect);
-    warn_if_inside(mono, inputs, bounds, o.eye.empty());
-    std::vector<View> views{mono};
-    if (o.ipd) {
-      const auto eyes = stereo_pair(mono, float(*o.ipd));
-      views.assign(eyes.begin(), eyes.end());
-    }
-    OffscreenTarget target(context, width, height, uint32_t(views.size()));
-    renderer.render(views, draws, settings, target.targets());
-    image = target.read_back(0);
-    if (views.size() == 2) image = side_by_side(image, target.read_back(1));
-
-    if (o.benchmark_frames > 0)
-      benchmark(renderer, model_mesh, views, draws, settings, target.targets(), inputs, o.benchmark_frames);
+    // Streamed: every picture replaces its positions, normals, colour-map values and overlays.
+    model_mesh = renderer->add_mesh(mesh, /*streamed=*/true);
+    Material arrow;
+    arrow.base_colour = glm::vec4(kArrowColour, 1.0f);
+    arrow.unlit = true;  // the same colour in light and shadow, drawn on top of the surface
+    arrow_material = int(renderer->add_material(arrow));
+    Material section;
+    section.base_colour = glm::vec4(kSectionColour, 1.0f);
+    section.unlit = true;
+    section_material = int(renderer->add_material(section));
+    const size_t vertices = render->mesh.vertex_count();
+    zero_scalars.assign(vertices, 0.0f);
+    no_overlays.assign(vertices, OverlayWeights{});
   }
-  if (o.validation && context.validation_message_count() > 0)
-    throw CommandError("Vulkan validation reported " + std::to_string(context.validation_message_count()) +
+
+  static Context make_context(bool validation) {
+    ContextOptions options;
+    options.validation = validation;
+    return Context::create(options);
+  }
+};
+
+PictureRenderer::PictureRenderer(std::shared_ptr<const RenderModel> render, int samples, bool validation)
+    : impl_(std::make_unique<Impl>(std::move(render), samples, validation)) {}
+
+PictureRenderer::~PictureRenderer() = default;
+
+std::size_t PictureRenderer::close() {
+  impl_->target.reset();
+  impl_->renderer.reset();
+  return impl_->context.validation_message_count();
+}
+
+TextureRGBA8 PictureRenderer::render(const RenderInputs& inputs, const RenderCommandOptions& o) {
+  Impl& p = *impl_;
+  if (!p.renderer) throw CommandError("internal: a picture asked of a closed renderer");
+  if (inputs.render != p.render)
+    throw CommandError("internal: a picture's inputs were prepared for another model than its renderer's");
+  const auto width = uint32_t(o.size[0]), height = uint32_t(o.size[1]);
+  Renderer& renderer = *p.renderer;
+  renderer.update_vertices(p.model_mesh, inputs.positions, inputs.normals,
+                           inputs.scalars.empty() ? std::span<const float>(p.zero_scalars)
+                                                  : std::span<const float>(inputs.scalars),
+                           inputs.overlays.empty() ? std::span<const OverlayWeights>(p.no_overlays)
+                                                   : std::span<const OverlayWeights>(inputs.overlays));
+
+  const Bounds bounds = compute_bounds(inputs.positions);
+  const float size = std::max(bounds.radius(), 1e-6f);
+  std::vector<Draw> draws{Draw{p.model_mesh, glm::mat4(1.0f)}};
+  if (inputs.arrow) {
+    // Thick enough to see at the model's size, thin enough to stay an arrow for a short pull.
+    const float length = float((inputs.arrow->second - inputs.arrow->first).norm());
+    const float radius = std::clamp(0.08f * length, 0.004f * size, 0.02f * size);
+    const RenderMesh arrow_mesh =
+        make_arrow(to_glm(inputs.arrow->first), to_glm(inputs.arrow->second), radius, p.arrow_material);
+    if (!arrow_mesh.indices.empty())
+      draws.push_back({renderer.add_mesh(arrow_mesh), glm::mat4(1.0f), false, true});
+  }
+  if (!inputs.sections.empty())
+    draws.push_back({renderer.add_mesh(make_tubes(inputs.sections, 0.0015f * size, p.section_material)),
+                     glm::mat4(1.0f), false});
+
+  FrameSettings settings;
+  settings.up = to_glm(o.up);
+  settings.lighting = !o.flat;
+  const double unit_scale = 1000.0 * inputs.life_size_scale;  // model units -> life-size mm
+  const std::string unit = "mm";
+  const LegendLayout legend = legend_layout(width, height);
+  renderer.set_legend(std::nullopt);
+  if (o.color == "displacement") {
+    settings.color_mode = ColorMode::displacement;
+    double max = o.scalar_max.value_or(inputs.scalar_max);
+    if (max <= 0.0) max = 1e-9;  // nothing moved: everything at the bottom of the map
+    settings.scalar_max = float(max);
+    if (!o.no_legend)
+      renderer.set_legend(
+          make_displacement_legend(float(max * unit_scale), "|d| " + unit, legend.width_px, legend.height_px),
+          legend.rect);
+  } else if (o.color == "curvature-sign") {
+    settings.color_mode = ColorMode::curvature_sign;
+    settings.curvature_epsilon = 0.5f;  // scalars are the signs -1 / 0 / +1
+    if (!o.no_legend)
+      renderer.set_legend(make_curvature_legend(legend.width_px, legend.height_px / 2),
+                          legend.curvature_rect);
+  }
+
+  const float aspect = float(width) / float(height);
+  const View mono = make_view(o, bounds, aspect);
+  warn_if_inside(mono, inputs, bounds, o.eye.empty());
+  std::vector<View> views{mono};
+  if (o.ipd) {
+    const auto eyes = stereo_pair(mono, float(*o.ipd));
+    views.assign(eyes.begin(), eyes.end());
+  }
+  const auto layers = uint32_t(views.size());
+  if (!p.target || p.target->extent().width != width || p.target->extent().height != height ||
+      p.target->targets().views.size() != layers)
+    p.target = std::make_unique<OffscreenTarget>(p.context, width, height, layers);
+  renderer.render(views, draws, settings, p.target->targets());
+  TextureRGBA8 image = p.target->read_back(0);
+  if (views.size() == 2) image = side_by_side(image, p.target->read_back(1));
+  p.views = std::move(views);
+  p.draws = std::move(draws);
+  p.settings = settings;
+  return image;
+}
+
+void PictureRenderer::benchmark(const RenderInputs& inputs, const RenderCommandOptions& options) {
+  Impl& p = *impl_;
+  if (!p.renderer || !p.target || p.views.empty())
+    throw CommandError("internal: benchmark before a picture was rendered");
+  pushpull::app::benchmark(*p.renderer, p.model_mesh, p.views, p.draws, p.settings, p.target->targets(),
+                           inputs, options.benchmark_frames);
+}
+
+void render_to_png(const RenderInputs& inputs, const RenderCommandOptions& o) {
+  PictureRenderer pictures(inputs.render, o.samples, o.validation);
+  const TextureRGBA8 image = pictures.render(inputs, o);
+  if (o.benchmark_frames > 0) pictures.benchmark(inputs, o);
+  const std::size_t validation_messages = pictures.close();
+  if (o.validation && validation_messages > 0)
+    throw CommandError("Vulkan validation reported " + std::to_string(validation_messages) +
                        " message(s) (printed above)");
   try {
     write_png(o.out, image);

@@ -1,63 +1,45 @@
-// The Vulkan side of `pushpull render`: options, the prepared per-vertex inputs, and the function
-// that renders them to a PNG (and optionally benchmarks frames and streaming uploads).
+// The Vulkan side of `pushpull render` and of the replay report's pictures: a context and renderer kept for
+// several pictures of one model (PictureRenderer), and render_to_png, one picture to a PNG (optionally with a
+// benchmark of frames and streaming uploads).
 // Thread-safety: call from one thread (the renderer asserts it).
 #pragma once
 
-#include "pushpull/deform/metrics.hpp"
-#include "life_size.hpp"
-#include "render_model.hpp"
+#include "render_inputs.hpp"
 
-#include <Eigen/Core>
-#include <glm/glm.hpp>
+#include "pushpull/renderer/types.hpp"
 
-#include <optional>
-#include <string>
-#include <utility>
-#include <vector>
+#include <memory>
 
 namespace pushpull::app {
 
-// Lengths and points (eye, target, handle_at, handle_radius, arrow, scalar_max, ipd) are typed in
-// life-size metres (life_size.hpp); run_render converts them to file units before render_to_png.
-struct RenderCommandOptions {
-  std::string model;
-  std::string deformed;
-  std::string out;
-  std::vector<int> size{1280, 960};
-  std::string color = "material";
-  std::vector<double> camera;  // azimuth, elevation [, zoom]
-  std::vector<double> eye;
-  std::vector<double> target;
-  std::vector<double> up{0.0, 1.0, 0.0};
-  double fov_deg = 30.0;
-  std::optional<double> scalar_max;
-  double dead_band = deform::kDefaultFlatBand;  // curvature sign: |K| L^2 <= this is flat
-  std::string handle_file, fixed_file, roi_file;
-  std::vector<double> handle_at;
-  double handle_radius = 0.0;
-  std::vector<double> arrow;
-  int sections = 0;
-  bool no_legend = false;
-  bool flat = false;
-  std::optional<double> ipd;
-  int samples = 4;
-  bool validation = false;
-  int benchmark_frames = 0;
-  LifeSizeOptions life_size;
-};
+// One Vulkan context and renderer for the pictures of one render model: its textures and materials are
+// uploaded once and the model's mesh once, as a streamed mesh whose vertices each picture replaces (lavapipe
+// compiles its pipelines once, not per picture). Each picture with an arrow or section curves adds their
+// small meshes (the renderer keeps every mesh it was given until it is destroyed).
+class PictureRenderer {
+ public:
+  // samples: MSAA (1, 2, 4 or 8); validation: VK_LAYER_KHRONOS_validation (messages counted).
+  // Throws std::runtime_error (and Vulkan errors) when no device can be created.
+  PictureRenderer(std::shared_ptr<const RenderModel> render, int samples, bool validation);
+  ~PictureRenderer();
+  PictureRenderer(const PictureRenderer&) = delete;
+  PictureRenderer& operator=(const PictureRenderer&) = delete;
 
-// Everything on render vertices (#Vr), model frame.
-struct RenderInputs {
-  RenderModel render;
-  std::vector<float> positions;                                      // #Vr*3, deformed when `deformed`
-  std::vector<float> normals;                                        // #Vr*3
-  std::vector<float> scalars;                                        // #Vr or empty
-  double scalar_max = 0.0;                                           // largest displacement (model units)
-  std::vector<renderer::OverlayWeights> overlays;                    // #Vr or empty
-  std::optional<std::pair<Eigen::Vector3d, Eigen::Vector3d>> arrow;  // p0, p1
-  std::vector<std::vector<glm::vec3>> sections;
-  bool deformed = false;
-  double life_size_scale = 1.0;  // metres per model unit: legends in life-size mm
+  // One picture (RGBA8, rows top to bottom; with options.ipd the two eyes side by side, left | right) of
+  // inputs, whose render model must be this renderer's, at options.size with its camera, colour map, legend
+  // and lighting. Throws CommandError on a bad camera or a foreign render model.
+  [[nodiscard]] renderer::TextureRGBA8 render(const RenderInputs& inputs,
+                                              const RenderCommandOptions& options);
+  // Prints frame times for options.benchmark_frames frames (after a render() of the same inputs and options):
+  // plain, uploading full positions and normals every frame, and the upload alone.
+  void benchmark(const RenderInputs& inputs, const RenderCommandOptions& options);
+  // Destroys the renderer (waiting for the GPU; render() and benchmark() throw after it) and returns the
+  // messages the validation layer reported, its destruction included (0 without validation).
+  std::size_t close();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
 };
 
 // Renders and writes options.out; throws CommandError naming the file on failure.

@@ -4,6 +4,9 @@
 #include "commit_watch.hpp"
 #include "metrics_json.hpp"
 #include "progress_bar.hpp"
+#include "render_inputs.hpp"
+#include "render_model.hpp"
+#include "render_session.hpp"
 #include "replay_report.hpp"
 #include "review_loop.hpp"
 #include "session_recorder.hpp"
@@ -14,6 +17,7 @@
 #include "pushpull/assets/write.hpp"
 #include "pushpull/deform/mesh_io.hpp"
 #include "pushpull/deform/metrics.hpp"
+#include "pushpull/renderer/image_io.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -22,6 +26,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <limits>
+#include <memory>
+#include <optional>
 #include <set>
 
 namespace pushpull::app {
@@ -55,12 +61,6 @@ void write_model(const fs::path& path, const assets::Model& model, const Eigen::
   } catch (const std::exception& e) {
     throw CommandError(path.string() + ": " + e.what());
   }
-}
-
-std::string quoted(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
 }
 
 std::string two_digits(std::size_t i) {
@@ -347,6 +347,17 @@ void run_replay(const ReplayOptions& o) {
 
   // Metrics, pictures and the report.
   const auto report_start = Clock::now();
+  // The pictures: one renderer for the whole report (render_session.hpp), the model uploaded once.
+  std::shared_ptr<const RenderModel> render_model;
+  std::optional<PictureRenderer> pictures;
+  if (o.pictures && !commits.empty()) {
+    try {
+      render_model = std::make_shared<const RenderModel>(build_render_model(model));
+      pictures.emplace(render_model, 1, false);
+    } catch (const std::exception& e) {
+      bar.print(std::string("pushpull replay: warning: the report's pictures are left out: ") + e.what());
+    }
+  }
   const double scale = life_size_scale;
   std::vector<ReportCommit> report;
   for (const CommitRecord& c : commits) {
@@ -447,45 +458,41 @@ void run_replay(const ReplayOptions& o) {
     if (rc.check == "match") rc.check = "match: bit-identical to the recording";
     rc.model_file = stem + ext;
     rc.metrics_file = stem + ".metrics.json";
-    if (o.pictures) {
+    if (pictures) {
       const std::string before = stem + "-before" + ext;
       write_model(out / before, model, before_mesh.V);
       const Eigen::Vector3d p0 = s.region && !s.region->handle.empty()
                                      ? Eigen::Vector3d(before_mesh.V.row(s.region->handle.front()).transpose())
                                      : Eigen::Vector3d::Zero();
       const Eigen::Vector3d p1 = p0 + s.d;
-      char arrow[256];
-      std::snprintf(arrow, sizeof arrow, " --arrow %.9g %.9g %.9g %.9g %.9g %.9g", scale * p0.x(), scale * p0.y(),
-                    scale * p0.z(), scale * p1.x(), scale * p1.y(), scale * p1.z());
-      std::string common = " --size " + std::to_string(o.picture_size[0]) + " " + std::to_string(o.picture_size[1]) +
-                           " --samples 1 --scale " + std::to_string(scale);
-      const auto& up = review.up;
-      common += " --up " + std::to_string(up[0]) + " " + std::to_string(up[1]) + " " + std::to_string(up[2]);
-      const std::string exe = fs::read_symlink("/proc/self/exe").string();
+      RenderCommandOptions base;
+      base.size = o.picture_size;
+      base.samples = 1;
+      base.up = review.up;
       struct Picture {
-        std::string caption, file, args;
+        std::string caption, file, color;
+        bool after, arrow;
       };
-      const std::vector<Picture> pictures{
-          {"before", stem + "-before.png", quoted((out / before).string()) + " --color material"},
-          {"after", stem + "-after.png",
-           quoted((out / before).string()) + " --deformed " + quoted((out / (stem + ext)).string()) +
-               " --color material" + arrow},
-          {"displacement (this push/pull)", stem + "-displacement.png",
-           quoted((out / before).string()) + " --deformed " + quoted((out / (stem + ext)).string()) +
-               " --color displacement" + arrow},
-          {"Gaussian curvature sign after", stem + "-curvature.png",
-           quoted((out / before).string()) + " --deformed " + quoted((out / (stem + ext)).string()) +
-               " --color curvature-sign"}};
-      for (const Picture& p : pictures) {
-        const std::string command = quoted(exe) + " render " + p.args + common + " --out " +
-                                    quoted((out / p.file).string()) + " > " + quoted((out / (p.file + ".log")).string()) +
-                                    " 2>&1";
-        if (std::system(command.c_str()) == 0) {
-          rc.pictures.push_back({p.caption, p.file});
-          fs::remove(out / (p.file + ".log"), ec);
-        } else {
-          bar.print("pushpull replay: warning: the " + p.caption + " picture of commit " + std::to_string(c.index) +
-                    " failed (see " + (out / (p.file + ".log")).string() + ")");
+      const std::vector<Picture> list{
+          {"before", stem + "-before.png", "material", false, false},
+          {"after", stem + "-after.png", "material", true, true},
+          {"displacement (this push/pull)", stem + "-displacement.png", "displacement", true, true},
+          {"Gaussian curvature sign after", stem + "-curvature.png", "curvature-sign", true, false}};
+      const deform::Mesh before_shape{before_mesh.V, model.deform_mesh.F};
+      for (const Picture& picture : list) {
+        RenderCommandOptions po = base;
+        po.color = picture.color;
+        if (picture.arrow) po.arrow = {p0.x(), p0.y(), p0.z(), p1.x(), p1.y(), p1.z()};  // file units
+        try {
+          // The before shape is the original model's for the first commit, a deformed one after.
+          const bool moved = picture.after || c.before != nullptr;
+          const RenderInputs inputs = prepare_render_inputs(
+              render_model, before_shape, picture.after ? *s.positions : before_mesh.V, moved, po, scale);
+          renderer::write_png(out / picture.file, pictures->render(inputs, po));
+          rc.pictures.push_back({picture.caption, picture.file});
+        } catch (const std::exception& e) {
+          bar.print("pushpull replay: warning: the " + picture.caption + " picture of commit " +
+                    std::to_string(c.index) + " failed: " + e.what());
         }
       }
     }

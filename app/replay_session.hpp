@@ -7,8 +7,8 @@
 // model's own mesh format), commit-NN-before.<ext>, commit-NN.metrics.json (metrics_json.hpp), eyes/ (both
 // eyes one frame after each release and at the end, from xr/sim's capture; only those frames are drawn, each
 // after the solver settled, so they are the same on every run; --capture-every N draws and keeps every Nth
-// frame too), commit-NN-*.png (before, after, displacement and curvature-sign pictures rendered by `pushpull
-// render`), report.html.
+// frame too), commit-NN-*.png (before, after, displacement and curvature-sign pictures drawn as `pushpull
+// render` draws them, by one renderer for the whole report: render_session.hpp), report.html.
 //
 // Checks: each replayed commit is paired with a recorded one by release order (every released push/pull ends
 // as a commit or a failed commit, in the recording as in the replay). Its hash (deform::position_hash over
@@ -38,7 +38,7 @@ struct ReplayOptions {
   std::vector<int> eye_size{256, 256};
   std::vector<int> picture_size{480, 360};
   int capture_every = 0;  // also both eyes every N frames (0: only at each release and at the end)
-  bool pictures = true;  // the report's per-commit pictures (four `pushpull render` runs per commit)
+  bool pictures = true;   // the report's per-commit pictures (four per commit)
 };
 
 // Throws CommandError naming the file and the problem: unreadable or corrupted recording (with its line),

@@ -1,0 +1,139 @@
+// app/render_session's PictureRenderer (one Vulkan renderer for many pictures of a model, as the replay
+// report uses it) on lavapipe: a picture does not depend on the pictures drawn before it in the same renderer
+// (colour map, legend, overlays, arrow, size and eye count all replaced), a picture is refused for inputs of
+// another model, and prepare_render_inputs measures colours from the rest shape it is given.
+#include "render_inputs.hpp"
+#include "render_model.hpp"
+#include "render_session.hpp"
+
+#include "pushpull/assets/model.hpp"
+#include "pushpull/deform/mesh.hpp"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Core>
+#include <cmath>
+#include <cstdlib>
+#include <memory>
+#include <stdexcept>
+
+namespace {
+
+using pushpull::app::PictureRenderer;
+using pushpull::app::prepare_render_inputs;
+using pushpull::app::RenderCommandOptions;
+using pushpull::app::RenderInputs;
+using pushpull::app::RenderModel;
+using pushpull::renderer::TextureRGBA8;
+
+// A wavy sheet of n x n vertices over [0, 1]^2 (y up), two triangles per cell.
+pushpull::deform::Mesh wavy_sheet(int n) {
+  pushpull::deform::Mesh mesh;
+  mesh.V.resize(n * n, 3);
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const double x = double(i) / (n - 1), z = double(j) / (n - 1);
+      mesh.V.row(j * n + i) << x, 0.05 * std::sin(6.0 * x) * std::cos(5.0 * z), z;
+    }
+  mesh.F.resize(2 * (n - 1) * (n - 1), 3);
+  int f = 0;
+  for (int j = 0; j + 1 < n; ++j)
+    for (int i = 0; i + 1 < n; ++i) {
+      const int a = j * n + i, b = a + 1, c = a + n, d = c + 1;
+      mesh.F.row(f++) << a, c, b;
+      mesh.F.row(f++) << b, c, d;
+    }
+  return mesh;
+}
+
+// The sheet pulled up by a bump around its centre.
+Eigen::MatrixXd pulled(const pushpull::deform::Mesh& mesh) {
+  Eigen::MatrixXd V = mesh.V;
+  for (Eigen::Index v = 0; v < V.rows(); ++v) {
+    const double r2 = std::pow(V(v, 0) - 0.5, 2) + std::pow(V(v, 2) - 0.5, 2);
+    V(v, 1) += 0.2 * std::exp(-r2 / 0.02);
+  }
+  return V;
+}
+
+RenderCommandOptions picture(const std::string& color, int width, int height) {
+  RenderCommandOptions o;
+  o.color = color;
+  o.size = {width, height};
+  o.samples = 1;
+  return o;
+}
+
+int largest_difference(const TextureRGBA8& a, const TextureRGBA8& b) {
+  if (a.width != b.width || a.height != b.height || a.pixels.size() != b.pixels.size()) return 256;
+  int largest = 0;
+  for (std::size_t k = 0; k < a.pixels.size(); ++k)
+    largest = std::max(largest, std::abs(a.pixels[k] - b.pixels[k]));
+  return largest;
+}
+
+class PictureRendererTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    sheet = wavy_sheet(24);
+    model = std::make_shared<const RenderModel>(
+        pushpull::app::build_render_model(pushpull::assets::model_from_mesh(sheet, "sheet")));
+    V = pulled(sheet);
+  }
+  pushpull::deform::Mesh sheet;
+  std::shared_ptr<const RenderModel> model;
+  Eigen::MatrixXd V;
+};
+
+TEST_F(PictureRendererTest, APictureDoesNotDependOnThePicturesBeforeIt) {
+  // The material picture of the pulled sheet from a fresh renderer.
+  const RenderCommandOptions plain = picture("material", 96, 64);
+  const RenderInputs plain_inputs = prepare_render_inputs(model, sheet, V, true, plain, 1.0);
+  TextureRGBA8 fresh;
+  {
+    PictureRenderer renderer(model, 1, false);
+    fresh = renderer.render(plain_inputs, plain);
+  }
+  // The same after a stereo displacement picture with a legend, overlays and an arrow at another size, and a
+  // curvature-sign picture of the rest shape.
+  PictureRenderer renderer(model, 1, false);
+  RenderCommandOptions busy = picture("displacement", 80, 80);
+  busy.ipd = 0.05;
+  busy.arrow = {0.5, 0.0, 0.5, 0.5, 0.2, 0.5};
+  busy.handle_at = {0.5, 0.0, 0.5};
+  busy.handle_radius = 0.2;
+  const TextureRGBA8 stereo = renderer.render(prepare_render_inputs(model, sheet, V, true, busy, 1.0), busy);
+  EXPECT_EQ(stereo.width, 160u);  // two eyes side by side
+  const RenderCommandOptions curvature = picture("curvature-sign", 64, 48);
+  (void)renderer.render(prepare_render_inputs(model, sheet, sheet.V, false, curvature, 1.0), curvature);
+  const TextureRGBA8 reused = renderer.render(plain_inputs, plain);
+  EXPECT_EQ(largest_difference(fresh, reused), 0);
+  // And the picture differs from the stereo one's left eye: the test can tell pictures apart.
+  EXPECT_NE(largest_difference(fresh, stereo), 0);
+  EXPECT_EQ(renderer.close(), 0u);
+  EXPECT_THROW((void)renderer.render(plain_inputs, plain), std::runtime_error);
+}
+
+TEST_F(PictureRendererTest, InputsOfAnotherModelAreRefused) {
+  PictureRenderer renderer(model, 1, false);
+  const auto other = std::make_shared<const RenderModel>(*model);
+  const RenderCommandOptions o = picture("material", 32, 32);
+  EXPECT_THROW((void)renderer.render(prepare_render_inputs(other, sheet, V, true, o, 1.0), o),
+               std::runtime_error);
+}
+
+TEST_F(PictureRendererTest, ColoursAreMeasuredFromTheRestShapeGiven) {
+  const RenderCommandOptions o = picture("displacement", 32, 32);
+  // From the original sheet: the bump's height; from the pulled shape itself: nothing moved.
+  const RenderInputs from_original = prepare_render_inputs(model, sheet, V, true, o, 1.0);
+  EXPECT_NEAR(from_original.scalar_max, 0.2, 0.01);
+  const pushpull::deform::Mesh pulled_shape{V, sheet.F};
+  const RenderInputs from_pulled = prepare_render_inputs(model, pulled_shape, V, true, o, 1.0);
+  EXPECT_EQ(from_pulled.scalar_max, 0.0);
+  // Unmoved positions keep the file normals; moved ones turn with the surface.
+  const RenderInputs rest = prepare_render_inputs(model, sheet, sheet.V, false, o, 1.0);
+  EXPECT_EQ(rest.normals, model->file_normals);
+  EXPECT_NE(from_original.normals, model->file_normals);
+}
+
+}  // namespace
