@@ -2,6 +2,7 @@
 
 #include "commands.hpp"
 
+#include "pushpull/deform/mesh_io.hpp"
 #include "pushpull/renderer/camera.hpp"
 #include "pushpull/renderer/colormap.hpp"
 #include "pushpull/renderer/context.hpp"
@@ -19,6 +20,7 @@
 #include <cstring>
 #include <memory>
 #include <span>
+#include <string_view>
 
 namespace pushpull::app {
 namespace {
@@ -307,8 +309,14 @@ void render_to_png(const RenderInputs& inputs, const RenderCommandOptions& o) {
   if (o.validation && validation_messages > 0)
     throw CommandError("Vulkan validation reported " + std::to_string(validation_messages) +
                        " message(s) (printed above)");
+  write_picture(o.out, image);
+}
+
+void write_picture(const std::filesystem::path& path, const TextureRGBA8& image) {
   try {
-    write_png(o.out, image);
+    const std::vector<uint8_t> bytes = encode_png(image, path.string());
+    deform::write_file_atomically(
+        path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
   } catch (const std::exception& e) {
     throw CommandError(e.what());
   }

@@ -8,6 +8,7 @@
 
 #include "pushpull/renderer/types.hpp"
 
+#include <filesystem>
 #include <memory>
 
 namespace pushpull::app {
@@ -41,6 +42,10 @@ class PictureRenderer {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+// Writes a picture as PNG through a temporary file and rename (a crash never leaves half a file); throws
+// CommandError naming the file on failure.
+void write_picture(const std::filesystem::path& path, const renderer::TextureRGBA8& image);
 
 // Renders and writes options.out; throws CommandError naming the file on failure.
 void render_to_png(const RenderInputs& inputs, const RenderCommandOptions& options);

@@ -17,7 +17,6 @@
 #include "pushpull/assets/write.hpp"
 #include "pushpull/deform/mesh_io.hpp"
 #include "pushpull/deform/metrics.hpp"
-#include "pushpull/renderer/image_io.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -488,7 +487,7 @@ void run_replay(const ReplayOptions& o) {
           const bool moved = picture.after || c.before != nullptr;
           const RenderInputs inputs = prepare_render_inputs(
               render_model, before_shape, picture.after ? *s.positions : before_mesh.V, moved, po, scale);
-          renderer::write_png(out / picture.file, pictures->render(inputs, po));
+          write_picture(out / picture.file, pictures->render(inputs, po));
           rc.pictures.push_back({picture.caption, picture.file});
         } catch (const std::exception& e) {
           bar.print("pushpull replay: warning: the " + picture.caption + " picture of commit " +

@@ -8,14 +8,17 @@
 
 #include "pushpull/assets/model.hpp"
 #include "pushpull/deform/mesh.hpp"
+#include "pushpull/renderer/image_io.hpp"
 
 #include <gtest/gtest.h>
 
 #include <Eigen/Core>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <memory>
 #include <stdexcept>
+#include <string>
 
 namespace {
 
@@ -134,6 +137,37 @@ TEST_F(PictureRendererTest, ColoursAreMeasuredFromTheRestShapeGiven) {
   const RenderInputs rest = prepare_render_inputs(model, sheet, sheet.V, false, o, 1.0);
   EXPECT_EQ(rest.normals, model->file_normals);
   EXPECT_NE(from_original.normals, model->file_normals);
+}
+
+TEST(WritePicture, WritesAWholePngOrNothingAndNamesTheFile) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::path(PUSHPULL_BINARY_DIR) / "write-picture-test";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  TextureRGBA8 image;
+  image.width = 3;
+  image.height = 2;
+  image.pixels = {255, 0, 0, 255, 0, 255, 0, 255, 0, 0, 255, 255, 9, 9, 9, 255, 50, 60, 70, 255, 1, 2, 3, 4};
+  const fs::path file = dir / "picture.png";
+  pushpull::app::write_picture(file, image);
+  const TextureRGBA8 back = pushpull::renderer::read_png(file);
+  EXPECT_EQ(back.width, 3u);
+  EXPECT_EQ(back.pixels, image.pixels);
+  int entries = 0;
+  for ([[maybe_unused]] const auto& entry : fs::directory_iterator(dir)) ++entries;
+  EXPECT_EQ(entries, 1);  // no temporary left beside it
+  // A folder that does not exist: the error names the file.
+  try {
+    pushpull::app::write_picture(dir / "missing" / "picture.png", image);
+    ADD_FAILURE() << "no error";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("missing/picture.png"), std::string::npos) << e.what();
+  }
+  // An inconsistent image: refused, and the picture already there is kept whole.
+  TextureRGBA8 broken = image;
+  broken.pixels.pop_back();
+  EXPECT_THROW(pushpull::app::write_picture(file, broken), std::runtime_error);
+  EXPECT_EQ(pushpull::renderer::read_png(file).pixels, image.pixels);
 }
 
 }  // namespace

@@ -23,6 +23,22 @@
 
 namespace pushpull::renderer {
 
+std::vector<uint8_t> encode_png(const TextureRGBA8& image, const std::string& name) {
+  if (image.width == 0 || image.height == 0 || image.pixels.size() != size_t{image.width} * image.height * 4)
+    throw std::runtime_error(name + ": cannot encode an empty or inconsistent image as PNG");
+  std::vector<uint8_t> bytes;
+  const auto append = [](void* context, void* data, int size) {
+    auto* out = static_cast<std::vector<uint8_t>*>(context);
+    const auto* begin = static_cast<const uint8_t*>(data);
+    out->insert(out->end(), begin, begin + size);
+  };
+  const int ok =
+      stbi_write_png_to_func(append, &bytes, static_cast<int>(image.width), static_cast<int>(image.height), 4,
+                             image.pixels.data(), static_cast<int>(image.width * 4));
+  if (ok == 0) throw std::runtime_error(name + ": cannot encode the image as PNG");
+  return bytes;
+}
+
 void write_png(const std::filesystem::path& path, const TextureRGBA8& image) {
   if (image.width == 0 || image.height == 0 || image.pixels.size() != size_t{image.width} * image.height * 4)
     throw std::runtime_error(path.string() + ": cannot write an empty or inconsistent image");

@@ -7,10 +7,15 @@
 #include <filesystem>
 #include <span>
 #include <string>
+#include <vector>
 
 namespace pushpull::renderer {
 
-// Writes RGBA8 as PNG; throws std::runtime_error naming the file on failure.
+// RGBA8 encoded as PNG bytes; throws std::runtime_error for an empty or inconsistent image (`name` in the
+// message).
+std::vector<uint8_t> encode_png(const TextureRGBA8& image, const std::string& name);
+// Writes RGBA8 as PNG straight to `path` (tests and tools: not atomic; the app writes encode_png's bytes
+// through a temporary file and rename); throws std::runtime_error naming the file on failure.
 void write_png(const std::filesystem::path& path, const TextureRGBA8& image);
 // Reads any PNG as RGBA8; throws std::runtime_error naming the file on failure.
 TextureRGBA8 read_png(const std::filesystem::path& path);
