@@ -98,8 +98,13 @@ bool capture_view(const Session& s, const XrSwapchainSubImage& sub, const std::s
         if (bgra) std::swap(pixels[i], pixels[i + 2]);
         pixels[i + 3] = 255;  // what the headset shows is opaque
       }
-      ok = stbi_write_png(file.c_str(), static_cast<int>(w), static_cast<int>(h), 4, pixels.data(),
-                          static_cast<int>(w * 4)) != 0;
+      // Whole or not at all: written beside it, then renamed into place (a process killed mid-write leaves no
+      // half picture under the capture's name).
+      const std::string part = file + ".part";
+      ok = stbi_write_png(part.c_str(), static_cast<int>(w), static_cast<int>(h), 4, pixels.data(),
+                          static_cast<int>(w * 4)) != 0 &&
+           std::rename(part.c_str(), file.c_str()) == 0;
+      if (!ok) std::remove(part.c_str());
     }
   }
   if (memory != VK_NULL_HANDLE) vkFreeMemory(vk.device, memory, nullptr);
