@@ -14,6 +14,7 @@
 #include <cmath>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -52,19 +53,17 @@ void run_render(RenderCommandOptions options) {
     throw CommandError(options.model + ": the model has no triangles to draw");
 
   const Eigen::MatrixXd& V0 = model.deform_mesh.V;
-  if (options.deformed.empty()) {
-    render_to_png(
-        prepare_render_inputs(std::move(render), model.deform_mesh, V0, false, options, life.scale()),
-        options);
-    return;
+  std::optional<assets::Model> result;
+  if (!options.deformed.empty()) {
+    result = load(options.deformed, "deformed result");
+    if (result->deform_mesh.V.rows() != V0.rows())
+      throw CommandError(options.deformed + ": has " + std::to_string(result->deform_mesh.V.rows()) +
+                         " (welded) vertices but " + options.model + " has " + std::to_string(V0.rows()) +
+                         ": not a deformation of that model");
   }
-  const assets::Model result = load(options.deformed, "deformed result");
-  if (result.deform_mesh.V.rows() != V0.rows())
-    throw CommandError(options.deformed + ": has " + std::to_string(result.deform_mesh.V.rows()) +
-                       " (welded) vertices but " + options.model + " has " + std::to_string(V0.rows()) +
-                       ": not a deformation of that model");
-  render_to_png(prepare_render_inputs(std::move(render), model.deform_mesh, result.deform_mesh.V, true,
-                                      options, life.scale()),
+  const Eigen::MatrixXd& V = result ? result->deform_mesh.V : V0;
+  render_to_png(prepare_render_inputs(std::move(render), model.deform_mesh, V, result.has_value(), options,
+                                      life.scale()),
                 options);
 }
 

@@ -47,4 +47,16 @@ class HelperThread {
   std::thread thread_;  // last: started once the members above exist
 };
 
+// job(0) then job(1): on the two threads when `threads` is given, else one after the other on the calling
+// thread (the same parts, so the same results either way).
+template <class Job>
+void run_halves(HelperThread* threads, Job& job) {
+  if (threads) {
+    threads->run_both(job);
+  } else {
+    job(0);
+    job(1);
+  }
+}
+
 }  // namespace pushpull::deform::detail

@@ -167,12 +167,7 @@ double Deformer::Impl::local_step(const Eigen::Matrix3Xd& X, std::vector<Eigen::
             quadratic_columns(m.Q, X, p == 0 ? 0 : half, p == 0 ? half : n);
       }
     };
-    if (threads) {
-      threads->run_both(part);
-    } else {
-      part(0);
-      part(1);
-    }
+    detail::run_halves(threads, part);
     for (std::size_t s = 0; s < shared_vertex.size() && b; ++s) {
       double* bv = b + 3 * static_cast<std::ptrdiff_t>(shared_vertex[s]);
       for (int i = 0; i < 3; ++i) bv[i] += shared[3 * s + static_cast<std::size_t>(i)];

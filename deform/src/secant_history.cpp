@@ -33,16 +33,6 @@ double largest_triple(const double* v, Eigen::Index length) {
   return std::max(largest, rest);
 }
 
-template <class Part>
-void run_parts(HelperThread* threads, Part& part) {
-  if (threads) {
-    threads->run_both(part);
-  } else {
-    part(0);
-    part(1);
-  }
-}
-
 }  // namespace
 
 SecantHistory::SecantHistory(int window, Eigen::Index dimension)
@@ -105,7 +95,7 @@ double SecantHistory::add(const Eigen::Ref<const Eigen::VectorXd>& x,
     }
     largest[static_cast<std::size_t>(p)] = big;
   };
-  run_parts(threads, part);
+  run_halves(threads, part);
   for (int k = 0; k < m; ++k) {
     const int ck = column(k);
     auto sum = [&](int which) {
@@ -138,7 +128,7 @@ bool SecantHistory::extrapolate(const Eigen::Ref<const Eigen::VectorXd>& g, cons
     }
     finite[static_cast<std::size_t>(p)] = ok;
   };
-  run_parts(threads, part);
+  run_halves(threads, part);
   return finite[0] && finite[1];
 }
 

@@ -18,6 +18,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
 
 #include "helper_thread.hpp"
 

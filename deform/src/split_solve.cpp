@@ -176,14 +176,7 @@ void GlobalSystem::solve_in_place(Eigen::Matrix3Xd& B, HelperThread* threads) co
     const std::vector<int>& columns = part_columns_[p];
     for (auto it = columns.rbegin(); it != columns.rend(); ++it) backward(*it);
   };
-  auto both = [&](auto& job) {
-    if (threads) {
-      threads->run_both(job);
-    } else {
-      job(0);
-      job(1);
-    }
-  };
+  auto both = [&](auto& job) { run_halves(threads, job); };
   both(forward_part);
   for (int s = 0; s < top_count; ++s) {  // the parts' updates of top rows, in part order
     const int i = top_columns_[static_cast<std::size_t>(s)];
