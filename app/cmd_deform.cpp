@@ -1,4 +1,5 @@
 // `pushpull deform`: one push/pull on a model in batch, writing the deformed model and METRICS.json.
+#include "band_reversals_text.hpp"
 #include "commands.hpp"
 #include "life_size.hpp"
 #include "metrics_json.hpp"
@@ -375,6 +376,9 @@ void run_deform(DeformCommandOptions o) {
       "flat (flat: |K| L^2 <= %g, L = %g)\n",
       100.0 * m.sign_reversal_fraction, m.curvature_vertices, m.into_flat, m.out_of_flat, o.dead_band,
       m.reference_length);
+  if (!m.reversals_by_band.empty())
+    std::printf("  reversals where clearly curved: %s\n",
+                describe_band_reversals(m.reversals_by_band, life.to_mm(1.0) / 1000.0).c_str());
   for (const std::string& warning : r.warnings) std::printf("  warning: %s\n", warning.c_str());
   if (!record.attached.empty()) {
     long moved = 0, vertices = 0;

@@ -86,6 +86,12 @@ std::string metrics_json(const DeformRunRecord& record) {
                       {"along_d", norms(metrics.along_d)},
                       {"orthogonal", norms(metrics.orthogonal)}};
   doc["mean_along_d"] = metrics.mean_along_d;
+  json by_band = json::array();
+  for (const deform::BandReversals& band : metrics.reversals_by_band)
+    by_band.push_back(json{{"band", band.band},
+                           {"radius_below", band.radius_below},
+                           {"compared", band.compared},
+                           {"reversals", band.reversals}});
   doc["curvature"] =
       json{{"evaluated_vertices", metrics.curvature_vertices},
            {"threshold", metrics.curvature_threshold},
@@ -103,9 +109,12 @@ std::string metrics_json(const DeformRunRecord& record) {
            {"into_flat", metrics.into_flat},
            {"out_of_flat", metrics.out_of_flat},
            {"sign_reversal_fraction", metrics.sign_reversal_fraction},
+           {"reversals_by_band", by_band},
            {"flat_rule",
             "|K| * reference_length^2 <= flat_band (reference_length: bounding-box diagonal of the "
-            "model); sign_flips counts every change, sign_reversals only + to - and - to +"}};
+            "model); sign_flips counts every change, sign_reversals only + to - and - to +; "
+            "reversals_by_band: the reversals again with flat_band raised to band (curvature radius below "
+            "radius_below), among the vertices signed under it before"}};
   json sections = json::array();
   for (const deform::Section& section : metrics.sections) {
     sections.push_back(json{

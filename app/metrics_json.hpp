@@ -12,7 +12,8 @@
 //   curvature {evaluated_vertices, threshold, dead_band_fraction, sign_flips, sign_reversals,
 //              positive_before, negative_before, positive_after, negative_after, area: "mixed Voronoi",
 //              boundary: "excluded", flat_band, reference_length, into_flat, out_of_flat,
-//              sign_reversal_fraction, flat_rule: text}. Flat: |K| reference_length^2 <= flat_band (the
+//              sign_reversal_fraction, reversals_by_band [{band, radius_below, compared, reversals}],
+//              flat_rule: text}. Flat: |K| reference_length^2 <= flat_band (the
 //              deform sign rule, metrics.hpp); dead_band_fraction repeats flat_band for older readers
 //              (it no longer is a fraction of max |K|).
 //   sections [{offset, before: [{closed, points [[x,y,z]..]}], after: [...]}],

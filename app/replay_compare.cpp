@@ -1,5 +1,6 @@
 #include "replay_compare.hpp"
 
+#include "band_reversals_text.hpp"
 #include "commands.hpp"
 
 #include "pushpull/deform/mesh_io.hpp"
@@ -34,6 +35,22 @@ std::string number(double v, const char* format = "%.3g") {
   char text[64];
   std::snprintf(text, sizeof text, format, v);
   return text;
+}
+
+// The reversals_by_band of a METRICS.json curvature object as text (empty when absent: older reports).
+std::string band_reversals(const nlohmann::json& curvature, double metres_per_unit) {
+  const auto found = curvature.find("reversals_by_band");
+  if (found == curvature.end() || !found->is_array() || found->empty()) return {};
+  std::vector<deform::BandReversals> bands;
+  for (const nlohmann::json& entry : *found) {
+    deform::BandReversals band;
+    band.band = entry.value("band", 0.0);
+    band.radius_below = entry.value("radius_below", 0.0);
+    band.compared = entry.value("compared", std::size_t{0});
+    band.reversals = entry.value("reversals", std::size_t{0});
+    bands.push_back(band);
+  }
+  return "<br>where clearly curved: " + escape(describe_band_reversals(bands, metres_per_unit));
 }
 
 }  // namespace
@@ -90,7 +107,8 @@ void run_replay_comparison(const ReplayOptions& o, const std::vector<std::string
             row << "not measured (no interior vertex)";
           else
             row << j["curvature"].value("sign_reversals", 0) << " ("
-                << number(100.0 * j.value("gaussian_sign_reversal_fraction", 0.0)) << " %)";
+                << number(100.0 * j.value("gaussian_sign_reversal_fraction", 0.0)) << " %)"
+                << band_reversals(j["curvature"], scale);
           row << "<br>along d RMS " << number(1000.0 * scale * j.value("along_d_norm", 0.0)) << " mm, across "
               << number(1000.0 * scale * j.value("orthogonal_norm", 0.0)) << " mm";
         }

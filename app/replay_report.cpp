@@ -1,5 +1,6 @@
 #include "replay_report.hpp"
 
+#include "band_reversals_text.hpp"
 #include "commands.hpp"
 
 #include "pushpull/deform/mesh_io.hpp"
@@ -122,6 +123,9 @@ void write_replay_report(const std::string& path, const ReportSession& s, const 
       h << "<tr><th>Gaussian curvature sign reversals</th><td>" << m.sign_reversals << " of "
         << m.curvature_vertices << " vertices (" << number(100.0 * m.sign_reversal_fraction)
         << " %); any sign change " << m.sign_flips << "</td></tr>\n";
+    if (m.curvature_vertices > 0 && !m.reversals_by_band.empty())
+      h << "<tr><th>reversals where clearly curved</th><td>"
+        << escape(describe_band_reversals(m.reversals_by_band, c.scale)) << "</td></tr>\n";
     h << "<tr><th>displacement along d</th><td>RMS " << number(m.along_d.rms * mm) << " mm, max "
       << number(m.along_d.max * mm) << " mm</td></tr>\n";
     h << "<tr><th>displacement across d</th><td>RMS " << number(m.orthogonal.rms * mm) << " mm, max "

@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <cmath>
+
 #include <unistd.h>
 
 #include <array>
@@ -85,6 +87,16 @@ TEST_F(DeformCli, HandleAndFixedFilesGiveAMeshAndCompleteMetrics) {
   EXPECT_GT(m["along_d_norm"].get<double>(), 0.0);
   // asan keeps the sphere elliptic at this pull.
   EXPECT_EQ(m["gaussian_sign_flip_fraction"].get<double>(), 0.0);
+  // The reversals again under raised bands (metrics.hpp): three, none reversed, radii L / sqrt(band).
+  const auto& bands = m["curvature"]["reversals_by_band"];
+  ASSERT_EQ(bands.size(), 3u);
+  const double L = m["curvature"]["reference_length"].get<double>();
+  for (const auto& band : bands) {
+    EXPECT_EQ(band["reversals"].get<std::size_t>(), 0u);
+    EXPECT_NEAR(band["radius_below"].get<double>(), L / std::sqrt(band["band"].get<double>()), 1e-12);
+  }
+  EXPECT_GT(bands[0]["compared"].get<std::size_t>(), 0u);  // the hemisphere (radius ~ L / 2.5) is signed
+  EXPECT_NE(run.output.find("reversals where clearly curved: 0 of "), std::string::npos) << run.output;
   // Planes perpendicular to d = +z cut the hemisphere in closed rings, before and after.
   ASSERT_EQ(m["sections"].size(), 5u);
   for (const auto& section : m["sections"]) {

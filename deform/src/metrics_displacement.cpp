@@ -104,6 +104,21 @@ DeformationMetrics evaluate_deformation(const Mesh& before, const Eigen::MatrixX
     metrics.into_flat += sign_before[v] != 0 && sign_after[v] == 0;
     metrics.out_of_flat += sign_before[v] == 0 && sign_after[v] != 0;
   }
+  for (const double band : options.reversal_bands) {
+    BandReversals counted;
+    counted.band = band;
+    counted.radius_below = band > 0.0 ? metrics.reference_length / std::sqrt(band) : 0.0;
+    const double threshold = flat_curvature_threshold(metrics.reference_length, band);
+    const std::vector<std::int8_t> before_signs = curvature_signs(k_before, threshold);
+    const std::vector<std::int8_t> after_signs = curvature_signs(k_after, threshold);
+    for (const int i : vertices) {
+      const auto v = static_cast<std::size_t>(i);
+      if (k_before.boundary[v] || before_signs[v] == 0) continue;
+      ++counted.compared;
+      counted.reversals += before_signs[v] * after_signs[v] < 0;
+    }
+    metrics.reversals_by_band.push_back(counted);
+  }
   if (metrics.curvature_vertices > 0) {
     const auto n = static_cast<double>(metrics.curvature_vertices);
     metrics.sign_flip_fraction = static_cast<double>(metrics.sign_flips) / n;

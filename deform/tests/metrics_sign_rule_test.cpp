@@ -89,6 +89,47 @@ TEST(MetricsSignRule, StrictReversalsAreCountedApartFromMovesIntoAndOutOfFlat) {
   EXPECT_EQ(raised.sign_reversals, 0u);
 }
 
+TEST(MetricsSignRule, ReversalsByBandTellGentleFromClearlyCurved) {
+  // A gentle dome z = 0.05 (x^2 + y^2) (|K| ~ 0.01, |K| L^2 ~ 0.07 with L ~ 2.83) turned into the gentle
+  // saddle reverses every interior vertex under the default band (1e-2) but none is signed under 0.1; the
+  // dome z = 0.3 (x^2 + y^2) (|K| L^2 between about 1 and 2.9) turned into its saddle reverses under 0.1 and
+  // 1 (partly), none is signed under 10.
+  const std::size_t interior = 15u * 15u;
+  const Eigen::Vector3d d(0, 0, 1);
+  auto dome = [](double a) {
+    return pt::grid(16, 16, -1, 1, -1, 1, [a](double x, double y) { return a * (x * x + y * y); });
+  };
+  auto saddle = [](double a) {
+    return pt::grid(16, 16, -1, 1, -1, 1, [a](double x, double y) { return a * (x * x - y * y); });
+  };
+
+  const pd::DeformationMetrics gentle = pd::evaluate_deformation(dome(0.05), saddle(0.05).V, d, {});
+  EXPECT_EQ(gentle.sign_reversals, interior);
+  ASSERT_EQ(gentle.reversals_by_band.size(), 3u);
+  EXPECT_EQ(gentle.reversals_by_band[0].band, 0.1);
+  EXPECT_NEAR(gentle.reversals_by_band[0].radius_below, gentle.reference_length / std::sqrt(0.1), 1e-12);
+  EXPECT_EQ(gentle.reversals_by_band[0].compared, 0u);
+  EXPECT_EQ(gentle.reversals_by_band[0].reversals, 0u);
+
+  const pd::DeformationMetrics strong = pd::evaluate_deformation(dome(0.3), saddle(0.3).V, d, {});
+  EXPECT_EQ(strong.sign_reversals, interior);
+  EXPECT_EQ(strong.reversals_by_band[0].compared, interior);
+  EXPECT_EQ(strong.reversals_by_band[0].reversals, interior);
+  // Under band 1 the flattest vertices (the corners' rings) are not signed; those signed all reverse.
+  EXPECT_GT(strong.reversals_by_band[1].compared, interior / 4);
+  EXPECT_LE(strong.reversals_by_band[1].reversals, strong.reversals_by_band[1].compared);
+  EXPECT_GT(strong.reversals_by_band[1].reversals, 0u);
+  EXPECT_EQ(strong.reversals_by_band[2].compared, 0u);
+
+  // A dome left as it is reverses nowhere, under any band; the bands are the caller's.
+  pd::MetricsOptions options;
+  options.reversal_bands = {0.5};
+  const pd::DeformationMetrics kept = pd::evaluate_deformation(dome(0.3), dome(0.3).V, d, {}, options);
+  ASSERT_EQ(kept.reversals_by_band.size(), 1u);
+  EXPECT_GT(kept.reversals_by_band[0].compared, 0u);
+  EXPECT_EQ(kept.reversals_by_band[0].reversals, 0u);
+}
+
 // A cube of 12 triangles: 6 flat panels meeting at creases. Every vertex has the angle defect pi/2 of a
 // corner, yet no face of the cube is curved.
 pd::Mesh coarse_cube() {

@@ -26,6 +26,15 @@
 //    flat-panel face (display_curvature_signs). Statistics keep the vertex signs.
 //  - Sign changes are reported apart: strict reversals (+ to -, - to +) are what the paper's "sign flips"
 //    mean (surface collapse); moves into or out of flat are counted separately (into_flat, out_of_flat).
+//  - Reversals by band: the same strict reversals counted again with the sign rule's band raised
+//    (MetricsOptions::reversal_bands, default 0.1, 1 and 10: curvature radius below L / sqrt(band), on a
+//    4.4 m car 14 m, 4.4 m and 1.4 m), among the vertices signed under the raised band before the pull
+//    (the "compared" count) and signed the other way under it after. They tell where a method's reversals
+//    lie: on gently curved surface (a bonnet: the demo's region of examples/hood.off has |K| L^2 between
+//    0.1 and 1, where ARAP-s&r reverses 456 vertices under band 0.1 and ASAN none), on clearly curved
+//    surface, or where the surface is nearly developable and the sign least stable (the paper's section 7
+//    names areas of null Gaussian curvature as its criterion's weak spot). The README gives the bundled car's
+//    session's figures.
 //  - Displacement u_i = p'_i - p_i split along the unit push/pull direction d^ = d/|d|:
 //    along_i = u_i . d^ (signed scalar) and orthogonal_i = u_i - along_i d^ (vector in the plane
 //    perpendicular to d), as in the paper's Fig. 13.
@@ -142,8 +151,18 @@ struct Section {
 
 struct MetricsOptions {
   double flat_band = kDefaultFlatBand;  // curvature sign rule: |K| L^2 <= flat_band is flat (dimensionless)
+  // Raised bands for DeformationMetrics::reversals_by_band (dimensionless, like flat_band).
+  std::vector<double> reversal_bands = {0.1, 1.0, 10.0};
   std::vector<double> section_offsets;  // offsets (model units) along d^ from section_origin
   Eigen::Vector3d section_origin = Eigen::Vector3d::Zero();
+};
+
+// Strict sign reversals under a raised band (see the header comment).
+struct BandReversals {
+  double band = 0.0;          // |K| L^2 <= band counts as flat (dimensionless)
+  double radius_below = 0.0;  // L / sqrt(band): the curvature radius the band admits (model units)
+  std::size_t compared = 0;   // interior vertices of S signed (not flat) under this band before the pull
+  std::size_t reversals = 0;  // of those, signed the other way after it under the same band
 };
 
 // Everything the paper evaluates for one push/pull, over a vertex set S (the region of interest).
@@ -158,6 +177,7 @@ struct DeformationMetrics {
   std::size_t out_of_flat = 0;          // flat before, + or - after
   double sign_flip_fraction = 0.0;      // sign_flips / curvature_vertices (0 when there are none)
   double sign_reversal_fraction = 0.0;  // sign_reversals / curvature_vertices (0 when there are none)
+  std::vector<BandReversals> reversals_by_band;  // one per MetricsOptions::reversal_bands entry
   std::size_t positive_before = 0, negative_before = 0, positive_after = 0, negative_after = 0;
   NormSummary displacement;       // |u| over S
   NormSummary along_d;            // |u . d^| over S
