@@ -3,7 +3,10 @@
 // they stopped after 21-24 iterations 4.1-4.7x optimistic; on the real car (seed 2027, pull 8) after 33
 // iterations 21.8x, just past the 32 iterations the probe then covered. A slow mode (rate above 0.99) hid
 // under the fast ones; the rate probe of the early stop (deform/src/rate_probe.hpp) finds it, and the
-// estimate then bounds the true distance to the minimiser.
+// estimate then bounds the true distance to the minimiser. sr-arap on the real car (seed 20261202, pull 4)
+// stopped after 574 iterations 4.84x optimistic while its local step ran three fixed Gauss-Seidel sweeps
+// over its coupled rotations, far from the exact rotation fit the bound assumes; sweeps until the rotations
+// settle (deform/src/local_global.cpp) make it honest.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -31,6 +34,8 @@ struct RandomPull {
   double radius;  // the region's (the bench: 30% of the truck's diagonal, 15% of the car's)
   Eigen::Vector3d d;
   std::size_t region;  // vertices, as the bench printed
+  pd::Method method = pd::Method::Asan;
+  bool probed = true;  // an early stop (the rate probe then runs and must find the slow mode)
 };
 
 class SolverHonesty : public ::testing::TestWithParam<RandomPull> {};
@@ -51,7 +56,7 @@ TEST_P(SolverHonesty, AnEarlyStopOnARealModelIsWithinTwiceItsEstimate) {
   ASSERT_EQ(roi.size(), pull.region);
 
   pd::DeformOptions options;
-  options.method = pd::Method::Asan;
+  options.method = pull.method;
   const pd::DeformResult r = pd::deform(mesh, roi, pull.d, options);
   pd::DeformOptions tight = options;
   tight.tolerance = 1e-9;
@@ -65,6 +70,7 @@ TEST_P(SolverHonesty, AnEarlyStopOnARealModelIsWithinTwiceItsEstimate) {
               r.probe_evaluations, r.probe_rate.value_or(-1.0), *r.error_estimate, truth);
   EXPECT_LE(truth, 2.0 * *r.error_estimate);
   EXPECT_LE(truth, 2.0 * options.tolerance);
+  if (!pull.probed) return;
   ASSERT_TRUE(r.probe_rate.has_value());
   EXPECT_GT(*r.probe_rate, 0.99);  // the slow mode, found
 }
@@ -88,7 +94,15 @@ INSTANTIATE_TEST_SUITE_P(
                                  13816,
                                  0.65649922479319578,
                                  {-0.027845733323806604, -0.01259096856220744, 0.026088128627551603},
-                                 1570}),
+                                 1570},
+                      RandomPull{"CarPull4SrArap",
+                                 kCar,
+                                 16369,
+                                 0.65649922479319578,
+                                 {-0.029470422364786881, -0.020361914914394187, 0.0070431924896602223},
+                                 128,
+                                 pd::Method::SrArap,
+                                 false}),
     [](const auto& info) { return std::string(info.param.name); });
 
 }  // namespace

@@ -66,8 +66,9 @@ struct Deformer::Impl {
   // Recomputes weights if d_o changed (ASAN) and refactors when needed; returns milliseconds spent.
   double prepare_weights(const Eigen::Vector3d& push_direction, std::vector<std::string>& warnings);
   // Optimal rotations for X (3 by n) into R, warm-started by q; returns the energy E(X, R). sr-arap couples
-  // neighbouring rotations: `sweeps` Gauss-Seidel sweeps starting from R, or from the uncoupled optimum
-  // when `R_valid` is false.
+  // neighbouring rotations: Gauss-Seidel sweeps starting from R, or from the uncoupled optimum when `R_valid`
+  // is false, at most `sweeps` of them, fewer once a sweep changes no entry of any rotation by more than
+  // `sweep_tolerance` (0: always `sweeps`).
   // `quadratic`, when given, is tr(X Q X^T) already known (after a plain global step), saving a pass over Q.
   // `rhs`, when given, receives B_f(R) (3 by n_free, b_v = sum_t R_cluster(t) g_t over free v) for the
   // returned R, accumulated while each cluster's terms are in cache. `threads`, when given, runs the two
@@ -75,7 +76,7 @@ struct Deformer::Impl {
   double local_step(const Eigen::Matrix3Xd& X, std::vector<Eigen::Matrix3d>& R,
                     std::vector<Eigen::Quaterniond>& q, bool R_valid = true, int sweeps = 1,
                     std::optional<double> quadratic = std::nullopt, Eigen::Matrix3Xd* rhs = nullptr,
-                    detail::HelperThread* threads = nullptr) const;
+                    detail::HelperThread* threads = nullptr, double sweep_tolerance = 0.0) const;
   // Free positions X_f minimising E(., R) given constrained positions (through rhs_c = -Q_fc X_c), with
   // B_f = B_f(R) from local_step. Writes X_f into G (3 by n_free). Also returns tr(X Q X^T) of the result,
   // = X_f : (B_f - rhs_c) + constrained_quadratic since Q_ff X_f = B_f + rhs_c.

@@ -82,7 +82,7 @@ void Deformer::Impl::plan_local_split() {
 double Deformer::Impl::local_step(const Eigen::Matrix3Xd& X, std::vector<Eigen::Matrix3d>& R,
                                   std::vector<Eigen::Quaterniond>& q, bool R_valid, int sweeps,
                                   std::optional<double> known_quadratic, Eigen::Matrix3Xd* rhs,
-                                  detail::HelperThread* threads) const {
+                                  detail::HelperThread* threads, double sweep_tolerance) const {
   const detail::EnergyModel& m = model;
   const int clusters = m.cluster_count;
   const bool smooth = m.smooth_scale > 0.0;
@@ -186,6 +186,7 @@ double Deformer::Impl::local_step(const Eigen::Matrix3Xd& X, std::vector<Eigen::
   }
   // Each R_k optimal given its neighbours' latest rotations (so the energy cannot rise).
   for (int sweep = 0; sweep < sweeps; ++sweep) {
+    double largest_change = 0.0;
     for (int c = 0; c < clusters; ++c) {
       Eigen::Matrix3d A = covariances[static_cast<std::size_t>(c)];
       for (int k = m.smooth_start[static_cast<std::size_t>(c)];
@@ -193,9 +194,12 @@ double Deformer::Impl::local_step(const Eigen::Matrix3Xd& X, std::vector<Eigen::
         A += m.smooth_scale * m.smooth_weight[static_cast<std::size_t>(k)] *
              R[static_cast<std::size_t>(m.smooth_cluster[static_cast<std::size_t>(k)])];
       }
-      R[static_cast<std::size_t>(c)] =
-          detail::closest_rotation(A, q[static_cast<std::size_t>(c)], 20, accept);
+      const Eigen::Matrix3d next = detail::closest_rotation(A, q[static_cast<std::size_t>(c)], 20, accept);
+      largest_change =
+          std::max(largest_change, (next - R[static_cast<std::size_t>(c)]).cwiseAbs().maxCoeff());
+      R[static_cast<std::size_t>(c)] = next;
     }
+    if (sweep_tolerance > 0.0 && largest_change <= sweep_tolerance) break;
   }
   double coupling = 0.0, smoothing = 0.0;
   for (int c = 0; c < clusters; ++c) {
