@@ -105,6 +105,9 @@ DeformationMetrics evaluate_deformation(const Mesh& before, const Eigen::MatrixX
     metrics.out_of_flat += sign_before[v] == 0 && sign_after[v] != 0;
   }
   for (const double band : options.reversal_bands) {
+    if (!(band > 0.0) || !std::isfinite(band))
+      throw std::invalid_argument("evaluate_deformation: a reversal band must be positive and finite, got " +
+                                  std::to_string(band));
     BandReversals counted;
     counted.band = band;
     counted.radius_below = band > 0.0 ? metrics.reference_length / std::sqrt(band) : 0.0;

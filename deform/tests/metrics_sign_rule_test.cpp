@@ -6,7 +6,9 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <memory>
+#include <stdexcept>
 
 #include "pushpull/deform/deformer.hpp"
 #include "pushpull/deform/mesh_io.hpp"
@@ -128,6 +130,11 @@ TEST(MetricsSignRule, ReversalsByBandTellGentleFromClearlyCurved) {
   ASSERT_EQ(kept.reversals_by_band.size(), 1u);
   EXPECT_GT(kept.reversals_by_band[0].compared, 0u);
   EXPECT_EQ(kept.reversals_by_band[0].reversals, 0u);
+  for (const double bad : {0.0, -1.0, std::numeric_limits<double>::infinity()}) {
+    options.reversal_bands = {bad};
+    EXPECT_THROW((void)pd::evaluate_deformation(dome(0.3), dome(0.3).V, d, {}, options),
+                 std::invalid_argument);
+  }
 }
 
 // A cube of 12 triangles: 6 flat panels meeting at creases. Every vertex has the angle defect pi/2 of a

@@ -187,7 +187,8 @@ struct DeformationMetrics {
 };
 
 // Compares `before` with the same connectivity at positions V_after, over `vertices` (all if empty).
-// Throws std::invalid_argument for shape mismatches, a zero d, or out-of-range vertex indices.
+// Throws std::invalid_argument for shape mismatches, a zero d, out-of-range vertex indices, or a reversal
+// band that is not positive and finite.
 [[nodiscard]] DeformationMetrics evaluate_deformation(const Mesh& before, const Eigen::MatrixXd& V_after,
                                                       const Eigen::Vector3d& d, std::span<const int> vertices,
                                                       const MetricsOptions& options = {});
