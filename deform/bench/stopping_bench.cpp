@@ -221,8 +221,7 @@ int run_warm(const Problem& p, References& references) {
 
 #ifdef PUSHPULL_BENCH_WITH_ASSETS
 // See the header comment. Returns the number of dishonest runs (converged, true error > 2x the estimate).
-int run_random_pulls(int per_model, unsigned seed, const std::vector<pd::Method>& methods, bool details,
-                     bool traced) {
+int run_random_pulls(int per_model, unsigned seed, const std::vector<pd::Method>& methods, bool details) {
   struct Model {
     const char* file;
     double region;  // fraction of the bounding-box diagonal
@@ -271,7 +270,7 @@ int run_random_pulls(int per_model, unsigned seed, const std::vector<pd::Method>
         std::string refusal;
         Trace trace;
         const std::optional<pd::DeformResult> solved =
-            default_solve(p, method, refusal, traced ? &trace : nullptr);
+            default_solve(p, method, refusal, g_traced ? &trace : nullptr);
         if (!solved) {
           std::printf("%-22s %5d %6zu %-8s | refused: %.60s\n", path.filename().c_str(), pull, p.roi.size(),
                       std::string(pd::method_name(method)).c_str(), refusal.c_str());
@@ -294,8 +293,8 @@ int run_random_pulls(int per_model, unsigned seed, const std::vector<pd::Method>
                     p.roi.size(), std::string(pd::method_name(method)).c_str(), r.iterations,
                     r.converged ? " " : "*", estimate, truth, truth / estimate,
                     dishonest ? "   <-- optimistic > 2x" : "");
-        if (traced) {  // the first iteration whose true distance is within the tolerance, and the estimate
-                       // then
+        if (g_traced) {  // the first iteration whose true distance is within the tolerance, and the estimate
+                         // then
           int first = -1;
           for (size_t k = 0; k < trace.V.size() && first < 0; ++k)
             if (true_error(*trace.V[k], reference.V, p.d) <= pd::DeformOptions{}.tolerance) first = int(k);
@@ -318,7 +317,7 @@ int run_random_pulls(int per_model, unsigned seed, const std::vector<pd::Method>
 }  // namespace
 
 int main(int argc, char** argv) {
-  bool quick = false, details = false, traced = false;
+  bool quick = false, details = false;
   int random_pulls = 0;
   unsigned seed = 20261202;
   std::vector<pd::Method> methods;
@@ -334,7 +333,6 @@ int main(int argc, char** argv) {
     } else if (std::strcmp(argv[a], "--details") == 0) {
       details = true;
     } else if (std::strcmp(argv[a], "--trace") == 0) {
-      traced = true;
       g_traced = true;
     } else if (std::strcmp(argv[a], "--seed") == 0 && a + 1 < argc) {
       seed = static_cast<unsigned>(std::strtoul(argv[++a], nullptr, 10));
@@ -360,8 +358,7 @@ int main(int argc, char** argv) {
 #ifdef PUSHPULL_BENCH_WITH_ASSETS
     const int dishonest = run_random_pulls(
         random_pulls, seed,
-        methods.empty() ? std::vector<pd::Method>{pd::Method::Asan, pd::Method::ArapSR} : methods, details,
-        traced);
+        methods.empty() ? std::vector<pd::Method>{pd::Method::Asan, pd::Method::ArapSR} : methods, details);
     std::printf("\n%d run(s) failed the honesty check\n", dishonest);
     return 0;
 #else

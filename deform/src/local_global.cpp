@@ -122,17 +122,17 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
   // 8.8x (the car's nose over 2 m) optimistic. Three fixed sweeps (until 2026-12-06) still left the car's
   // nose over 1 m 6.83x optimistic after 724 iterations and its 2 m region at the 1000-iteration cap
   // (stopping_bench --method sr-arap), and on seven seeds of random pulls (stopping_bench --random-pulls 4
-  // --method sr-arap, seeds 777001, 20261206, 20261202, 1111, 2222, 3333, 6061) one pull 4.84x optimistic
-  // and four at the cap, in 37,873 iterations. With sweeps until 1e-7, at most 10: the five problems honest
-  // (true / estimate at most 1.00, all converged: 40 / 163 / 52 / 734 / 678 iterations, 9.6 s in all against
-  // 9.5 s), the pulls none optimistic over 2x (the worst 1.09) and one at the cap, in 13,737 iterations (on
-  // the first three seeds 5,996 iterations and probe steps against 23,040: more of them stop early and are
-  // probed). A tolerance of 1e-6 left one pull 2.02x optimistic; 20 sweeps one 2.39x.
-  // The rate probe's evaluations run the full kSrArapSweeps (a fixed count keeps the probed map smooth
-  // in X: a tolerance could stop the base and the perturbed evaluations after different sweep counts).
-  // A tighter solve needs tighter rotations: the sweeps stop at 1e-4 of the requested tolerance when that is
-  // finer (1e-13 for stopping_bench's 1e-9 references; with 1e-6 the car's nose over 2 m did not reach 1e-9
-  // in 20,000 iterations).
+  // --method sr-arap, seeds 777001, 20261206, 20261202, 1111, 2222, 3333, 6061) two pulls 4.84x and 4.10x
+  // optimistic and three at the cap, in 52,842 iterations. With sweeps until 1e-7, at most 10: the five
+  // problems honest (true / estimate at most 1.00, all converged: 40 / 163 / 52 / 734 / 678 iterations, 9.6 s
+  // in all against 9.5 s), the pulls none optimistic over 2x (the worst 1.09) and one at the cap, in 13,737
+  // iterations (on the first three seeds 5,996 iterations and probe steps against 23,040: more of them stop
+  // early and are probed). A tolerance of 1e-6 left one pull 2.02x optimistic; 20 sweeps one 2.39x. The rate
+  // probe's evaluations run the full kSrArapSweeps (a fixed count keeps the probed map smooth in X: a
+  // tolerance could stop the base and the perturbed evaluations after different sweep counts). A tighter
+  // solve needs tighter rotations: the sweeps stop at 1e-4 of the requested tolerance when that is finer
+  // (1e-13 for stopping_bench's 1e-9 references; with 1e-6 the car's nose over 2 m did not reach 1e-9 in
+  // 20,000 iterations).
   constexpr int kSrArapSweeps = 10;
   constexpr double kSrArapSweepTolerance = 1e-7;
   const int sweeps = options.method == Method::SrArap ? kSrArapSweeps : 1;

@@ -110,7 +110,7 @@ DeformationMetrics evaluate_deformation(const Mesh& before, const Eigen::MatrixX
                                   std::to_string(band));
     BandReversals counted;
     counted.band = band;
-    counted.radius_below = band > 0.0 ? metrics.reference_length / std::sqrt(band) : 0.0;
+    counted.radius_below = metrics.reference_length / std::sqrt(band);
     const double threshold = flat_curvature_threshold(metrics.reference_length, band);
     const std::vector<std::int8_t> before_signs = curvature_signs(k_before, threshold);
     const std::vector<std::int8_t> after_signs = curvature_signs(k_after, threshold);
