@@ -287,11 +287,9 @@ void run_deform(DeformCommandOptions o) {
   } catch (const std::invalid_argument& error) {
     throw CommandError(std::string("region of interest: ") + error.what());
   }
-  if (roi.fixed.empty()) {
-    throw CommandError(o.mesh +
-                       ": the region of interest has no fixed vertex (it covers the whole connected part); "
-                       "give --fixed or a smaller --roi-radius");
-  }
+  // No border holds the part (the region covers the whole connected part): it moves with the handle as a
+  // whole, as a push/pull on it does in the headset (drag_notes.cpp); said, not refused.
+  const bool whole_part = roi.fixed.empty();
 
   DeformRunRecord record;
   try {
@@ -299,6 +297,12 @@ void run_deform(DeformCommandOptions o) {
     record.result = deformer.solve(d);
   } catch (const std::invalid_argument& error) {
     throw CommandError(o.mesh + ": " + error.what());
+  }
+  if (whole_part) {
+    record.result.warnings.insert(
+        record.result.warnings.begin(),
+        "the whole part moves: the region covers its connected part and no border holds "
+        "it (give --fixed or a smaller --roi-radius to hold it)");
   }
   // Parts on the solved surface (lamps, plates, trims) follow it; the metrics below stay those of the region.
   if (o.attached_parts) {

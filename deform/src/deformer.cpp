@@ -77,6 +77,80 @@ detail::ModelSpec model_spec(const DeformOptions& o) {
 
 }  // namespace
 
+void Deformer::Impl::group_unheld_vertices(const detail::VertexGraph& graph,
+                                           const std::vector<int>& global_to_local) {
+  // Free vertices reached from a fixed vertex through free vertices are held; the others (all reached from a
+  // handle vertex, the pinned aside) form the groups, each a connected set of unheld free vertices.
+  auto local = [&](int v) { return global_to_local[static_cast<std::size_t>(v)]; };
+  auto is_free = [&](int v) { return local(v) >= 0 && local(v) < n_free; };
+  std::vector<char> seen(static_cast<std::size_t>(n_free), 0);
+  std::vector<int> stack;
+  for (int v : roi.fixed) stack.push_back(v);
+  while (!stack.empty()) {
+    const int v = stack.back();
+    stack.pop_back();
+    for (const int* w = graph.begin(v); w != graph.end(v); ++w) {
+      if (is_free(*w) && !seen[static_cast<std::size_t>(local(*w))]) {
+        seen[static_cast<std::size_t>(local(*w))] = 1;
+        stack.push_back(*w);
+      }
+    }
+  }
+  std::vector<int> handle_mark(static_cast<std::size_t>(n_handle), -1);  // last group that listed it
+  for (int i = 0; i < n_free; ++i) {
+    if (seen[static_cast<std::size_t>(i)]) continue;
+    const int group = static_cast<int>(unheld_free_start.size()) - 1;
+    seen[static_cast<std::size_t>(i)] = 1;
+    stack.push_back(local_to_global[static_cast<std::size_t>(i)]);
+    while (!stack.empty()) {
+      const int v = stack.back();
+      stack.pop_back();
+      unheld_free.push_back(local(v));
+      for (const int* w = graph.begin(v); w != graph.end(v); ++w) {
+        const int lw = local(*w);
+        if (lw < 0) continue;
+        if (lw < n_free) {
+          if (!seen[static_cast<std::size_t>(lw)]) {
+            seen[static_cast<std::size_t>(lw)] = 1;
+            stack.push_back(*w);
+          }
+        } else if (lw < n_free + n_handle && handle_mark[static_cast<std::size_t>(lw - n_free)] != group) {
+          handle_mark[static_cast<std::size_t>(lw - n_free)] = group;
+          unheld_handle.push_back(lw - n_free);
+        }
+      }
+    }
+    unheld_free_start.push_back(static_cast<int>(unheld_free.size()));
+    unheld_handle_start.push_back(static_cast<int>(unheld_handle.size()));
+  }
+}
+
+bool Deformer::Impl::start_unheld_groups(Eigen::Matrix3Xd& X) const {
+  bool alike = true;
+  for (std::size_t g = 0; g + 1 < unheld_free_start.size(); ++g) {
+    const int h0 = unheld_handle_start[g], h1 = unheld_handle_start[g + 1];
+    if (h1 == h0) {  // (cannot happen: an unheld free vertex was reached from a handle vertex)
+      alike = false;
+      continue;
+    }
+    Eigen::Vector3d move = Eigen::Vector3d::Zero();
+    for (int k = h0; k < h1; ++k) {
+      const int column = n_free + unheld_handle[static_cast<std::size_t>(k)];
+      move += X.col(column) - P.col(column);
+    }
+    move /= static_cast<double>(h1 - h0);
+    for (int k = h0; k < h1 && alike; ++k) {
+      const int column = n_free + unheld_handle[static_cast<std::size_t>(k)];
+      alike = (X.col(column) - P.col(column) - move).norm() <= 1e-12 * move.norm();
+    }
+    for (int k = unheld_free_start[g]; k < unheld_free_start[g + 1]; ++k) {
+      const int i = unheld_free[static_cast<std::size_t>(k)];
+      X.col(i) = P.col(i) + move;
+    }
+  }
+  return alike && static_cast<int>(unheld_free.size()) == n_free && options.method != Method::ArapS;
+}
+
 void Deformer::Impl::setup() {
   const Mesh& m = *mesh;
   const int nv = static_cast<int>(m.V.rows());
@@ -177,6 +251,7 @@ void Deformer::Impl::setup() {
     }
   }
   P.colwise() -= origin;
+  group_unheld_vertices(graph, global_to_local);
   faces.resize(static_cast<Eigen::Index>(omega_faces.size()), 3);
   for (std::size_t k = 0; k < omega_faces.size(); ++k) {
     for (int c = 0; c < 3; ++c) {

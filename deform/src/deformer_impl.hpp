@@ -16,6 +16,9 @@
 #include "smooth_start.hpp"
 
 namespace pushpull::deform {
+namespace detail {
+struct VertexGraph;
+}
 
 struct Deformer::Impl {
   std::shared_ptr<const Mesh> mesh;
@@ -34,6 +37,13 @@ struct Deformer::Impl {
   // energy the Anderson safeguard compares) and in asan's stretched copy; the bonnet (examples/hood.off)
   // moved 3 m from its origin took 158 asan iterations instead of 117, (100, 200, 1) km off 663.
   Eigen::Matrix3Xd P;  // 3 by n
+  // Parts of the region that no fixed vertex holds (a separate part pressed whole: a lamp, a trim; free
+  // vertices enclosed by handle vertices), connected through free vertices only: group g's free vertices
+  // (local indices) are unheld_free[unheld_free_start[g], unheld_free_start[g + 1]), the handle vertices next
+  // to them (columns of the constrained block, 0 = the first handle vertex) unheld_handle[...] likewise. Each
+  // solve starts them moved by the mean move of those handle vertices: a rigid translation, the exact
+  // minimiser of every method's energy when the handle moves by one d and the group touches nothing else.
+  std::vector<int> unheld_free, unheld_free_start{0}, unheld_handle, unheld_handle_start{0};
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();
   // The constrained vertices' positions of the current solve in model coordinates (3 by n - n_free: handle
   // targets, fixed targets or rest, pinned at rest), written back as given so that they round-trip exactly.
@@ -62,6 +72,13 @@ struct Deformer::Impl {
   std::unique_ptr<detail::HelperThread> helper;  // runs part 1 during run() on large regions (else null)
 
   void setup();
+  // unheld_* from Omega's vertex graph (global indices) once the local numbering is made.
+  void group_unheld_vertices(const detail::VertexGraph& graph, const std::vector<int>& global_to_local);
+  // Starts each unheld group of X (3 by n, constrained columns already set) at its handle's mean move.
+  // Returns whether that is exact: every free vertex unheld and each group's handle vertices moved alike
+  // (to 1e-12 of their move), for an energy that a rigid motion brings to its minimum, zero (every method
+  // but arap-s, whose negative weights can take it lower).
+  bool start_unheld_groups(Eigen::Matrix3Xd& X) const;
   void plan_local_split();  // split_cluster, shared_slot, shared_vertex from the model's clusters
   // Recomputes weights if d_o changed (ASAN) and refactors when needed; returns milliseconds spent.
   double prepare_weights(const Eigen::Vector3d& push_direction, std::vector<std::string>& warnings);
