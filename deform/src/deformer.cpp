@@ -125,8 +125,9 @@ void Deformer::Impl::group_unheld_vertices(const detail::VertexGraph& graph,
   }
 }
 
-bool Deformer::Impl::start_unheld_groups(Eigen::Matrix3Xd& X) const {
+std::optional<double> Deformer::Impl::start_unheld_groups(Eigen::Matrix3Xd& X) const {
   bool alike = true;
+  double gap = 0.0;
   for (std::size_t g = 0; g + 1 < unheld_free_start.size(); ++g) {
     const int h0 = unheld_handle_start[g], h1 = unheld_handle_start[g + 1];
     if (h1 == h0) {  // (cannot happen: an unheld free vertex was reached from a handle vertex)
@@ -139,16 +140,20 @@ bool Deformer::Impl::start_unheld_groups(Eigen::Matrix3Xd& X) const {
       move += X.col(column) - P.col(column);
     }
     move /= static_cast<double>(h1 - h0);
-    for (int k = h0; k < h1 && alike; ++k) {
+    for (int k = h0; k < h1; ++k) {
       const int column = n_free + unheld_handle[static_cast<std::size_t>(k)];
-      alike = (X.col(column) - P.col(column) - move).norm() <= 1e-12 * move.norm();
+      const double departure = (X.col(column) - P.col(column) - move).norm();
+      gap = std::max(gap, departure);
+      alike = alike && departure <= 1e-9 * move.norm();
     }
     for (int k = unheld_free_start[g]; k < unheld_free_start[g + 1]; ++k) {
       const int i = unheld_free[static_cast<std::size_t>(k)];
       X.col(i) = P.col(i) + move;
     }
   }
-  return alike && static_cast<int>(unheld_free.size()) == n_free && options.method != Method::ArapS;
+  if (!alike || static_cast<int>(unheld_free.size()) != n_free || options.method == Method::ArapS)
+    return std::nullopt;
+  return gap;
 }
 
 void Deformer::Impl::setup() {

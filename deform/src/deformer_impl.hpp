@@ -75,10 +75,11 @@ struct Deformer::Impl {
   // unheld_* from Omega's vertex graph (global indices) once the local numbering is made.
   void group_unheld_vertices(const detail::VertexGraph& graph, const std::vector<int>& global_to_local);
   // Starts each unheld group of X (3 by n, constrained columns already set) at its handle's mean move.
-  // Returns whether that is exact: every free vertex unheld and each group's handle vertices moved alike
-  // (to 1e-12 of their move), for an energy that a rigid motion brings to its minimum, zero (every method
-  // but arap-s, whose negative weights can take it lower).
-  bool start_unheld_groups(Eigen::Matrix3Xd& X) const;
+  // When that is the minimiser, returns the largest distance of a group's handle vertex from its group's
+  // mean move (model units): every free vertex unheld, each group's handle moved alike (to 1e-9 of the
+  // move, e.g. rest + d rounded at a model's coordinates 1 km off), and an energy that a rigid motion brings
+  // to its minimum, zero (every method but arap-s, whose negative weights can take it lower). Else empty.
+  [[nodiscard]] std::optional<double> start_unheld_groups(Eigen::Matrix3Xd& X) const;
   void plan_local_split();  // split_cluster, shared_slot, shared_vertex from the model's clusters
   // Recomputes weights if d_o changed (ASAN) and refactors when needed; returns milliseconds spent.
   double prepare_weights(const Eigen::Vector3d& push_direction, std::vector<std::string>& warnings);

@@ -95,7 +95,7 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
   // biharmonically (smooth_start.hpp; DeformOptions::smooth_start_min_free says why asan only).
   const bool smooth = options.method == Method::Asan && options.smooth_start_min_free >= 0 &&
                       n_free >= options.smooth_start_min_free && n_free > 0 && initial_guess.size() == 0 &&
-                      !smooth_start_failed;
+                      !smooth_start_failed && unheld_free.size() < static_cast<std::size_t>(n_free);
   if (smooth) {
     if (!smooth_start.prepared()) {
       const auto prepare_start = Clock::now();
@@ -120,8 +120,10 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
   // separate part (ToyCar's, 84 handle vertices, 533 free over 1 m) took 100 asan iterations and 1,000
   // arap-m ones (not converged) from rest to find the translation.
   // With nothing else to solve for, that is the minimiser: no iteration (the energy, zero, is evaluated),
-  // unless the caller asked for a fixed number of them (tolerance 0, the paper's setting).
-  const bool exact_start = start_unheld_groups(X) && n_free > 0 && options.tolerance > 0.0;
+  // unless the caller asked for a fixed number of them (tolerance 0, the paper's setting). The estimate is
+  // the handle's largest departure from its mean move (0 for a push/pull, to rounding).
+  const std::optional<double> start_gap = start_unheld_groups(X);
+  const bool exact_start = start_gap && n_free > 0 && options.tolerance > 0.0;
   // sr-arap: Gauss-Seidel sweeps over its coupled rotations per local step, until a sweep changes no entry of
   // any rotation by more than kSrArapSweepTolerance, at most kSrArapSweeps. With one sweep the step is far
   // from the exact local minimiser the error bound assumes, and the estimate ran 7.5x (10K height field) and
@@ -352,9 +354,9 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
     }
   }
   result.rate_settled = rate_settled;
-  if (n_free == 0 || exact_start) {  // nothing to solve for, or solved by the start: exact
+  if (n_free == 0 || exact_start) {  // nothing to solve for, or solved by the start
     result.stop_reason = StopReason::ErrorTolerance;
-    result.error_estimate = 0.0;
+    result.error_estimate = n_free == 0 ? 0.0 : *start_gap / reference;
   }
   result.converged =
       result.stop_reason == StopReason::ErrorTolerance || result.stop_reason == StopReason::EnergyTolerance;
