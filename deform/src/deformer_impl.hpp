@@ -41,8 +41,9 @@ struct Deformer::Impl {
   // vertices enclosed by handle vertices), connected through free vertices only: group g's free vertices
   // (local indices) are unheld_free[unheld_free_start[g], unheld_free_start[g + 1]), the handle vertices next
   // to them (columns of the constrained block, 0 = the first handle vertex) unheld_handle[...] likewise. Each
-  // solve starts them moved by the mean move of those handle vertices: a rigid translation, the exact
-  // minimiser of every method's energy when the handle moves by one d and the group touches nothing else.
+  // solve with a tolerance starts them moved by the mean move of those handle vertices: a rigid translation,
+  // the exact minimiser of every method's energy when the handle moves by one d and the group touches nothing
+  // else.
   std::vector<int> unheld_free, unheld_free_start{0}, unheld_handle, unheld_handle_start{0};
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();
   // The constrained vertices' positions of the current solve in model coordinates (3 by n - n_free: handle

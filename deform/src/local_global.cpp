@@ -119,11 +119,13 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
   // Parts no fixed vertex holds start moved with their handle (deformer_impl.hpp), cold or warm: a pressed
   // separate part (ToyCar's, 84 handle vertices, 533 free over 1 m) took 100 asan iterations and 1,000
   // arap-m ones (not converged) from rest to find the translation.
-  // With nothing else to solve for, that is the minimiser: no iteration (the energy, zero, is evaluated),
-  // unless the caller asked for a fixed number of them (tolerance 0, the paper's setting). The estimate is
-  // the handle's largest departure from its mean move (0 for a push/pull, to rounding).
-  const std::optional<double> start_gap = start_unheld_groups(X);
-  const bool exact_start = start_gap && n_free > 0 && options.tolerance > 0.0;
+  // With nothing else to solve for, that is the minimiser: no iteration (the energy, zero, is evaluated). The
+  // estimate is the handle's largest departure from its mean move (0 for a push/pull, to rounding). A solve
+  // of a fixed number of iterations (tolerance 0: the paper's setting, whose iterations start from rest)
+  // keeps its start.
+  const std::optional<double> start_gap =
+      options.tolerance > 0.0 ? start_unheld_groups(X) : std::optional<double>{};
+  const bool exact_start = start_gap && n_free > 0;
   // sr-arap: Gauss-Seidel sweeps over its coupled rotations per local step, until a sweep changes no entry of
   // any rotation by more than kSrArapSweepTolerance, at most kSrArapSweeps. With one sweep the step is far
   // from the exact local minimiser the error bound assumes, and the estimate ran 7.5x (10K height field) and

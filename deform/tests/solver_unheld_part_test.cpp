@@ -4,6 +4,7 @@
 // is free the start is the minimiser and the solve takes no iteration.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -140,11 +141,14 @@ TEST(UnheldPart, AHandleMovedUnevenlyOrAFixedIterationCountStillIterates) {
   const DeformResult turned = deformer.solve(targets);
   EXPECT_GT(turned.iterations, 0);
   EXPECT_TRUE(turned.converged);
-  // The paper's setting runs its 50 iterations whatever the start.
+  // The paper's setting runs its 50 iterations from rest, as the paper does: the sphere has not come along
+  // whole after them (its bottom lags the handle).
   const DeformResult paper = deform(p.mesh, roi, Eigen::Vector3d(0.0, 0.0, 0.1), paper_iterations());
   EXPECT_EQ(paper.iterations, 50);
+  double lag = 0.0;
   for (int v = 0; v < p.mesh.V.rows(); ++v)
-    ASSERT_LE((paper.V.row(v) - p.mesh.V.row(v) - Eigen::RowVector3d(0.0, 0.0, 0.1)).norm(), 1e-9);
+    lag = std::max(lag, (paper.V.row(v) - p.mesh.V.row(v) - Eigen::RowVector3d(0.0, 0.0, 0.1)).norm());
+  EXPECT_GT(lag, 1e-6);
 }
 
 }  // namespace
