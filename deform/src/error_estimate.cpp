@@ -44,13 +44,13 @@ void ContractionEstimate::add(const SecantHistory& history) {
   if (!C.allFinite()) return;
   const Eigen::EigenSolver<Eigen::MatrixXd> eigen(C, /*computeEigenvectors=*/false);
   if (eigen.info() != Eigen::Success) return;
-  // Recent and Warm with an exact local fit: Ritz values with a non-positive real part are left out
+  // Recent and Warm with an exact local fit: Ritz values outside (0, 1) in real part or modulus are left out
   // (error_estimate.hpp says why); a window whose values are all left out says nothing and is no estimate.
   double largest = 0.0;
   bool any = false;
   for (Eigen::Index k = 0; k < eigen.eigenvalues().size(); ++k) {
     const std::complex<double> value = eigen.eigenvalues()(k);
-    if (contracting_only_ && !(value.real() > 0.0)) continue;
+    if (contracting_only_ && !(value.real() > 0.0 && std::abs(value) < 1.0)) continue;
     largest = std::max(largest, std::abs(value));
     any = true;
   }
