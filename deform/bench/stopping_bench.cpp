@@ -388,10 +388,14 @@ int main(int argc, char** argv) {
       Problem p;
       p.name = "hemisphere, cap pulled up 0.5";
       p.mesh = pd::read_mesh(dome);
+      // The base ring is fixed: the file's lowest vertices lie at z = 0.098 (until 2026-12-06 the rule was
+      // z < 0.02, which fixed nothing, so the whole dome moved with its cap: a translation the solver now
+      // starts at).
+      const double base = p.mesh.V.col(2).minCoeff();
       std::vector<int> handle, fixed;
       for (Eigen::Index v = 0; v < p.mesh.V.rows(); ++v) {
         if (p.mesh.V(v, 2) > 0.9) handle.push_back(static_cast<int>(v));
-        if (p.mesh.V(v, 2) < 0.02) fixed.push_back(static_cast<int>(v));
+        if (p.mesh.V(v, 2) < base + 0.02) fixed.push_back(static_cast<int>(v));
       }
       p.roi = pd::build_roi(p.mesh, handle, fixed);
       p.d = Eigen::Vector3d(0.0, 0.0, 0.5);
