@@ -123,6 +123,42 @@ void Deformer::Impl::group_unheld_vertices(const detail::VertexGraph& graph,
     unheld_free_start.push_back(static_cast<int>(unheld_free.size()));
     unheld_handle_start.push_back(static_cast<int>(unheld_handle.size()));
   }
+  // Each group's part of the region: every Omega vertex reachable from it (handle and fixed ones included).
+  const int groups = static_cast<int>(unheld_free_start.size()) - 1;
+  std::vector<int> part_of(local_to_global.size(), -1);
+  for (int g = 0; g < groups; ++g) {
+    const int first = unheld_free[static_cast<std::size_t>(unheld_free_start[static_cast<std::size_t>(g)])];
+    if (part_of[static_cast<std::size_t>(first)] >= 0) {  // a part met before (several groups, one part)
+      const int earlier = part_of[static_cast<std::size_t>(first)];
+      unheld_part_fixed.push_back(unheld_part_fixed[static_cast<std::size_t>(earlier)]);
+      unheld_part_handle.insert(
+          unheld_part_handle.end(),
+          unheld_part_handle.begin() + unheld_part_start[static_cast<std::size_t>(earlier)],
+          unheld_part_handle.begin() + unheld_part_start[static_cast<std::size_t>(earlier) + 1]);
+      unheld_part_start.push_back(static_cast<int>(unheld_part_handle.size()));
+      continue;
+    }
+    bool fixed = false;
+    const std::size_t handles_before = unheld_part_handle.size();
+    part_of[static_cast<std::size_t>(first)] = g;
+    stack.push_back(local_to_global[static_cast<std::size_t>(first)]);
+    while (!stack.empty()) {
+      const int v = stack.back();
+      stack.pop_back();
+      const int lv = local(v);
+      if (lv >= n_free && lv < n_free + n_handle) unheld_part_handle.push_back(lv - n_free);
+      if (lv >= n_free + n_handle && lv < n_free + n_handle + n_fixed) fixed = true;
+      for (const int* w = graph.begin(v); w != graph.end(v); ++w) {
+        const int lw = local(*w);
+        if (lw < 0 || part_of[static_cast<std::size_t>(lw)] >= 0) continue;
+        part_of[static_cast<std::size_t>(lw)] = g;
+        stack.push_back(*w);
+      }
+    }
+    if (fixed) unheld_part_handle.resize(handles_before);
+    unheld_part_fixed.push_back(fixed ? 1 : 0);
+    unheld_part_start.push_back(static_cast<int>(unheld_part_handle.size()));
+  }
 }
 
 std::optional<double> Deformer::Impl::start_unheld_groups(Eigen::Matrix3Xd& X) const {
@@ -140,11 +176,12 @@ std::optional<double> Deformer::Impl::start_unheld_groups(Eigen::Matrix3Xd& X) c
       move += X.col(column) - P.col(column);
     }
     move /= static_cast<double>(h1 - h0);
-    for (int k = h0; k < h1; ++k) {
-      const int column = n_free + unheld_handle[static_cast<std::size_t>(k)];
+    alike = alike && !unheld_part_fixed[g];
+    for (int k = unheld_part_start[g]; k < unheld_part_start[g + 1] && alike; ++k) {
+      const int column = n_free + unheld_part_handle[static_cast<std::size_t>(k)];
       const double departure = (X.col(column) - P.col(column) - move).norm();
       gap = std::max(gap, departure);
-      alike = alike && departure <= 1e-9 * move.norm();
+      alike = departure <= 1e-9 * move.norm();
     }
     for (int k = unheld_free_start[g]; k < unheld_free_start[g + 1]; ++k) {
       const int i = unheld_free[static_cast<std::size_t>(k)];
