@@ -246,6 +246,40 @@ TEST(Service, CommitIsTheColdSolveWhateverThePreviews) {
   EXPECT_EQ(hash_with_drag, hash_direct);
 }
 
+// A drag on a part that no border holds (a small plate lying apart from the sheet, the region larger than
+// it): every preview and the commit move it whole with the hand, exact at once (no iteration).
+TEST(Service, ADragOnAPartNoBorderHoldsMovesItWholeAtOnce) {
+  const Mesh sheet = testing::grid(12, 12, 0.0, 1.0, 0.0, 1.0);
+  const Mesh plate = testing::grid(4, 4, 0.4, 0.6, 0.4, 0.6, [](double, double) { return 0.05; });
+  auto mesh = std::make_shared<const Mesh>(testing::append(sheet, plate));
+  const int first = static_cast<int>(sheet.V.rows());
+  Request request;
+  request.drag = 7;
+  request.handle = VertexHandle{{first + 12}};  // the plate's centre
+  request.region.max_distance = 0.5;
+  Service service(mesh);
+  for (int k = 1; k <= 4; ++k) {
+    request.d = Eigen::Vector3d(0.01 * k, 0.0, 0.02 * k);
+    service.submit(request);
+    const auto s = service.wait_idle();
+    ASSERT_EQ(s->kind, Kind::Preview) << s->error;
+    EXPECT_TRUE(s->converged);
+    EXPECT_EQ(s->iteration, 0);
+    ASSERT_TRUE(s->region != nullptr);
+    EXPECT_TRUE(s->region->fixed.empty());
+    for (int v = 0; v < mesh->V.rows(); ++v) {
+      const Eigen::RowVector3d move = s->positions->row(v) - mesh->V.row(v);
+      const Eigen::RowVector3d expected =
+          v >= first ? Eigen::RowVector3d(request.d.transpose()) : Eigen::RowVector3d::Zero();
+      ASSERT_LE((move - expected).norm(), 1e-12) << "request " << k << " vertex " << v;
+    }
+  }
+  EXPECT_NE(service.commit(), 0u);
+  const auto committed = service.wait_idle();
+  ASSERT_EQ(committed->kind, Kind::Committed) << committed->error;
+  EXPECT_NEAR((committed->rest->V.row(first) - plate.V.row(0)).norm(), request.d.norm(), 1e-12);
+}
+
 TEST(Service, UndoRedoRoundTripsAreBitIdentical) {
   const Problem p = make_problem(16);
   Service service(p.mesh);
