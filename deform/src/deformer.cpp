@@ -123,73 +123,63 @@ void Deformer::Impl::group_unheld_vertices(const detail::VertexGraph& graph,
     unheld_free_start.push_back(static_cast<int>(unheld_free.size()));
     unheld_handle_start.push_back(static_cast<int>(unheld_handle.size()));
   }
-  // Each group's part of the region: every Omega vertex reachable from it (handle and fixed ones included).
-  const int groups = static_cast<int>(unheld_free_start.size()) - 1;
-  std::vector<int> part_of(local_to_global.size(), -1);
-  for (int g = 0; g < groups; ++g) {
-    const int first = unheld_free[static_cast<std::size_t>(unheld_free_start[static_cast<std::size_t>(g)])];
-    if (part_of[static_cast<std::size_t>(first)] >= 0) {  // a part met before (several groups, one part)
-      const int earlier = part_of[static_cast<std::size_t>(first)];
-      unheld_part_fixed.push_back(unheld_part_fixed[static_cast<std::size_t>(earlier)]);
-      unheld_part_handle.insert(
-          unheld_part_handle.end(),
-          unheld_part_handle.begin() + unheld_part_start[static_cast<std::size_t>(earlier)],
-          unheld_part_handle.begin() + unheld_part_start[static_cast<std::size_t>(earlier) + 1]);
-      unheld_part_start.push_back(static_cast<int>(unheld_part_handle.size()));
-      continue;
-    }
-    bool fixed = false;
-    const std::size_t handles_before = unheld_part_handle.size();
-    part_of[static_cast<std::size_t>(first)] = g;
-    stack.push_back(local_to_global[static_cast<std::size_t>(first)]);
+  // The parts of the region the free vertices lie in (every Omega vertex reachable, handle and fixed ones
+  // included), when all of them are unheld: whole parts unless one holds a fixed vertex.
+  if (n_free == 0 || unheld_free.size() != static_cast<std::size_t>(n_free)) return;
+  std::vector<char> reached(local_to_global.size(), 0);
+  for (int i = 0; i < n_free; ++i) {
+    if (reached[static_cast<std::size_t>(i)]) continue;
+    reached[static_cast<std::size_t>(i)] = 1;
+    stack.push_back(local_to_global[static_cast<std::size_t>(i)]);
     while (!stack.empty()) {
       const int v = stack.back();
       stack.pop_back();
       const int lv = local(v);
-      if (lv >= n_free && lv < n_free + n_handle) unheld_part_handle.push_back(lv - n_free);
-      if (lv >= n_free + n_handle && lv < n_free + n_handle + n_fixed) fixed = true;
+      if (lv >= n_free + n_handle && lv < n_free + n_handle + n_fixed) {  // held after all: no whole parts
+        whole_part_handle.clear();
+        whole_part_start.assign(1, 0);
+        return;
+      }
+      if (lv >= n_free && lv < n_free + n_handle) whole_part_handle.push_back(lv - n_free);
       for (const int* w = graph.begin(v); w != graph.end(v); ++w) {
         const int lw = local(*w);
-        if (lw < 0 || part_of[static_cast<std::size_t>(lw)] >= 0) continue;
-        part_of[static_cast<std::size_t>(lw)] = g;
+        if (lw < 0 || reached[static_cast<std::size_t>(lw)]) continue;
+        reached[static_cast<std::size_t>(lw)] = 1;
         stack.push_back(*w);
       }
     }
-    if (fixed) unheld_part_handle.resize(handles_before);
-    unheld_part_fixed.push_back(fixed ? 1 : 0);
-    unheld_part_start.push_back(static_cast<int>(unheld_part_handle.size()));
+    whole_part_start.push_back(static_cast<int>(whole_part_handle.size()));
   }
+  free_in_whole_parts = true;
 }
 
 std::optional<double> Deformer::Impl::start_unheld_groups(Eigen::Matrix3Xd& X) const {
-  bool alike = true;
-  double gap = 0.0;
-  for (std::size_t g = 0; g + 1 < unheld_free_start.size(); ++g) {
-    const int h0 = unheld_handle_start[g], h1 = unheld_handle_start[g + 1];
-    if (h1 == h0) {  // (cannot happen: an unheld free vertex was reached from a handle vertex)
-      alike = false;
-      continue;
-    }
+  // The mean move of the handle vertices in `columns` (of the constrained block).
+  auto mean_move = [&](const int* begin, const int* end) {
     Eigen::Vector3d move = Eigen::Vector3d::Zero();
-    for (int k = h0; k < h1; ++k) {
-      const int column = n_free + unheld_handle[static_cast<std::size_t>(k)];
-      move += X.col(column) - P.col(column);
-    }
-    move /= static_cast<double>(h1 - h0);
-    alike = alike && !unheld_part_fixed[g];
-    for (int k = unheld_part_start[g]; k < unheld_part_start[g + 1] && alike; ++k) {
-      const int column = n_free + unheld_part_handle[static_cast<std::size_t>(k)];
-      const double departure = (X.col(column) - P.col(column) - move).norm();
-      gap = std::max(gap, departure);
-      alike = departure <= 1e-9 * move.norm();
-    }
+    for (const int* k = begin; k != end; ++k) move += X.col(n_free + *k) - P.col(n_free + *k);
+    return begin == end ? move : Eigen::Vector3d(move / static_cast<double>(end - begin));
+  };
+  for (std::size_t g = 0; g + 1 < unheld_free_start.size(); ++g) {
+    const Eigen::Vector3d move = mean_move(unheld_handle.data() + unheld_handle_start[g],
+                                           unheld_handle.data() + unheld_handle_start[g + 1]);
     for (int k = unheld_free_start[g]; k < unheld_free_start[g + 1]; ++k) {
       const int i = unheld_free[static_cast<std::size_t>(k)];
       X.col(i) = P.col(i) + move;
     }
   }
-  if (!alike || static_cast<int>(unheld_free.size()) != n_free || options.method == Method::ArapS)
-    return std::nullopt;
+  if (!free_in_whole_parts || options.method == Method::ArapS) return std::nullopt;
+  double gap = 0.0;
+  for (std::size_t p = 0; p + 1 < whole_part_start.size(); ++p) {
+    const int* begin = whole_part_handle.data() + whole_part_start[p];
+    const int* end = whole_part_handle.data() + whole_part_start[p + 1];
+    const Eigen::Vector3d move = mean_move(begin, end);
+    for (const int* k = begin; k != end; ++k) {
+      const double departure = (X.col(n_free + *k) - P.col(n_free + *k) - move).norm();
+      if (departure > 1e-9 * move.norm()) return std::nullopt;
+      gap = std::max(gap, departure);
+    }
+  }
   return gap;
 }
 

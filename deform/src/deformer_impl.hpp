@@ -45,12 +45,12 @@ struct Deformer::Impl {
   // the exact minimiser of every method's energy when the handle moves by one d and the group touches nothing
   // else.
   std::vector<int> unheld_free, unheld_free_start{0}, unheld_handle, unheld_handle_start{0};
-  // Whether the translation is the minimiser needs more: the group's whole connected part of the region
-  // (through every vertex of Omega) free of fixed vertices, and all of its handle vertices moved alike.
-  // unheld_part_handle[unheld_part_start[g], unheld_part_start[g + 1]): the handle vertices (columns as
-  // above) of group g's part, empty with unheld_part_fixed[g] when that part has a fixed vertex.
-  std::vector<int> unheld_part_handle, unheld_part_start{0};
-  std::vector<char> unheld_part_fixed;
+  // Whether the translation is the minimiser needs more: when every free vertex is unheld and none of the
+  // connected parts of the region they lie in (through every vertex of Omega) has a fixed vertex,
+  // free_in_whole_parts is set and part p's handle vertices (columns as above) are
+  // whole_part_handle[whole_part_start[p], whole_part_start[p + 1]); those parts can move rigidly.
+  bool free_in_whole_parts = false;
+  std::vector<int> whole_part_handle, whole_part_start{0};
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();
   // The constrained vertices' positions of the current solve in model coordinates (3 by n - n_free: handle
   // targets, fixed targets or rest, pinned at rest), written back as given so that they round-trip exactly.
@@ -82,11 +82,11 @@ struct Deformer::Impl {
   // unheld_* from Omega's vertex graph (global indices) once the local numbering is made.
   void group_unheld_vertices(const detail::VertexGraph& graph, const std::vector<int>& global_to_local);
   // Starts each unheld group of X (3 by n, constrained columns already set) at its handle's mean move.
-  // When that is the minimiser, returns the largest distance of a handle vertex's move from its group's mean
-  // move (model units): every free vertex unheld, each group's part of the region without a fixed vertex and
-  // all of its handle vertices moved alike (to 1e-9 of the move, e.g. rest + d rounded at a model's
-  // coordinates 1 km off), so the part moves rigidly, and an energy that a rigid motion brings to its
-  // minimum, zero (every method but arap-s, whose negative weights can take it lower). Else empty.
+  // When that is the minimiser, returns the largest distance of a handle vertex's move from its part's mean
+  // move (model units): free_in_whole_parts and each part's handle vertices moved alike (to 1e-9 of the move,
+  // e.g. rest + d rounded at a model's coordinates 1 km off), so the part moves rigidly, and an energy that a
+  // rigid motion brings to its minimum, zero (every method but arap-s, whose negative weights can take it
+  // lower). Else empty.
   [[nodiscard]] std::optional<double> start_unheld_groups(Eigen::Matrix3Xd& X) const;
   void plan_local_split();  // split_cluster, shared_slot, shared_vertex from the model's clusters
   // Recomputes weights if d_o changed (ASAN) and refactors when needed; returns milliseconds spent.

@@ -50,7 +50,8 @@
 // 2026-12-06: until then they stayed, clamped to kMaxRate, because leaving them out had made one real-car
 // pull stop 2.10x optimistic after 215 iterations (keeping them took 566); that slow mode was most likely a
 // whole part's translation, which a solve now starts at (deformer_impl.hpp). Kept, they held the car's nose
-// (stopping_bench) at the 0.9999 clamp from iteration 80 while a 40-step rate probe read a steady 0.99764:
+// (stopping_bench) at the 0.9999 clamp from iteration 80 while a 40-step rate probe forced every 40
+// iterations (an ad-hoc driver, not kept) read a steady 0.99764:
 // the stop came 15x pessimistic after 159 and 155 iterations (1 m, 2 m); left out, after 129 and 126 (true
 // distance 0.29 and 0.41 of the estimate). On the eighteen seeds of random pulls (asan and arap-sr) 62,468
 // iterations and 44,280 probe steps against 64,911 and 43,419, on six new seeds (20261207, 515151, 8675309,
