@@ -49,6 +49,7 @@ struct DeformCommandOptions {
   std::optional<double> energy_tolerance;
   std::optional<int> anderson;  // unset: the solver's default window
   std::optional<int> smooth_start_min_free;  // unset: the solver's default
+  std::optional<int> coarse_start_min_free;  // unset: the solver's default
   std::optional<double> roi_radius;
   std::vector<double> stretch_direction;
   std::string asan_base = "arap-sr";
@@ -200,6 +201,7 @@ deform::DeformOptions solver_options(const DeformCommandOptions& o) {
   options.energy_tolerance = o.energy_tolerance.value_or(options.energy_tolerance);
   if (o.anderson) options.anderson_window = *o.anderson;
   if (o.smooth_start_min_free) options.smooth_start_min_free = *o.smooth_start_min_free;
+  if (o.coarse_start_min_free) options.coarse_start_min_free = *o.coarse_start_min_free;
   if (o.paper_iterations) options = deform::paper_iterations(options);
   options.sr_arap_alpha = o.alpha;
   options.arap_h_lambda = o.lambda;
@@ -368,6 +370,11 @@ void run_deform(DeformCommandOptions o) {
         "  started from the handle's move spread biharmonically over the region (asan, at least %d free "
         "vertices: --smooth-start-min-free)\n",
         options.smooth_start_min_free);
+  if (r.coarse_start)
+    std::printf(
+        "  started coarse-to-fine: solved first on a coarser tessellation of the region (%d local-global "
+        "steps there; asan, at least %d free vertices: --coarse-start-min-free)\n",
+        r.coarse_evaluations, options.coarse_start_min_free);
   if (r.probe_rate)
     std::printf(
         "  rate probe (an early stop checked): %d extra local-global steps, slowest rate found %.5f; the "
@@ -462,6 +469,13 @@ void add_deform_command(CLI::App& root) {
          "biharmonically (the same minimiser in fewer iterations on large regions); -1 = always from rest "
          "(default: " +
              std::to_string(deform::DeformOptions{}.smooth_start_min_free) + ")")
+      ->check(CLI::Range(-1, std::numeric_limits<int>::max()));
+  cmd->add_option(
+         "--coarse-start-min-free", o->coarse_start_min_free,
+         "asan: regions with at least this many free vertices are solved first on a coarser tessellation of "
+         "the region, and the iterations start from that shape (the same minimiser in fewer iterations on "
+         "large regions); -1 = never (default: " +
+             std::to_string(deform::DeformOptions{}.coarse_start_min_free) + ")")
       ->check(CLI::Range(-1, std::numeric_limits<int>::max()));
   cmd->add_option("--sections", o->sections, "Number of section planes (perpendicular to d) in the metrics")
       ->capture_default_str()

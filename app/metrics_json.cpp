@@ -59,6 +59,10 @@ std::string metrics_json(const DeformRunRecord& record) {
   // never); smooth_start: this one did.
   doc["smooth_start_min_free"] = options.smooth_start_min_free;
   doc["smooth_start"] = result.smooth_start;
+  // Likewise the coarse-to-fine start; coarse_evaluations: the local-global steps of its coarse solve.
+  doc["coarse_start_min_free"] = options.coarse_start_min_free;
+  doc["coarse_start"] = result.coarse_start;
+  doc["coarse_evaluations"] = result.coarse_evaluations;
   doc["converged"] = result.converged;
   doc["stop_reason"] = std::string(deform::stop_reason_name(result.stop_reason));
   // Estimated largest vertex distance to the exact minimiser, relative to |d| (null before it is known).

@@ -172,6 +172,15 @@ void run_replay(const ReplayOptions& o) {
         value.get<long long>() <= std::numeric_limits<int>::max())
       review.smooth_start_min_free = value.get<int>();
   }
+  // Likewise the coarse-to-fine start (2026-12-06): recordings without it never started so.
+  review.coarse_start_min_free = -1;
+  if (header.contains("solver") && header["solver"].is_object() &&
+      header["solver"].contains("coarse_start_min_free")) {
+    const json& value = header["solver"]["coarse_start_min_free"];
+    if (value.is_number_integer() && value.get<long long>() >= -1 &&
+        value.get<long long>() <= std::numeric_limits<int>::max())
+      review.coarse_start_min_free = value.get<int>();
+  }
   review.handle_radius_m = h.at("handle_radius_m");
   review.roi_radius_m = h.at("roi_radius_m");
   review.up = h.at("up").get<std::vector<double>>();

@@ -27,6 +27,9 @@ struct ReviewCommandOptions {
   // deform::DeformOptions::smooth_start_min_free; empty: the solver's default. A replay: the recording's, -1
   // when it has none (the solves of versions before the smooth start began from rest).
   std::optional<int> smooth_start_min_free;
+  // deform::DeformOptions::coarse_start_min_free, likewise (-1 for a recording that has none: its solves
+  // never started coarse-to-fine).
+  std::optional<int> coarse_start_min_free;
   double handle_radius_m = 0.05;
   double roi_radius_m = 0.6;
   std::vector<double> up{0.0, 1.0, 0.0};     // model frame

@@ -84,6 +84,7 @@ ReviewSetup prepare_review(const ReviewCommandOptions& o) {
   }
   s.interaction.solver.mu = o.mu;
   if (o.smooth_start_min_free) s.interaction.solver.smooth_start_min_free = *o.smooth_start_min_free;
+  if (o.coarse_start_min_free) s.interaction.solver.coarse_start_min_free = *o.coarse_start_min_free;
   s.colour = parse_colour(o.colour).value_or(ReviewColour::Displacement);
   return s;
 }

@@ -149,7 +149,8 @@ void SessionRecorder::write_header(const ReviewCommandOptions& o, const ReviewSe
                 {"sr_arap_alpha", solver.sr_arap_alpha},
                 {"arap_h_lambda", solver.arap_h_lambda},
                 {"arap_n_rings", solver.arap_n_rings},
-                {"smooth_start_min_free", solver.smooth_start_min_free}}},
+                {"smooth_start_min_free", solver.smooth_start_min_free},
+                {"coarse_start_min_free", solver.coarse_start_min_free}}},
               {"handle_radius", s.interaction.handle_radius},  // model units
               {"roi_radius", s.interaction.roi_radius},        // model units
               // The command's options, enough to set the same session up again (pushpull replay reads these).

@@ -166,6 +166,33 @@ TEST_F(CliMessages, TheSmoothStartIsSaidAndWrittenDown) {
   EXPECT_NE(bad.output.find("--smooth-start-min-free"), std::string::npos) << bad.output;
 }
 
+TEST_F(CliMessages, TheCoarseToFineStartIsSaidAndWrittenDown) {
+  const std::string pull =
+      "deform " + kHemisphere.string() +
+      " --handle-at 0 0 1 --handle-radius 0.2 --roi-radius 0.8 --displacement 0 0 0.1 --out " +
+      path("c.off") + " --metrics " + path("c.json");
+  // A small region starts from rest by default; 0 starts every asan solve coarse-to-fine.
+  const CommandResult rest = run_pushpull(pull);
+  ASSERT_EQ(rest.status, 0) << rest.output;
+  EXPECT_EQ(rest.output.find("coarse-to-fine"), std::string::npos) << rest.output;
+  const CommandResult coarse = run_pushpull(pull + " --coarse-start-min-free 0");
+  ASSERT_EQ(coarse.status, 0) << coarse.output;
+  EXPECT_NE(
+      coarse.output.find("started coarse-to-fine: solved first on a coarser tessellation of the region ("),
+      std::string::npos)
+      << coarse.output;
+  EXPECT_NE(coarse.output.find("asan, at least 0 free vertices: --coarse-start-min-free)"), std::string::npos)
+      << coarse.output;
+  std::ifstream metrics(path("c.json"));
+  const nlohmann::json written = nlohmann::json::parse(metrics);
+  EXPECT_EQ(written.at("coarse_start"), true);
+  EXPECT_EQ(written.at("coarse_start_min_free"), 0);
+  EXPECT_GT(written.at("coarse_evaluations").get<int>(), 0);
+  const CommandResult bad = run_pushpull(pull + " --coarse-start-min-free -2");
+  EXPECT_NE(bad.status, 0);
+  EXPECT_NE(bad.output.find("--coarse-start-min-free"), std::string::npos) << bad.output;
+}
+
 TEST_F(CliMessages, BenchmarkOfOneViewDoesNotSayStereo) {
   const CommandResult mono =
       run_pushpull("render " + kHemisphere.string() + " --size 32 24 --benchmark 1 --out " + path("a.png"));

@@ -57,6 +57,9 @@ struct OurRun {
   bool converged = false;
   // The solve started from the biharmonic spread (DeformOptions::smooth_start_min_free).
   bool smooth_start = false;
+  // The solve started coarse-to-fine (DeformOptions::coarse_start_min_free); its coarse solve's evaluations.
+  bool coarse_start = false;
+  int coarse_evaluations = 0;
   double estimate = 0.0;  // the solver's own error estimate / |d|
   double error = 0.0;     // measured: distance to the reference / |d|
   Eigen::MatrixXd V;
@@ -81,6 +84,8 @@ OurRun run_ours(const pb::HeightFieldProblem& problem, const pd::RegionOfInteres
   run.iterations = r.iterations;
   run.converged = r.converged;
   run.smooth_start = r.smooth_start;
+  run.coarse_start = r.coarse_start;
+  run.coarse_evaluations = r.coarse_evaluations;
   run.estimate = r.error_estimate.value_or(NAN);
   run.error = relative_error(r.V, reference, problem.d);
   run.V = r.V;
@@ -154,10 +159,27 @@ int main(int argc, char** argv) {
       options.method = method;
       options.threads = 1;
       const OurRun one = run_ours(problem, roi, options, reference);
-      print_row(vertices, name.c_str(), one.smooth_start ? "1 thr, smooth" : "1 thread", one);
+      print_row(vertices, name.c_str(),
+                one.coarse_start   ? "1 thr, coarse"
+                : one.smooth_start ? "1 thr, smooth"
+                                   : "1 thread",
+                one);
       options.threads = 0;
       const OurRun two = run_ours(problem, roi, options, reference);
-      print_row(vertices, name.c_str(), two.smooth_start ? "2 thr, smooth" : "2 threads", two);
+      print_row(vertices, name.c_str(),
+                two.coarse_start   ? "2 thr, coarse"
+                : two.smooth_start ? "2 thr, smooth"
+                                   : "2 threads",
+                two);
+      if (two.coarse_start) {  // the same solve without the coarse level, in this run
+        pd::DeformOptions without = options;
+        without.coarse_start_min_free = -1;
+        const OurRun fine_only = run_ours(problem, roi, without, reference);
+        print_row(vertices, name.c_str(), fine_only.smooth_start ? "2 thr, smooth" : "2 thr, rest",
+                  fine_only);
+        std::printf("%8s (coarse: its coarse solve took %d local-global steps on %s)\n", "",
+                    two.coarse_evaluations, "about a ninth of the free vertices");
+      }
       if (two.smooth_start) {  // the same solve from the rest start, for comparison in this run
         pd::DeformOptions rest = options;
         rest.smooth_start_min_free = -1;
@@ -196,8 +218,11 @@ int main(int argc, char** argv) {
       "of the reference; ratio = CGAL to-result / (our precompute + to-result);\n"
       "smooth / rest: a cold solve from the constrained moves spread biharmonically (the default from %d "
       "free\n"
-      "vertices on; factorize includes its factorization) / from the rest positions.\n",
-      pd::DeformOptions{}.smooth_start_min_free);
+      "vertices on; factorize includes its factorization) / from the rest positions;\n"
+      "coarse: a cold solve started coarse-to-fine (the default from %d free vertices on; factorize "
+      "includes\n"
+      "building the coarser region, the solve its coarse solve; iters are the fine ones).\n",
+      pd::DeformOptions{}.smooth_start_min_free, pd::DeformOptions{}.coarse_start_min_free);
   // The targets read the 10K and 100K rows: a run with --side and neither size prints none.
   const bool has_10k = std::find(sides.begin(), sides.end(), 100) != sides.end();
   const bool has_100k = std::find(sides.begin(), sides.end(), 316) != sides.end();

@@ -23,7 +23,9 @@
 // test; --trace: also the first iteration whose true distance was within the tolerance, with its estimate
 // (on the fixed problems also the true distance and the estimate every tenth iteration);
 // --smooth-start-min-free N: the default solves' DeformOptions::smooth_start_min_free, e.g. 0 to check asan's
-// estimate from the smooth start on every region; --method: only these methods' rows, repeatable)
+// estimate from the smooth start on every region; --coarse-start-min-free N: likewise
+// DeformOptions::coarse_start_min_free, e.g. 500 to check the estimate after coarse-to-fine starts on the
+// random pulls' regions; --method: only these methods' rows, repeatable)
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -75,6 +77,7 @@ double true_error(const Eigen::MatrixXd& V, const Eigen::MatrixXd& reference, co
 
 std::vector<pd::Method> g_methods(pd::kAllMethods.begin(), pd::kAllMethods.end());
 std::optional<int> g_smooth_start_min_free;  // --smooth-start-min-free; empty: the solver's default
+std::optional<int> g_coarse_start_min_free;  // --coarse-start-min-free; empty: the solver's default
 bool g_traced = false;                       // --trace
 
 // The minimiser of each method's energy on one problem, solved to an estimated 1e-9 |d| (minutes on the car's
@@ -91,6 +94,7 @@ const pd::DeformResult& reference_of(const Problem& p, pd::Method method, Refere
     // The same start as the default solves: where the minimiser is not unique (a part hanging from the
     // handle by a vertex turns at no cost), each start finds its own.
     if (g_smooth_start_min_free) tight.smooth_start_min_free = *g_smooth_start_min_free;
+    if (g_coarse_start_min_free) tight.coarse_start_min_free = *g_coarse_start_min_free;
     it = references.emplace(method, pd::deform(p.mesh, p.roi, p.d, tight)).first;
   }
   return it->second;
@@ -108,6 +112,7 @@ std::optional<pd::DeformResult> default_solve(const Problem& p, pd::Method metho
   pd::DeformOptions options;
   options.method = method;
   if (g_smooth_start_min_free) options.smooth_start_min_free = *g_smooth_start_min_free;
+  if (g_coarse_start_min_free) options.coarse_start_min_free = *g_coarse_start_min_free;
   if (trace)
     options.progress = [trace](const pd::IterationReport& report) {
       if (report.probe_step == 0) {
@@ -172,7 +177,10 @@ int run(const Problem& p, References& references) {
     const bool honest = r.converged && ratio <= 2.0;
     failures += honest ? 0 : 1;
     std::printf("%-9s | %5d%s %9.1f %9.1e %9.1e %6.2f | %6d%s %9.1e            | %8.1e%s\n",
-                std::string(pd::method_name(method)).c_str(), r.iterations, r.converged ? " " : "*",
+                std::string(pd::method_name(method)).c_str(), r.iterations,
+                !r.converged     ? "*"
+                : r.coarse_start ? "c"
+                                 : " ",
                 r.timing.factorize + r.timing.solve, estimate, truth, ratio, reference.iterations,
                 reference.converged ? " " : "*", reference.error_estimate.value_or(NAN),
                 true_error(paper.V, reference.V, p.d),
@@ -239,7 +247,7 @@ int run_random_pulls(int per_model, unsigned seed, const std::vector<pd::Method>
                           {"gltf/AsamVehicle/vehicle_example.gltf", 0.15}};
   std::mt19937 rng(seed);
   int runs = 0, optimistic = 0, beyond = 0;
-  long iterations = 0, probe_evaluations = 0;
+  long iterations = 0, probe_evaluations = 0, coarse_starts = 0, coarse_evaluations = 0;
   std::printf("\nrandom pulls: %d per model, seed %u; ratio = true / estimate\n", per_model, seed);
   std::printf("%-22s %5s %6s %-8s | %5s %9s %9s %6s\n", "model", "pull", "region", "method", "iters",
               "estimate", "true", "ratio");
@@ -292,12 +300,16 @@ int run_random_pulls(int per_model, unsigned seed, const std::vector<pd::Method>
         ++runs;
         iterations += r.iterations;
         probe_evaluations += r.probe_evaluations;
+        coarse_starts += r.coarse_start ? 1 : 0;
+        coarse_evaluations += r.coarse_evaluations;
         optimistic += dishonest ? 1 : 0;
         beyond += r.converged && truth > 2.0 * pd::DeformOptions{}.tolerance ? 1 : 0;
         std::printf("%-22s %5d %6zu %-8s | %5d%s %9.1e %9.1e %6.2f%s\n", path.filename().c_str(), pull,
                     p.roi.size(), std::string(pd::method_name(method)).c_str(), r.iterations,
-                    r.converged ? " " : "*", estimate, truth, ratio_of(truth, estimate),
-                    dishonest ? "   <-- optimistic > 2x" : "");
+                    !r.converged     ? "*"
+                    : r.coarse_start ? "c"
+                                     : " ",
+                    estimate, truth, ratio_of(truth, estimate), dishonest ? "   <-- optimistic > 2x" : "");
         if (g_traced) {  // the first iteration whose true distance is within the tolerance, and the estimate
                          // then
           int first = -1;
@@ -315,6 +327,11 @@ int run_random_pulls(int per_model, unsigned seed, const std::vector<pd::Method>
       "random pulls: %d runs, %ld iterations and %ld rate-probe steps in all; %d stopped optimistic > 2x, %d "
       "beyond 2e-2 |d|\n",
       runs, iterations, probe_evaluations, optimistic, beyond);
+  std::printf(
+      "coarse-to-fine starts (c): %ld, their coarse solves %ld local-global evaluations (each on a ninth of "
+      "the "
+      "region or less)\n",
+      coarse_starts, coarse_evaluations);
   return optimistic;
 }
 #endif
@@ -344,6 +361,9 @@ int main(int argc, char** argv) {
     } else if (std::strcmp(argv[a], "--smooth-start-min-free") == 0 && a + 1 < argc &&
                std::atoi(argv[a + 1]) >= -1) {
       g_smooth_start_min_free = std::atoi(argv[++a]);
+    } else if (std::strcmp(argv[a], "--coarse-start-min-free") == 0 && a + 1 < argc &&
+               std::atoi(argv[a + 1]) >= -1) {
+      g_coarse_start_min_free = std::atoi(argv[++a]);
     } else if (std::strcmp(argv[a], "--method") == 0 && a + 1 < argc) {
       try {
         methods.push_back(pd::parse_method(argv[++a]));
@@ -354,7 +374,7 @@ int main(int argc, char** argv) {
     } else {
       std::fprintf(stderr,
                    "usage: stopping_bench [--quick] [--random-pulls N [--seed S] [--details] [--trace]] "
-                   "[--smooth-start-min-free N] [--method NAME]...\n");
+                   "[--smooth-start-min-free N] [--coarse-start-min-free N] [--method NAME]...\n");
       return 2;
     }
   }
@@ -373,7 +393,8 @@ int main(int argc, char** argv) {
   }
   std::printf(
       "stopping_bench: estimated vs true distance to the minimiser, relative to |d| (default rule: "
-      "estimate <= 1e-2)\nratio = true / estimate (<= 2 required); * = not converged\n");
+      "estimate <= 1e-2)\nratio = true / estimate (<= 2 required); * = not converged, c = a coarse-to-fine "
+      "start\n");
   References small;
   int failures =
       run(height_field(50, Eigen::Vector3d(0.05, 0.0, 0.02), "height field 2.5K, sideways pull"), small);

@@ -28,6 +28,7 @@ void check_options(const DeformOptions& o) {
   if (!(o.energy_tolerance >= 0.0)) fail("energy_tolerance must be >= 0");
   if (o.anderson_window < 0) fail("anderson_window must be >= 0");
   if (o.smooth_start_min_free < -1) fail("smooth_start_min_free must be >= -1 (-1: never)");
+  if (o.coarse_start_min_free < -1) fail("coarse_start_min_free must be >= -1 (-1: never)");
   if (o.threads < 0) fail("threads must be 0 (automatic) or >= 1, got " + std::to_string(o.threads));
   if (o.arap_n_rings < 1) fail("arap_n_rings must be >= 1, got " + std::to_string(o.arap_n_rings));
   if (!(o.sr_arap_alpha >= 0.0) || !std::isfinite(o.sr_arap_alpha))
@@ -529,6 +530,7 @@ DeformOptions paper_iterations(DeformOptions base) {
   base.tolerance = 0.0;
   base.energy_tolerance = 0.0;
   base.smooth_start_min_free = -1;
+  base.coarse_start_min_free = -1;
   return base;
 }
 

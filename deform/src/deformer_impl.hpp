@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "anderson.hpp"
+#include "coarse_start.hpp"
 #include "energy_model.hpp"
 #include "global_system.hpp"
 #include "helper_thread.hpp"
@@ -69,6 +70,10 @@ struct Deformer::Impl {
   // factored, cold solves start from rest.
   detail::SmoothStart smooth_start;
   bool smooth_start_failed = false;
+  // asan cold solves' coarse-to-fine start (DeformOptions::coarse_start_min_free), prepared at the first
+  // one; coarse_start_failed: the region did not coarsen (or the coarse Deformer could not be built).
+  detail::CoarseStart coarse_start;
+  bool coarse_start_failed = false;
 
   // The local step runs in two fixed parts, clusters [0, split_cluster) and [split_cluster, #clusters),
   // whatever the thread count, so results do not depend on it. Right-hand-side contributions of part 1

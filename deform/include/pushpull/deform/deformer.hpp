@@ -101,7 +101,7 @@ enum class StopReason {
 
 // Passed to the progress callback after every iteration.
 struct IterationReport {
-  int iteration = 0;      // 1-based
+  int iteration = 0;      // 1-based; 0 only with probe_step > 0, during a coarse-to-fine start's coarse solve
   double energy = 0.0;    // energy of the current positions (model units^2)
   double max_move = 0.0;  // largest vertex move of this iteration's plain step / reference length
   // Estimated largest vertex distance of these positions to the exact minimiser / reference length (see
@@ -115,7 +115,9 @@ struct IterationReport {
   // as a preview snapshot to another thread). Never null.
   std::shared_ptr<const Eigen::MatrixXd> V;
   // 0 for an iteration. k > 0: the rate probe's k-th step after this iteration (DeformResult::probe_rate),
-  // with the iteration's fields again (max_move 0): nothing new to show; answer only whether to go on.
+  // with the iteration's fields again (max_move 0), or, with iteration 0, the k-th evaluation of a
+  // coarse-to-fine start's coarse solve (DeformOptions::coarse_start_min_free; V the positions before it,
+  // energy 0 and no estimate): nothing new to show; answer only whether to go on.
   int probe_step = 0;
   // Whether contraction_rate is settled (DeformResult::rate_settled); pass both on (ConstraintTargets).
   bool rate_settled = false;
@@ -171,6 +173,18 @@ struct DeformOptions {
   // local minimum there was not checked. -1: never (paper_iterations() uses it: the paper's iterations start
   // from rest); 0: every asan cold solve.
   int smooth_start_min_free = 25000;
+  // An asan cold solve (no initial guess, tolerance > 0) of a region with at least this many free vertices
+  // starts coarse-to-fine: the same push/pull is solved first on a coarser tessellation of the region (about
+  // a ninth of its free vertices, every constrained vertex kept; a coarse region still over this size
+  // coarsens again), the coarse shape is carried to the region, and the fine iterations start from there
+  // (deform/src/coarse_start.hpp). It takes the smooth start's place. It saves fine iterations, but a fine
+  // solve that then stops within the rate probe's window pays the probe's 40 evaluations: deform_bench on
+  // 2026-12-06 (2 threads, against the start the region gets without it) measured 10K 44 iterations and 228
+  // ms against 85 and 114 from rest, 30K 57 and 896 ms against 89 and 667 smooth, 50K 71 and 1,820 ms
+  // against 98 and 1,140 smooth, 100K 99 and 2,446 ms against 152 and 3,698 smooth (no probe: past its
+  // window). Regions whose tessellation barely coarsens (small patches with few interior vertices) start as
+  // without. -1: never (paper_iterations() uses it).
+  int coarse_start_min_free = 80000;
   int arap_n_rings = 2;         // arap-n: n >= 1
   double sr_arap_alpha = 0.02;  // sr-arap: alpha >= 0 (dimensionless)
   double arap_h_lambda = 1.0;   // arap-h, arap-sr-h: lambda / mean vertex area (dimensionless), >= 0
@@ -229,6 +243,11 @@ struct DeformResult {
   bool refactored = false;
   // This cold solve started from the biharmonic spread (DeformOptions::smooth_start_min_free).
   bool smooth_start = false;
+  // This cold solve started coarse-to-fine (DeformOptions::coarse_start_min_free); coarse_evaluations: the
+  // local-global evaluations of its coarse solve (coarser levels and rate probe included), each about a
+  // ninth of a fine one; not in `iterations`, their time in timing.solve but not in per_iteration.
+  bool coarse_start = false;
+  int coarse_evaluations = 0;
   TimingMs timing;
   std::vector<std::string> warnings;  // validation, region and solver warnings
 };
