@@ -17,11 +17,14 @@
 // The 10K and 30K fields keep the dimple (-0.0050 after 37 iterations, -0.0069 after 108), and so does asan,
 // stiff across d, at 100K (-0.0064, converged after 229).
 //
-// Usage: deform_bench [--quick] [--no-peer] [--no-reference] [--side N]...
+// Usage: deform_bench [--quick] [--no-peer] [--no-reference] [--side N]... [--method arap-sr|asan]
+//                     [--coarse-start-min-free N]
 //   --quick: the 10K problem only, for CI smoke runs; --no-peer: skip the CGAL rows, which take minutes at
 //   100K, when comparing our own changes; --side N: an N x N problem instead of the default sizes
 //   (repeatable; 100, 173, 316 are the 10K, 30K, 100K rows the targets read); --no-reference: skip the
-//   tightly converged reference (minutes at 100K), err/|d| prints nan: for timing comparisons only.
+//   tightly converged reference (minutes at 100K), err/|d| prints nan: for timing comparisons only;
+//   --method: that method's rows only (both by default); --coarse-start-min-free: DeformOptions'
+//   threshold for the coarse-to-fine start (its rows then compare with the same solve without it).
 #include "height_field.hpp"
 
 #include "pushpull/deform/deformer.hpp"
@@ -113,6 +116,8 @@ void print_row(long vertices, const char* method, const char* setting, const Our
 int main(int argc, char** argv) {
   bool quick = false, peer_rows = true, with_reference = true;
   std::vector<int> chosen_sides;
+  std::vector<pd::Method> methods = {pd::Method::ArapSR, pd::Method::Asan};
+  int coarse_start_min_free = pd::DeformOptions{}.coarse_start_min_free;
   for (int a = 1; a < argc; ++a) {
     if (std::strcmp(argv[a], "--quick") == 0) {
       quick = true;
@@ -123,8 +128,16 @@ int main(int argc, char** argv) {
       peer_rows = false;  // CGAL runs to our measured accuracy
     } else if (std::strcmp(argv[a], "--side") == 0 && a + 1 < argc && std::atoi(argv[a + 1]) >= 3) {
       chosen_sides.push_back(std::atoi(argv[++a]));
+    } else if (std::strcmp(argv[a], "--method") == 0 && a + 1 < argc &&
+               (std::strcmp(argv[a + 1], "asan") == 0 || std::strcmp(argv[a + 1], "arap-sr") == 0)) {
+      methods = {std::strcmp(argv[++a], "asan") == 0 ? pd::Method::Asan : pd::Method::ArapSR};
+    } else if (std::strcmp(argv[a], "--coarse-start-min-free") == 0 && a + 1 < argc &&
+               std::atoi(argv[a + 1]) >= -1) {
+      coarse_start_min_free = std::atoi(argv[++a]);
     } else {
-      std::fprintf(stderr, "usage: deform_bench [--quick] [--no-peer] [--no-reference] [--side N]...\n");
+      std::fprintf(stderr,
+                   "usage: deform_bench [--quick] [--no-peer] [--no-reference] [--side N]... "
+                   "[--method arap-sr|asan] [--coarse-start-min-free N]\n");
       return 2;
     }
   }
@@ -151,12 +164,13 @@ int main(int argc, char** argv) {
     const pb::HeightFieldProblem problem = pb::make_height_field(n);
     const long vertices = static_cast<long>(problem.mesh.V.rows());
     const pd::RegionOfInterest roi = pd::build_roi(problem.mesh, problem.handle, problem.fixed);
-    for (const pd::Method method : {pd::Method::ArapSR, pd::Method::Asan}) {
+    for (const pd::Method method : methods) {
       const std::string name(pd::method_name(method));
       const Eigen::MatrixXd reference =
           with_reference ? pb::reference_solution(problem.mesh, roi, problem.d, method) : Eigen::MatrixXd();
       pd::DeformOptions options;
       options.method = method;
+      options.coarse_start_min_free = coarse_start_min_free;
       options.threads = 1;
       const OurRun one = run_ours(problem, roi, options, reference);
       print_row(vertices, name.c_str(),
@@ -219,13 +233,15 @@ int main(int argc, char** argv) {
       "smooth / rest: a cold solve from the constrained moves spread biharmonically (the default from %d "
       "free\n"
       "vertices on; factorize includes its factorization) / from the rest positions;\n"
-      "coarse: a cold solve started coarse-to-fine (the default from %d free vertices on; factorize "
+      "coarse: a cold solve started coarse-to-fine (from %d free vertices on; factorize "
       "includes\n"
       "building the coarser region, the solve its coarse solve; iters are the fine ones).\n",
-      pd::DeformOptions{}.smooth_start_min_free, pd::DeformOptions{}.coarse_start_min_free);
-  // The targets read the 10K and 100K rows: a run with --side and neither size prints none.
-  const bool has_10k = std::find(sides.begin(), sides.end(), 100) != sides.end();
-  const bool has_100k = std::find(sides.begin(), sides.end(), 316) != sides.end();
+      pd::DeformOptions{}.smooth_start_min_free, coarse_start_min_free);
+  // The targets read the 10K and 100K rows of both methods: a run with --side and neither size, or with
+  // --method, prints none.
+  const bool both_methods = methods.size() == 2;
+  const bool has_10k = both_methods && std::find(sides.begin(), sides.end(), 100) != sides.end();
+  const bool has_100k = both_methods && std::find(sides.begin(), sides.end(), 316) != sides.end();
   if (has_10k || has_100k) std::printf("targets (issue 9):");
   if (has_10k) {
     std::printf(
@@ -244,6 +260,6 @@ int main(int argc, char** argv) {
     std::printf("; slowest 100K result %.0f ms (<= 1000: %s)", largest_ms,
                 largest_ms <= 1000.0 ? "met" : "NOT met");
   }
-  std::printf("\n");
+  if (has_10k || has_100k) std::printf("\n");
   return 0;
 }
