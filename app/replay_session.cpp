@@ -388,6 +388,8 @@ void run_replay(const ReplayOptions& o) {
     record.output = stem + ext;
     record.options.method = s.method;
     record.options.mu = review.mu;
+    if (review.smooth_start_min_free) record.options.smooth_start_min_free = *review.smooth_start_min_free;
+    if (review.coarse_start_min_free) record.options.coarse_start_min_free = *review.coarse_start_min_free;
     record.d = s.d;
     record.vertices = long(s.positions->rows());
     if (s.region) {
@@ -405,12 +407,14 @@ void run_replay(const ReplayOptions& o) {
     record.result.contraction_rate = s.contraction_rate;
     record.result.probe_rate = s.probe_rate;
     record.result.probe_evaluations = s.probe_evaluations;
+    record.result.smooth_start = s.smooth_start;
+    record.result.coarse_start = s.coarse_start;
+    record.result.coarse_evaluations = s.coarse_evaluations;
     // The commit's own costs: setup and factorization read 0 when the drag's previews had built them.
     record.result.timing.precompute = s.setup_ms;
     record.result.timing.factorize = s.factorize_ms;
     record.result.timing.solve = s.solve_ms;
-    const int evaluations = s.iteration + s.probe_evaluations;  // as DeformResult counts them
-    record.result.timing.per_iteration = evaluations > 0 ? s.solve_ms / evaluations : 0.0;
+    record.result.timing.per_iteration = s.per_iteration_ms;     // the solve's, its start's time left out
     record.total_ms = s.setup_ms + s.factorize_ms + s.solve_ms;  // the commit's solve (no file reading here)
     record.dead_band_fraction = deform::MetricsOptions{}.flat_band;  // the band the metrics below use
     record.result.warnings = s.warnings;

@@ -1,5 +1,6 @@
 #include "coarse_start.hpp"
 
+#include <Eigen/SVD>
 #include <algorithm>
 #include <exception>
 
@@ -92,20 +93,37 @@ std::optional<CoarseStart::Start> CoarseStart::start(const Eigen::Matrix3Xd& X_c
   // A cold solve with its own rate probe (and a coarser level of its own when still large): hinted instead
   // (an unsettled hint of rate 0: no probe, no level of its own) the 10K height field's coarse solve stopped
   // after 8 evaluations, far from its minimiser, and the fine solve took 72 iterations instead of 40.
+  // The caller's callback may throw: its exception goes on to the caller, not into the catch below (which
+  // stands for the coarse solve's own failures).
+  std::exception_ptr thrown;
   ProgressCallback progress;
-  if (go_on) progress = [&go_on](const IterationReport&) { return go_on(); };
+  if (go_on) {
+    progress = [&go_on, &thrown](const IterationReport&) {
+      try {
+        return go_on();
+      } catch (...) {
+        thrown = std::current_exception();
+        return false;
+      }
+    };
+  }
   DeformResult solved;
   try {
     solved = coarse_->solve(targets, progress);
   } catch (const std::exception&) {
+    if (thrown) std::rethrow_exception(thrown);
     return std::nullopt;
   }
+  if (thrown) std::rethrow_exception(thrown);
+  const int evaluations = solved.iterations + solved.probe_evaluations + solved.coarse_evaluations;
   if (solved.cancelled) {
     Start cancelled;
     cancelled.cancelled = true;
+    cancelled.evaluations = evaluations;
     return cancelled;
   }
-  if (!solved.converged || !solved.V.allFinite()) return std::nullopt;
+  // Not converged (at the iteration cap) is still a start; only non-finite positions are none.
+  if (!solved.V.allFinite()) return std::nullopt;
 
   const int m = static_cast<int>(kept_.size());
   Eigen::Matrix3Xd X(3, m);  // coarse solved positions, local
@@ -117,7 +135,10 @@ std::optional<CoarseStart::Start> CoarseStart::start(const Eigen::Matrix3Xd& X_c
     Eigen::Matrix3d S = Eigen::Matrix3d::Zero();
     for (int w : coarse_ring_[static_cast<std::size_t>(k)])
       S += (X.col(w) - X.col(k)) * (P_.col(kept_[static_cast<std::size_t>(w)]) - P_.col(rest_k)).transpose();
-    if (S.allFinite() && S.squaredNorm() > 0.0) R[static_cast<std::size_t>(k)] = closest_rotation_svd(S);
+    // A ring on one line (rank 1) leaves the twist about it undetermined: identity then.
+    if (!S.allFinite() || !(S.squaredNorm() > 0.0)) continue;
+    const Eigen::Vector3d sigma = Eigen::JacobiSVD<Eigen::Matrix3d>(S).singularValues();
+    if (sigma(1) > 1e-9 * sigma(0)) R[static_cast<std::size_t>(k)] = closest_rotation_svd(S);
   }
   Start start;
   start.free.resize(3, n_free_);
@@ -128,7 +149,7 @@ std::optional<CoarseStart::Start> CoarseStart::start(const Eigen::Matrix3Xd& X_c
   }
   if (!start.free.allFinite()) return std::nullopt;
   start.rate = solved.contraction_rate;
-  start.evaluations = solved.iterations + solved.probe_evaluations + solved.coarse_evaluations;
+  start.evaluations = evaluations;
   return start;
 }
 

@@ -57,8 +57,9 @@ class CoarseStart {
     bool cancelled = false;      // go_on returned false: the solve is abandoned (free empty)
   };
   // X_c: 3 by n - n_free, the constrained vertices' targets (local). go_on, when set, is asked after every
-  // coarse iteration (and rate probe step) whether to go on. Empty when the coarse solve fails (throws or
-  // produces no converged shape): the caller starts as without.
+  // coarse iteration (and rate probe step) whether to go on; an exception from it propagates. A coarse solve
+  // stopped at its iteration cap still gives a start. Empty when the coarse solve fails (throws, or gives
+  // non-finite positions): the caller starts as without, and should not try again.
   [[nodiscard]] std::optional<Start> start(const Eigen::Matrix3Xd& X_c, const Eigen::Vector3d& push_direction,
                                            const std::function<bool()>& go_on = {});
 

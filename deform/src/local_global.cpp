@@ -97,7 +97,7 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
   bool cancelled_at_start = false;
   const bool coarse = options.method == Method::Asan && options.coarse_start_min_free >= 0 &&
                       n_free >= options.coarse_start_min_free && n_free > 0 && initial_guess.size() == 0 &&
-                      options.tolerance > 0.0 && !coarse_start_failed &&
+                      options.tolerance > 0.0 && options.max_iterations > 0 && !coarse_start_failed &&
                       unheld_free.size() < static_cast<std::size_t>(n_free);
   if (coarse) {
     if (!coarse_start.prepared()) {
@@ -124,9 +124,12 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
       }
       const std::optional<detail::CoarseStart::Start> started =
           coarse_start.start(X_c, push_direction, go_on);
-      if (started && started->cancelled) {
+      if (!started) {
+        coarse_start_failed = true;  // its own solve failed: not again for this region
+      } else if (started->cancelled) {
         cancelled_at_start = true;
-      } else if (started) {
+        result.coarse_evaluations = started->evaluations;
+      } else {
         X.leftCols(n_free) = started->free;
         coarse_rate = started->rate;
         result.coarse_start = true;
@@ -140,7 +143,7 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
   const bool smooth = options.method == Method::Asan && options.smooth_start_min_free >= 0 &&
                       n_free >= options.smooth_start_min_free && n_free > 0 && initial_guess.size() == 0 &&
                       !smooth_start_failed && unheld_free.size() < static_cast<std::size_t>(n_free) &&
-                      !result.coarse_start;
+                      !result.coarse_start && !cancelled_at_start;
   if (smooth) {
     if (!smooth_start.prepared()) {
       const auto prepare_start = Clock::now();
@@ -169,8 +172,9 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
   // estimate is the handle's largest departure from its mean move (0 for a push/pull, to rounding). A solve
   // of a fixed number of iterations (tolerance 0: the paper's setting, whose iterations start from rest)
   // keeps its start.
+  // (Not after a cancel: the positions stay those the progress callback was last shown.)
   const std::optional<double> start_gap =
-      options.tolerance > 0.0 ? start_unheld_groups(X) : std::optional<double>{};
+      options.tolerance > 0.0 && !cancelled_at_start ? start_unheld_groups(X) : std::optional<double>{};
   const bool exact_start = start_gap && n_free > 0;
   // sr-arap: Gauss-Seidel sweeps over its coupled rotations per local step, until a sweep changes no entry of
   // any rotation by more than kSrArapSweepTolerance, at most kSrArapSweeps. With one sweep the step is far
@@ -394,7 +398,9 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
         }
         result.probe_rate = found.rate;
         // A floor from now on, and under the rate handed to warm starts.
-        const double floor = std::min(1.0 - 0.5 * (1.0 - found.rate), probe_max_rate);
+        // (Never below the coarse solve's rate, the floor it replaces.)
+        const double floor =
+            std::max(std::min(1.0 - 0.5 * (1.0 - found.rate), probe_max_rate), coarse_rate.value_or(0.0));
         contraction.set_floor(floor);
         result.contraction_rate = contraction.recent_rate();
         if (!rate || floor > *rate) {  // (a rate is known here: a probe needs a move above the fixed point's)

@@ -17,8 +17,11 @@ double triangle_quality(const Eigen::Vector3d& a, const Eigen::Vector3d& b, cons
 
 // A handed-over triangle may not turn by more than this (cosine of 60 degrees) ...
 constexpr double kMinNormalCosine = 0.5;
-// ... nor end thinner than half the thinnest triangle it replaces, unless it is at least this good.
+// ... nor end thinner than half the thinnest triangle it replaces, unless it is at least this good; and
+// never thinner than kMinQuality (halving from slivers round after round would otherwise reach triangles the
+// solver drops as degenerate).
 constexpr double kGoodQuality = 0.3;
+constexpr double kMinQuality = 1e-3;
 
 class Collapser {
  public:
@@ -176,10 +179,16 @@ class Collapser {
       const std::array<int, 3>& tri = tris_[static_cast<std::size_t>(t)];
       worst_before = std::min(worst_before, triangle_quality(p_.col(tri[0]), p_.col(tri[1]), p_.col(tri[2])));
     }
-    const double needed = std::min(kGoodQuality, 0.5 * worst_before);
+    const double needed = std::max(kMinQuality, std::min(kGoodQuality, 0.5 * worst_before));
     for (int t : around_u) {
       if (t == shared[0] || t == shared[1]) continue;
       const auto [a, b] = opposite(t, u);
+      // v may not have a triangle on a and b already (a valence-3 u on a closed tetrahedron would leave two
+      // coincident triangles).
+      for (int w : incident_[static_cast<std::size_t>(v)]) {
+        const auto [c, e] = opposite(w, v);
+        if ((c == a && e == b) || (c == b && e == a)) return false;
+      }
       const Eigen::Vector3d before = (p_.col(a) - p_.col(u)).cross(p_.col(b) - p_.col(u));
       const Eigen::Vector3d after = (p_.col(a) - p_.col(v)).cross(p_.col(b) - p_.col(v));
       if (!(before.dot(after) > kMinNormalCosine * before.norm() * after.norm())) return false;

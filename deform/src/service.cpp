@@ -250,6 +250,10 @@ struct Service::Impl {
     s.contraction_rate = r.contraction_rate;
     s.probe_rate = r.probe_rate;
     s.probe_evaluations = r.probe_evaluations;
+    s.smooth_start = r.smooth_start;
+    s.coarse_start = r.coarse_start;
+    s.coarse_evaluations = r.coarse_evaluations;
+    s.per_iteration_ms = r.timing.per_iteration;
     s.final = true;
     s.energy = r.energy_trace.empty() ? r.initial_energy : r.energy_trace.back();
     s.factorize_ms = r.timing.factorize;

@@ -179,19 +179,20 @@ struct DeformOptions {
   // coarsens again), the coarse shape is carried to the region, and the fine iterations start from there
   // (deform/src/coarse_start.hpp). It takes the smooth start's place. It saves fine iterations, but a fine
   // solve that then stops within the rate probe's window pays the probe's 40 evaluations: deform_bench on
-  // 2026-12-06 (2 threads, against the start the region gets without it) measured 10K 44 iterations and 228
-  // ms against 85 and 114 from rest, 30K 57 and 896 ms against 89 and 667 smooth, 50K 71 and 1,820 ms
-  // against 98 and 1,140 smooth, 100K 99 and 2,446 ms against 152 and 3,698 smooth (no probe: past its
-  // window). Regions whose tessellation barely coarsens (small patches with few interior vertices) start as
-  // without. -1: never (paper_iterations() uses it).
+  // 2026-12-06 (2 threads, against the start the region gets without it, in the same run) measured 10K 44
+  // iterations and 228 ms against 85 and 114 from rest, 30K 57 and 896 ms against 89 and 667 smooth, 50K 71
+  // and 1,820 ms against 98 and 1,140 smooth, 100K 91 and 2,124 ms against 152 and 3,922 smooth (no probe:
+  // past its window). Regions whose tessellation barely coarsens (small patches with few interior vertices)
+  // start as without. -1: never (paper_iterations() uses it).
   int coarse_start_min_free = 80000;
   int arap_n_rings = 2;         // arap-n: n >= 1
   double sr_arap_alpha = 0.02;  // sr-arap: alpha >= 0 (dimensionless)
   double arap_h_lambda = 1.0;   // arap-h, arap-sr-h: lambda / mean vertex area (dimensionless), >= 0
   // Validate the mesh in the constructor (throws MeshValidationError); turning it off skips O(F log F) work.
   bool validate = true;
-  // Threads a solve may use: 0 = automatic (one helper thread on large regions), 1 = the calling thread
-  // only. Results are bit-identical either way.
+  // Threads a solve may use: 0 = automatic (one helper thread on large regions; a coarse-to-fine start's
+  // coarse Deformer may keep one of its own), 1 = the calling thread only. Results are bit-identical either
+  // way.
   int threads = 0;
   // Default progress callback of every solve (a per-solve one given to solve() takes precedence).
   ProgressCallback progress;
@@ -200,9 +201,11 @@ struct DeformOptions {
 struct TimingMs {
   double precompute = 0.0;     // constructor: validation, clusters, right-hand-side map, symbolic analysis
   double factorize = 0.0;      // this solve: weights + numeric factorization (0 when reused), and at a
-                               // region's first cold solve the smooth start's factorization
-  double solve = 0.0;          // this solve: all iterations, and the rate probe's evaluations if any
-  double per_iteration = 0.0;  // solve without the smooth start's spread / (iterations +
+                               // region's first cold solve the smooth start's factorization or the
+                               // coarse-to-fine start's coarser region and its Deformer
+  double solve = 0.0;          // this solve: all iterations, the rate probe's evaluations if any, the
+                               // smooth start's spread or the coarse-to-fine start's coarse solve
+  double per_iteration = 0.0;  // solve without the starts' spread or coarse solve / (iterations +
                                // DeformResult::probe_evaluations)
 };
 
@@ -244,8 +247,9 @@ struct DeformResult {
   // This cold solve started from the biharmonic spread (DeformOptions::smooth_start_min_free).
   bool smooth_start = false;
   // This cold solve started coarse-to-fine (DeformOptions::coarse_start_min_free); coarse_evaluations: the
-  // local-global evaluations of its coarse solve (coarser levels and rate probe included), each about a
-  // ninth of a fine one; not in `iterations`, their time in timing.solve but not in per_iteration.
+  // local-global evaluations of its coarse solve (coarser levels and rate probe included; also those of a
+  // coarse solve the progress callback stopped), each on a ninth of the region or less; not in
+  // `iterations`, their time in timing.solve but not in per_iteration.
   bool coarse_start = false;
   int coarse_evaluations = 0;
   TimingMs timing;
@@ -261,7 +265,8 @@ struct ConstraintTargets {
   // mean handle displacement.
   std::optional<Eigen::Vector3d> push_direction;
   // empty = a cold start: rest positions with constrained vertices at targets (large regions: the targets'
-  // biharmonic spread, DeformOptions::smooth_start_min_free); else #V by 3
+  // biharmonic spread, DeformOptions::smooth_start_min_free, or the largest a coarse solve carried over,
+  // coarse_start_min_free); else #V by 3
   Eigen::MatrixXd initial_guess;
   // With a warm start: the contraction rate of the solve the initial guess came from
   // (DeformResult::contraction_rate). A warm start begins close to the minimiser, so its first iterations

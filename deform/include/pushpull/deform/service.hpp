@@ -116,6 +116,11 @@ struct Snapshot {
   // contraction_rate, probe_rate, probe_evaluations).
   std::optional<double> estimate_rate, contraction_rate, probe_rate;
   int probe_evaluations = 0;
+  // Final snapshots only: how the cold solve started and its per-iteration time (DeformResult::smooth_start,
+  // coarse_start, coarse_evaluations, timing.per_iteration: the starts' time left out).
+  bool smooth_start = false, coarse_start = false;
+  int coarse_evaluations = 0;
+  double per_iteration_ms = 0.0;
   double energy = 0.0;
   double max_displacement = 0.0;  // largest vertex displacement from rest (model units)
   double factorize_ms = 0.0;      // this request's weights + numeric factorization (0 when reused)
