@@ -95,6 +95,17 @@ void point_at_simulated_runtime(const ReplayOptions& o, const SessionRecording& 
 
 Eigen::Vector3d vec3(const json& j) { return {j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>()}; }
 
+// The recorded solver threshold `key` (an integer >= -1), -1 when the recording has none.
+int recorded_threshold(const json& header, const char* key, const std::string& recording) {
+  if (!header.contains("solver") || !header["solver"].is_object() || !header["solver"].contains(key))
+    return -1;
+  const json& value = header["solver"][key];
+  if (!value.is_number_integer() || value.get<long long>() < -1 ||
+      value.get<long long>() > std::numeric_limits<int>::max())
+    throw CommandError(recording + ": solver." + key + " must be an integer >= -1, got " + value.dump());
+  return value.get<int>();
+}
+
 }  // namespace
 
 void run_replay(const ReplayOptions& o) {
@@ -163,24 +174,10 @@ void run_replay(const ReplayOptions& o) {
     review.behaviour_of_format =
         header.value("behaviour_format", std::min(rec.format_version, kNewestRecordingFormat));
   review.mu = o.mu.value_or(h.at("mu").get<double>());
-  // Recordings made before the smooth start existed solved every cold start from rest.
-  review.smooth_start_min_free = -1;
-  if (header.contains("solver") && header["solver"].is_object() &&
-      header["solver"].contains("smooth_start_min_free")) {
-    const json& value = header["solver"]["smooth_start_min_free"];
-    if (value.is_number_integer() && value.get<long long>() >= -1 &&
-        value.get<long long>() <= std::numeric_limits<int>::max())
-      review.smooth_start_min_free = value.get<int>();
-  }
-  // Likewise the coarse-to-fine start (2026-12-06): recordings without it never started so.
-  review.coarse_start_min_free = -1;
-  if (header.contains("solver") && header["solver"].is_object() &&
-      header["solver"].contains("coarse_start_min_free")) {
-    const json& value = header["solver"]["coarse_start_min_free"];
-    if (value.is_number_integer() && value.get<long long>() >= -1 &&
-        value.get<long long>() <= std::numeric_limits<int>::max())
-      review.coarse_start_min_free = value.get<int>();
-  }
+  // Recordings made before the smooth start (and, from 2026-12-06, the coarse-to-fine start) existed solved
+  // every cold start from rest: -1 when the key is missing.
+  review.smooth_start_min_free = recorded_threshold(header, "smooth_start_min_free", o.recording);
+  review.coarse_start_min_free = recorded_threshold(header, "coarse_start_min_free", o.recording);
   review.handle_radius_m = h.at("handle_radius_m");
   review.roi_radius_m = h.at("roi_radius_m");
   review.up = h.at("up").get<std::vector<double>>();

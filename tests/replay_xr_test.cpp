@@ -333,6 +333,26 @@ TEST(ReplayXr, AnotherModelIsRefusedBySha256) {
   EXPECT_FALSE(fs::exists(dir / "out" / "final.off"));
 }
 
+// The recorded solver thresholds decide how cold solves start: a malformed one is refused, not guessed.
+TEST(ReplayXr, AMalformedSolverThresholdIsRefused) {
+  const fs::path dir = test_dir();
+  const fs::path session = record_session(dir);
+  auto lines = text_lines(session);
+  ASSERT_FALSE(lines.empty());
+  const std::string key = "\"coarse_start_min_free\":";
+  const std::size_t at = lines[0].find(key);
+  ASSERT_NE(at, std::string::npos) << lines[0];
+  const std::size_t end = lines[0].find_first_of(",}", at + key.size());
+  lines[0] = lines[0].substr(0, at + key.size()) + "\"many\"" + lines[0].substr(end);
+  write_lines(session, lines);
+  const auto r = replay(session, dir / "out", "--no-pictures");
+  EXPECT_NE(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find(session.string() +
+                          ": solver.coarse_start_min_free must be an integer >= -1, got \"many\""),
+            std::string::npos)
+      << r.output;
+}
+
 TEST(ReplayXr, CorruptedLineIsNamedByItsNumber) {
   const fs::path dir = test_dir();
   const fs::path session = record_session(dir);
