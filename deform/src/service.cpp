@@ -151,6 +151,9 @@ struct Service::Impl {
   std::atomic<bool> interrupt{
       false};  // new work arrived: the running preview solve stops at its next iteration
   std::atomic<bool> stopping{false};  // destructor: every solve stops at its next iteration
+  // A command (commit, cancel, undo, ...) is queued: unlike a newer request, it also stops a preview's coarse
+  // solve (solve_preview says why). Cleared with interrupt.
+  std::atomic<bool> command_waiting{false};
   detail::NewestValue<const Snapshot> newest;
   std::atomic<std::uint64_t> revision{1};
 
@@ -285,6 +288,12 @@ struct Service::Impl {
     }
     const auto solve_start = Clock::now();
     auto progress = [&](const IterationReport& report) {
+      // A cold request's coarse-to-fine start (iteration 0; regions of at least coarse_start_min_free free
+      // vertices): a newer request does not stop its coarse solve (bounded: a tenth of the fine solve's time
+      // or so), since the next request warm-starts from where this one stopped, and stopped there it would
+      // start the whole drag from rest. Commands, the destructor and cancel() still stop it.
+      if (report.probe_step > 0 && report.iteration == 0)
+        return !command_waiting.load(std::memory_order_acquire) && !stopping.load(std::memory_order_acquire);
       if (report.probe_step > 0)  // the rate probe: nothing new to show, only whether to go on
         return !interrupt.load(std::memory_order_acquire) && !stopping.load(std::memory_order_acquire);
       Snapshot s = request_snapshot(Snapshot::Kind::Preview, p, a, report.V);
@@ -399,6 +408,7 @@ struct Service::Impl {
         busy = true;
         // Cleared while holding the lock: any work queued after this point sets it again.
         interrupt.store(false, std::memory_order_release);
+        command_waiting.store(false, std::memory_order_release);
         if (!commands.empty()) {
           command = std::move(commands.front());
           commands.pop_front();
@@ -433,6 +443,7 @@ struct Service::Impl {
       dropped = std::move(pending);
       if (end_drag) ended = std::move(last_submitted);
       commands.push_back(std::move(command));
+      command_waiting.store(true, std::memory_order_release);
       interrupt.store(true, std::memory_order_release);
     }
     wake.notify_one();

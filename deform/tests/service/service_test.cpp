@@ -459,6 +459,60 @@ TEST(Service, RequestFromAnotherThreadSupersedesMidSolve) {
   EXPECT_TRUE(s->converged);
 }
 
+// A newer request does not cut a cold request's coarse solve short (the drag's next request warm-starts from
+// where this one stops, and stopped in its coarse solve it would start from rest): the superseded request
+// still makes its first fine iteration. A command does stop it.
+Request coarse_request(const Problem& p, const Eigen::Vector3d& d) {
+  Request r = make_request(p, d, 1);
+  r.options.coarse_start_min_free = 0;
+  r.options.anderson_window = 0;  // plain iterations: no exact fixed point in the coarse solve
+  r.options.tolerance = 1e-300;   // so it runs to its cap: 3,000 iterations on each coarser level
+  r.options.energy_tolerance = 0.0;
+  r.options.max_iterations = 3000;
+  return r;
+}
+
+TEST(Service, ANewerRequestLetsTheCoarseSolveFinish) {
+  const Problem p = make_problem(40);
+  std::mutex seen_mutex;
+  std::vector<std::shared_ptr<const Snapshot>> seen;
+  ServiceOptions options;
+  options.on_publish = [&](const std::shared_ptr<const Snapshot>& s) {
+    std::lock_guard lock(seen_mutex);
+    seen.push_back(s);
+  };
+  Service service(p.mesh, options);
+  const std::uint64_t first = service.submit(coarse_request(p, {0.0, 0.0, 0.08}));
+  std::this_thread::sleep_for(
+      std::chrono::milliseconds(20));  // the worker takes it (its coarse solve: longer)
+  const std::uint64_t second = service.submit(make_request(p, {0.0, 0.0, 0.04}, 1));
+  const auto s = service.wait_idle();
+  EXPECT_EQ(s->request, second);
+  EXPECT_TRUE(s->converged);
+  std::lock_guard lock(seen_mutex);
+  int first_snapshots = 0;
+  for (const auto& snapshot : seen) {
+    if (snapshot->request != first) continue;
+    ++first_snapshots;
+    EXPECT_GE(snapshot->iteration, 1);
+    EXPECT_FALSE(snapshot->converged);
+  }
+  if (first_snapshots == 0) std::printf("the first request was superseded before the worker took it\n");
+}
+
+TEST(Service, CancelStopsACoarseSolve) {
+  const Problem p = make_problem(40);
+  Request slow = coarse_request(p, {0.0, 0.0, 0.08});
+  slow.options.max_iterations = 10000000;  // hours, unless stopped
+  Service service(p.mesh);
+  service.submit(slow);
+  std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  service.cancel();
+  const auto s = service.wait_idle();  // would take hours if the coarse solve were not stopped
+  EXPECT_EQ(s->kind, Kind::Rest);
+  EXPECT_EQ(*s->positions, p.mesh->V);
+}
+
 TEST(Service, ErrorsComeBackAsSnapshotsAndTheWorkerLives) {
   const Problem p = make_problem(10);
   Service service(p.mesh);

@@ -14,10 +14,12 @@
 //
 // Model: one worker thread owns every Deformer. Requests are cheap values; the newest one supersedes the
 // one being solved at its next iteration boundary (the solver's progress callback returns false), not
-// after its solve. During a drag (same drag id, same handle, region and options, new d) the worker reuses
-// the Deformer of the previous request (symbolic analysis; numeric factorization when the weights are
-// unchanged: always for the isotropic methods, for asan while d keeps its line) and starts from the previous
-// request's last iterate (a warm start: previews converge in a few iterations).
+// after its solve; a cold request's coarse-to-fine start (DeformOptions::coarse_start_min_free) finishes its
+// coarse solve first, so that the drag's next request starts from the coarse shape. During a drag (same drag
+// id, same handle, region and options, new d) the worker reuses the Deformer of the previous request
+// (symbolic analysis; numeric factorization when the weights are unchanged: always for the isotropic methods,
+// for asan while d keeps its line) and starts from the previous request's last iterate (a warm start:
+// previews converge in a few iterations).
 //
 // Commands (commit, undo, redo, cancel) are queued in call order and run by the worker between solves; they
 // too interrupt a running preview solve. A commit solves its request again from the committed state with a
