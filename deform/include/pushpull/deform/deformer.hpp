@@ -181,10 +181,11 @@ struct DeformOptions {
   // solve that then stops within the rate probe's window pays the probe's 40 evaluations: deform_bench on
   // 2026-12-06 (2 threads, against the start the region gets without it, in the same run) measured 10K 44
   // iterations and 228 ms against 85 and 114 from rest, 30K 57 and 896 ms against 89 and 667 smooth, 50K 71
-  // and 1,820 ms against 98 and 1,140 smooth, 100K 91 and 2,124 ms against 152 and 3,922 smooth (no probe:
-  // past its window). Regions whose tessellation barely coarsens (small patches with few interior vertices)
-  // start as without. -1: never (paper_iterations() uses it).
-  int coarse_start_min_free = 80000;
+  // and 1,555 ms against 98 and 1,130 smooth; past the probe's window it pays: 60K 93 and 1,178 ms against
+  // 114 and 1,581, 75K 94 and 1,640 against 122 and 3,004, 100K 91 and 2,124 against 152 and 3,922. Regions
+  // whose tessellation barely coarsens (small patches with few interior vertices) start as without. -1:
+  // never (paper_iterations() uses it).
+  int coarse_start_min_free = 60000;
   int arap_n_rings = 2;         // arap-n: n >= 1
   double sr_arap_alpha = 0.02;  // sr-arap: alpha >= 0 (dimensionless)
   double arap_h_lambda = 1.0;   // arap-h, arap-sr-h: lambda / mean vertex area (dimensionless), >= 0
