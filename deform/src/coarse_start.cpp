@@ -1,6 +1,5 @@
 #include "coarse_start.hpp"
 
-#include <Eigen/SVD>
 #include <algorithm>
 #include <exception>
 
@@ -12,7 +11,7 @@ namespace {
 
 // The coarse region keeps about this fraction of the free vertices: with a ninth, the 10K height field's
 // coarse solve cost about a third of the fine iterations it saved; a quarter saved hardly more fine
-// iterations at three times the coarse cost.
+// iterations at three times the coarse cost (a scratch driver on 2026-12-05, not in the tree).
 constexpr int kCoarsening = 9;
 
 }  // namespace
@@ -53,11 +52,8 @@ bool CoarseStart::prepare(const Eigen::Matrix3Xd& P, const Eigen::Vector3d& orig
     coarse_.reset();
     return false;
   }
-  P_ = P;
   origin_ = origin;
   n_free_ = n_free;
-  n_handle_ = n_handle;
-  coarse_free_ = region.kept_free;
   kept_ = region.kept;
   ancestor_ = region.ancestor;
   coarse_ring_.assign(static_cast<std::size_t>(m), {});
@@ -75,7 +71,7 @@ bool CoarseStart::prepare(const Eigen::Matrix3Xd& P, const Eigen::Vector3d& orig
   return true;
 }
 
-std::optional<CoarseStart::Start> CoarseStart::start(const Eigen::Matrix3Xd& X_c,
+std::optional<CoarseStart::Start> CoarseStart::start(const Eigen::Matrix3Xd& P, const Eigen::Matrix3Xd& X_c,
                                                      const Eigen::Vector3d& push_direction,
                                                      const std::function<bool()>& go_on) {
   if (!coarse_) return std::nullopt;
@@ -134,18 +130,18 @@ std::optional<CoarseStart::Start> CoarseStart::start(const Eigen::Matrix3Xd& X_c
     const int rest_k = kept_[static_cast<std::size_t>(k)];
     Eigen::Matrix3d S = Eigen::Matrix3d::Zero();
     for (int w : coarse_ring_[static_cast<std::size_t>(k)])
-      S += (X.col(w) - X.col(k)) * (P_.col(kept_[static_cast<std::size_t>(w)]) - P_.col(rest_k)).transpose();
+      S += (X.col(w) - X.col(k)) * (P.col(kept_[static_cast<std::size_t>(w)]) - P.col(rest_k)).transpose();
     // A ring on one line (rank 1) leaves the twist about it undetermined: identity then.
     if (!S.allFinite() || !(S.squaredNorm() > 0.0)) continue;
-    const Eigen::Vector3d sigma = Eigen::JacobiSVD<Eigen::Matrix3d>(S).singularValues();
-    if (sigma(1) > 1e-9 * sigma(0)) R[static_cast<std::size_t>(k)] = closest_rotation_svd(S);
+    if (const std::optional<Eigen::Matrix3d> fitted = closest_rotation_of_rank_two(S, 1e-9))
+      R[static_cast<std::size_t>(k)] = *fitted;
   }
   Start start;
   start.free.resize(3, n_free_);
   for (int u = 0; u < n_free_; ++u) {
     const int a = ancestor_[static_cast<std::size_t>(u)];
     const int rest_a = kept_[static_cast<std::size_t>(a)];
-    start.free.col(u) = X.col(a) + R[static_cast<std::size_t>(a)] * (P_.col(u) - P_.col(rest_a));
+    start.free.col(u) = X.col(a) + R[static_cast<std::size_t>(a)] * (P.col(u) - P.col(rest_a));
   }
   if (!start.free.allFinite()) return std::nullopt;
   start.rate = solved.contraction_rate;

@@ -48,7 +48,6 @@ class CoarseStart {
   bool prepare(const Eigen::Matrix3Xd& P, const Eigen::Vector3d& origin, const Eigen::MatrixX3i& faces,
                int n_free, int n_handle, const DeformOptions& options);
   [[nodiscard]] bool prepared() const { return coarse_ != nullptr; }
-  [[nodiscard]] int coarse_free() const { return coarse_free_; }
 
   struct Start {
     Eigen::Matrix3Xd free;       // 3 by n_free: the fine free vertices' starting positions (local)
@@ -56,18 +55,19 @@ class CoarseStart {
     int evaluations = 0;         // local-global evaluations of the coarse solve
     bool cancelled = false;      // go_on returned false: the solve is abandoned (free empty)
   };
-  // X_c: 3 by n - n_free, the constrained vertices' targets (local). go_on, when set, is asked after every
+  // P: the rest positions given to prepare(); X_c: 3 by n - n_free, the constrained vertices' targets
+  // (local). go_on, when set, is asked after every
   // coarse iteration (and rate probe step) whether to go on; an exception from it propagates. A coarse solve
   // stopped at its iteration cap still gives a start. Empty when the coarse solve fails (throws, or gives
   // non-finite positions): the caller starts as without, and should not try again.
-  [[nodiscard]] std::optional<Start> start(const Eigen::Matrix3Xd& X_c, const Eigen::Vector3d& push_direction,
+  [[nodiscard]] std::optional<Start> start(const Eigen::Matrix3Xd& P, const Eigen::Matrix3Xd& X_c,
+                                           const Eigen::Vector3d& push_direction,
                                            const std::function<bool()>& go_on = {});
 
  private:
   std::unique_ptr<Deformer> coarse_;
-  Eigen::Matrix3Xd P_;  // the fine rest positions (local)
   Eigen::Vector3d origin_ = Eigen::Vector3d::Zero();
-  int n_free_ = 0, n_handle_ = 0, coarse_free_ = 0;
+  int n_free_ = 0;
   std::vector<int> kept_;                      // coarse vertex k = fine local vertex kept_[k]
   std::vector<int> ancestor_;                  // fine local vertex -> coarse vertex
   std::vector<std::vector<int>> coarse_ring_;  // coarse vertex -> its coarse neighbours

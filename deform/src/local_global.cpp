@@ -123,7 +123,7 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
         };
       }
       const std::optional<detail::CoarseStart::Start> started =
-          coarse_start.start(X_c, push_direction, go_on);
+          coarse_start.start(P, X_c, push_direction, go_on);
       if (!started) {
         coarse_start_failed = true;  // its own solve failed: not again for this region
       } else if (started->cancelled) {
@@ -217,7 +217,8 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
   // not in place of the rate probe. The finer region's slowest mode contracts more slowly than the coarse
   // one's: on a 3,368-vertex height field (solver_coarse_start_test.cpp) the fine probe read 0.99320 where
   // the coarse solve (374 free vertices) read 0.98841, and 0.96823 from three levels (374, 41); without its
-  // own probe the fine solve stopped after 19 and 12 iterations, 1.5x and 3.2x optimistic.
+  // own probe the fine solve stopped after 19 and 12 iterations, 1.5x and 3.2x optimistic (a print added to
+  // the test for the purpose, since removed; the test's 2x check failed).
   const bool coarse_hinted = result.coarse_start && coarse_rate.has_value();
   const bool hinted = rate_hint && initial_guess.size() != 0;  // a warm start's hint
   using Policy = detail::ContractionEstimate::Policy;
@@ -421,7 +422,7 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
     }
   }
   result.rate_settled = rate_settled;
-  if ((n_free == 0 || exact_start) && !cancelled_at_start) {  // nothing to solve for, or solved by the start
+  if (n_free == 0 || exact_start) {  // nothing to solve for, or solved by the start
     result.stop_reason = StopReason::ErrorTolerance;
     result.error_estimate = n_free == 0 ? 0.0 : *start_gap / reference;
   }

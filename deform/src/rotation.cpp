@@ -5,13 +5,27 @@
 
 namespace pushpull::deform::detail {
 
-Eigen::Matrix3d closest_rotation_svd(const Eigen::Matrix3d& A) {
-  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(A, Eigen::ComputeFullU | Eigen::ComputeFullV);
+namespace {
+
+Eigen::Matrix3d rotation_of(const Eigen::JacobiSVD<Eigen::Matrix3d>& svd) {
   Eigen::Matrix3d U = svd.matrixU();
   const Eigen::Matrix3d V = svd.matrixV();
   if ((U * V.transpose()).determinant() < 0)
     U.col(2) = -U.col(2);  // singular values are sorted: col 2 smallest
   return U * V.transpose();
+}
+
+}  // namespace
+
+Eigen::Matrix3d closest_rotation_svd(const Eigen::Matrix3d& A) {
+  return rotation_of(Eigen::JacobiSVD<Eigen::Matrix3d>(A, Eigen::ComputeFullU | Eigen::ComputeFullV));
+}
+
+std::optional<Eigen::Matrix3d> closest_rotation_of_rank_two(const Eigen::Matrix3d& A, double relative) {
+  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(A, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  const Eigen::Vector3d sigma = svd.singularValues();
+  if (!(sigma(1) > relative * sigma(0))) return std::nullopt;
+  return rotation_of(svd);
 }
 
 Eigen::Matrix3d closest_rotation(const Eigen::Matrix3d& A, Eigen::Quaterniond& q, int max_steps,

@@ -4,12 +4,18 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <optional>
 
 namespace pushpull::deform::detail {
 
 // Reference: SVD A = U S V^T, R = U diag(1, 1, det(U V^T)) V^T (flipping the singular vector of the
 // smallest singular value when A would give a reflection). About 1 microsecond.
 [[nodiscard]] Eigen::Matrix3d closest_rotation_svd(const Eigen::Matrix3d& A);
+
+// The same from the same SVD, empty where A's second singular value is at most `relative` times its first
+// (rank <= 1: the twist about the one direction is undetermined).
+[[nodiscard]] std::optional<Eigen::Matrix3d> closest_rotation_of_rank_two(const Eigen::Matrix3d& A,
+                                                                          double relative);
 
 // Fast path, warm-started from q (updated in place): Newton's method on SO(3) for max R : A, in the body
 // frame R <- R exp([w]) with w = H^-1 a, where S = R^T A, a = axial vector of S - S^T and

@@ -143,11 +143,7 @@ struct Sheet : solver_testing::PulledSheet {
 TEST(SmoothStartSolve, AsanStartsLowerAndEndsAtTheMinimiser) {
   const Sheet s;
   DeformOptions options;  // asan
-  DeformOptions tight;    // fresh, not copies: GCC 12 -O2 warns on copying the empty optional
-  tight.tolerance = 1e-9;
-  tight.max_iterations = 50000;
-  tight.smooth_start_min_free = -1;
-  const Eigen::MatrixXd reference = deform(*s.mesh, s.roi, s.d, tight).V;
+  const Eigen::MatrixXd reference = solver_testing::asan_reference_from_rest(s);
 
   DeformOptions smooth_options;
   smooth_options.smooth_start_min_free = 0;

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "pushpull/deform/deformer.hpp"
 #include "pushpull/deform/mesh.hpp"
 #include "pushpull/deform/mesh_io.hpp"
 #include "pushpull/deform/roi.hpp"
@@ -46,6 +47,17 @@ inline PulledSheet pulled_sheet(int cells, double handle_radius, double wave) {
   s.roi = make_roi(m, handle, fixed, {});
   s.mesh = std::make_shared<const Mesh>(std::move(m));
   return s;
+}
+
+// The asan minimiser of a pulled sheet's energy, solved from rest to an estimated 1e-9 |d| (what the starts'
+// tests compare against).
+inline Eigen::MatrixXd asan_reference_from_rest(const PulledSheet& s) {
+  DeformOptions tight;  // fresh, not a copy: GCC 12 -O2 warns on copying the empty optional
+  tight.tolerance = 1e-9;
+  tight.max_iterations = 50000;
+  tight.smooth_start_min_free = -1;
+  tight.coarse_start_min_free = -1;
+  return deform(*s.mesh, s.roi, s.d, tight).V;
 }
 
 inline std::filesystem::path shared_mesh(const std::string& name) {
