@@ -308,7 +308,7 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
       Eigen::Map<Eigen::Matrix3Xd>(out.data(), 3, n_free).noalias() =
           Eigen::Map<const Eigen::Matrix3Xd>(v.data(), 3, n_free) * model.Q.topLeftCorner(n_free, n_free);
     };
-    const detail::RateProbe found = detail::probe_rate(N, kProbeSteps, jacobian, metric);
+    const detail::RateProbe found = detail::probe_rate(N, kProbeSteps, jacobian, metric, threads);
     result.probe_evaluations += found.evaluations + (found.abandoned ? 2 : 1);
     return found;
   };

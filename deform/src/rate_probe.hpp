@@ -29,6 +29,8 @@
 #include <Eigen/Core>
 #include <functional>
 
+#include "helper_thread.hpp"
+
 namespace pushpull::deform::detail {
 
 struct RateProbe {
@@ -39,11 +41,14 @@ struct RateProbe {
 
 // jacobian(v, out): out = J v; returns false to abandon the probe. metric(v, out): out = M v for a symmetric
 // positive definite M. Both get and fill vectors of `dimension`. Stops early when the Krylov space is
-// exhausted (an invariant subspace) or a product is not finite.
+// exhausted (an invariant subspace) or a product is not finite. `threads`, when given, runs the
+// orthogonalisation against the basis (half of each step's time at 10K vertices: it reads the basis four
+// times) in two fixed halves of the rows, the same bits either way; not to be called from inside a job of it.
 [[nodiscard]] RateProbe probe_rate(
     Eigen::Index dimension, int steps,
     const std::function<bool(const Eigen::VectorXd& v, Eigen::VectorXd& out)>& jacobian,
-    const std::function<void(const Eigen::VectorXd& v, Eigen::VectorXd& out)>& metric);
+    const std::function<void(const Eigen::VectorXd& v, Eigen::VectorXd& out)>& metric,
+    HelperThread* threads = nullptr);
 
 // The fixed start vector (unit in the Euclidean norm): entries uniform in [-0.5, 0.5) from splitmix64.
 [[nodiscard]] Eigen::VectorXd probe_start(Eigen::Index dimension);
