@@ -7,7 +7,9 @@
 // A row fails the check when the true error exceeds twice the estimate ("optimistic > 2x").
 //
 // Warm starts (a drag's next request from the previous result) are checked on the 10K height field and the
-// car's 2 m region, with and without the previous solve's contraction rate as hint.
+// car's 2 m region, with and without the previous solve's contraction rate as hint, and from a previous
+// request stopped after 16 iterations with its unsettled rate ("early rate", as a drag's first request hands
+// on) or without it ("early none").
 //
 // Random pulls (--random-pulls N): N pulls on each of the shared models nobody tuned for (the low-poly milk
 // truck, the Draco truck body, the cactus, the hemisphere, fandisk, the real car): a handle of 8% of the
@@ -193,12 +195,15 @@ int run(const Problem& p, References& references) {
 
 // Warm starts as in a drag (deform::Service): the previous request was fraction * d; the solve of d starts
 // from its result, with and without its contraction rate as ConstraintTargets::rate_hint (the service
-// passes it). Only the rows with the hint count in the honesty check.
+// passes it); "early": from a previous request stopped after kEarlyIterations, with its unsettled rate. Only
+// the rows with a hint count in the honesty check. iters+probe: the iterations and the rate probe's steps.
+constexpr int kEarlyIterations = 16;  // the first iteration with a contraction rate (error_estimate.hpp)
+
 int run_warm(const Problem& p, References& references) {
   int failures = 0;
   std::printf("\n%s, warm starts from the previous request of a drag\n", p.name.c_str());
-  std::printf("%-9s | %8s %-7s | %6s %9s %9s %6s\n", "method", "previous", "hint", "iters", "estimate",
-              "true", "ratio");
+  std::printf("%-9s | %8s %-10s | %11s %9s %9s %6s\n", "method", "previous", "hint", "iters+probe",
+              "estimate", "true", "ratio");
   for (const pd::Method method : g_methods) {
     if (method != pd::Method::Asan && method != pd::Method::ArapSR) continue;  // the service's defaults
     pd::DeformOptions options;
@@ -206,25 +211,38 @@ int run_warm(const Problem& p, References& references) {
     const pd::DeformResult& reference = reference_of(p, method, references);
     auto mesh = std::make_shared<const pd::Mesh>(p.mesh);
     for (const double fraction : {0.9, 0.97, 0.995}) {
-      pd::Deformer deformer(mesh, p.roi, options);  // the previous request's solve, shared by both rows
+      pd::Deformer deformer(mesh, p.roi, options);  // the previous request's solve, shared by the rows
       const pd::DeformResult previous = deformer.solve(fraction * p.d);
-      for (const bool hint : {false, true}) {
+      // "early": the previous request stopped after kEarlyIterations from rest, with the unsettled rate it
+      // had by then (deform::Service holds a drag's first request until it has one) or without it.
+      pd::DeformOptions early_options = options;
+      early_options.max_iterations = kEarlyIterations;
+      pd::Deformer early_deformer(mesh, p.roi, early_options);
+      const pd::DeformResult early = early_deformer.solve(fraction * p.d);
+      for (const int hint : {0, 1, 2, 3}) {  // none, rate, early rate, early none
         pd::ConstraintTargets targets = deformer.push_pull_targets(p.d);
-        targets.initial_guess = previous.V;
-        if (hint) {
-          targets.rate_hint = previous.contraction_rate;
-          targets.rate_hint_settled = previous.rate_settled;  // as the service passes them
+        const pd::DeformResult& from = hint >= 2 ? early : previous;
+        targets.initial_guess = from.V;
+        if (hint > 0 && hint < 3) {
+          targets.rate_hint = from.contraction_rate;
+          targets.rate_hint_settled = from.rate_settled;  // as the service passes them
         }
         const pd::DeformResult r = deformer.solve(targets);
         const double truth = true_error(r.V, reference.V, p.d);
         const double estimate = r.error_estimate.value_or(NAN);
         const bool honest = r.converged && ratio_of(truth, estimate) <= 2.0;
-        if (hint && !honest) ++failures;
-        std::printf(
-            "%-9s | %6.3f d %-7s | %5d%s %9.1e %9.1e %6.2f%s\n", std::string(pd::method_name(method)).c_str(),
-            fraction, hint ? "rate" : "none", r.iterations, r.converged ? " " : "*", estimate, truth,
-            ratio_of(truth, estimate),
-            honest ? "" : (hint ? "   <-- optimistic > 2x or not converged" : "   (optimistic > 2x)"));
+        if ((hint == 1 || hint == 2) && !honest) ++failures;
+        std::printf("%-9s | %6.3f d %-10s | %5d + %3d%s %9.1e %9.1e %6.2f%s\n",
+                    std::string(pd::method_name(method)).c_str(), fraction,
+                    hint == 3   ? "early none"
+                    : hint == 2 ? "early rate"
+                    : hint == 1 ? "rate"
+                                : "none",
+                    r.iterations, r.probe_evaluations, r.converged ? " " : "*", estimate, truth,
+                    ratio_of(truth, estimate),
+                    honest ? ""
+                           : ((hint == 1 || hint == 2) ? "   <-- optimistic > 2x or not converged"
+                                                       : "   (optimistic > 2x)"));
         std::fflush(stdout);
       }
     }

@@ -412,12 +412,16 @@ TEST(Service, FloodOfSubmitsWhileAnotherThreadReads) {
 
 // Deterministic supersession: a request submitted from inside iteration 5's publication stops the old
 // solve at that iteration boundary.
+// The first request of a drag (no rate hint) is superseded here after 24 iterations, when a newer request
+// stops it whether it has a contraction rate or not (the next test covers it superseded before): it stops
+// at the next iteration.
 TEST(Service, NewRequestStopsTheRunningSolveAtTheNextIteration) {
   const Problem p = make_problem(20);
   const Request slow = slow_request(p, {0.0, 0.0, 0.08}, 1);
   const Request next = make_request(p, {0.0, 0.0, 0.04}, 1);
   Service* self = nullptr;
   std::atomic<bool> submitted{false};
+  std::atomic<int> submitted_at{0};
   std::mutex seen_mutex;
   std::vector<std::shared_ptr<const Snapshot>> seen;
   ServiceOptions options;
@@ -426,7 +430,10 @@ TEST(Service, NewRequestStopsTheRunningSolveAtTheNextIteration) {
       std::lock_guard lock(seen_mutex);
       seen.push_back(s);
     }
-    if (s->request == 1 && s->iteration == 5 && !submitted.exchange(true)) self->submit(next);
+    if (s->request == 1 && s->iteration == 24 && !submitted.exchange(true)) {
+      submitted_at = s->iteration;
+      self->submit(next);
+    }
   };
   Service service(p.mesh, options);
   self = &service;
@@ -440,11 +447,53 @@ TEST(Service, NewRequestStopsTheRunningSolveAtTheNextIteration) {
     last_iteration_of_first = std::max(last_iteration_of_first, s->iteration);
     first_final |= s->final;
   }
-  EXPECT_EQ(last_iteration_of_first, 5);
+  ASSERT_TRUE(submitted.load());
+  EXPECT_EQ(last_iteration_of_first, submitted_at.load());
   EXPECT_TRUE(first_final);
   ASSERT_FALSE(seen.empty());
   EXPECT_EQ(seen.back()->request, 2u);
   EXPECT_TRUE(seen.back()->converged);
+}
+
+// Superseded before it has a contraction rate, a drag's first request goes on to its first iteration with one
+// (so that the drag's next requests start hinted and skip the rate probe; before, at 30 requests a second on
+// 10K vertices none ever had a rate and the last one probed); the next request then takes no probe step.
+TEST(Service, ANewerRequestLetsTheFirstRequestReachARate) {
+  const Problem p = make_problem(20);
+  const Request first = make_request(p, {0.0, 0.0, 0.08}, 1);
+  const Request next = make_request(p, {0.0, 0.0, 0.079}, 1);  // the same options: the same Deformer
+  Service* self = nullptr;
+  std::atomic<bool> submitted{false};
+  std::mutex seen_mutex;
+  std::vector<std::shared_ptr<const Snapshot>> seen;
+  ServiceOptions options;
+  options.on_publish = [&](const std::shared_ptr<const Snapshot>& s) {
+    {
+      std::lock_guard lock(seen_mutex);
+      seen.push_back(s);
+    }
+    if (s->request == 1 && s->iteration == 3 && !submitted.exchange(true)) self->submit(next);
+  };
+  Service service(p.mesh, options);
+  self = &service;
+  service.submit(first);
+  service.wait_idle();
+  std::lock_guard lock(seen_mutex);
+  ASSERT_TRUE(submitted.load());
+  std::shared_ptr<const Snapshot> first_final;
+  for (const auto& s : seen) {
+    if (s->request == 1 && s->final) first_final = s;
+  }
+  ASSERT_TRUE(first_final);
+  EXPECT_FALSE(first_final->converged);  // stopped by the newer request, not by its own rule
+  EXPECT_GT(first_final->iteration, 3);
+  EXPECT_LE(first_final->iteration, 24);
+  EXPECT_TRUE(first_final->contraction_rate.has_value());
+  ASSERT_FALSE(seen.empty());
+  const Snapshot& last = *seen.back();
+  EXPECT_EQ(last.request, 2u);
+  EXPECT_TRUE(last.converged);
+  EXPECT_EQ(last.probe_evaluations, 0);
 }
 
 TEST(Service, RequestFromAnotherThreadSupersedesMidSolve) {
