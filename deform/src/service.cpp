@@ -27,8 +27,9 @@
 namespace pushpull::deform {
 namespace {
 
-// A preview request without a rate hint is not stopped by a newer one before it has a contraction rate, or
-// this many iterations (the rate needs 16 on the estimate's 8-pair window; solve_preview says why).
+// A preview request without a rate hint is not stopped by a newer one of its setup before it has a
+// contraction rate, or this many iterations (the rate needs 16 on the estimate's 8-pair window; solve_preview
+// says why).
 constexpr int kUnhintedRequestIterations = 24;
 
 // The worker's place on the machine: its CPUs (worker_cpus), then its niceness (setpriority on the calling
@@ -124,6 +125,9 @@ struct Service::Impl {
     std::shared_ptr<const Eigen::MatrixXd> last_iterate;  // warm start for the next request of the drag
     std::optional<double> last_rate;  // the contraction rate known when last_iterate was made (its hint)
     bool last_rate_settled = false;   // and whether it was settled (DeformResult::rate_settled)
+    // A request of this setup was held for a rate (solve_preview) and had none after
+    // kUnhintedRequestIterations (a method whose rate comes late or never): the next are not held.
+    bool hold_exhausted = false;
 
     // The solver's positions with the attached parts moved along (a new matrix when there are parts).
     std::shared_ptr<const Eigen::MatrixXd> with_parts(std::shared_ptr<const Eigen::MatrixXd> V) const {
@@ -273,6 +277,12 @@ struct Service::Impl {
     return request.revision != 0 && request.revision != current().id;
   }
 
+  // Whether the newest request waiting for the worker has the setup of `request` (same_setup).
+  bool newest_shares_setup(const Request& request) const {
+    std::lock_guard lock(mutex);
+    return pending && same_setup(pending->request, request);
+  }
+
   void solve_preview(const Pending& p) {
     if (stale(p.request)) {
       publish_error(p.sequence, p.submitted,
@@ -290,7 +300,8 @@ struct Service::Impl {
       targets.rate_hint = a.last_rate;
       targets.rate_hint_settled = a.last_rate_settled;
     }
-    const bool unhinted = !targets.rate_hint.has_value();
+    const bool unhinted = !targets.rate_hint.has_value() && !a.hold_exhausted;
+    bool held = false;  // went on past a newer request (below)
     const auto solve_start = Clock::now();
     auto progress = [&](const IterationReport& report) {
       // A cold request's coarse-to-fine start (iteration 0; regions of at least coarse_start_min_free free
@@ -311,18 +322,24 @@ struct Service::Impl {
       a.last_rate = report.contraction_rate;
       a.last_rate_settled = report.rate_settled;
       publish(std::move(s));
-      // A request without a rate hint (a drag's first) goes on past a newer request until it has a
-      // contraction rate to hand on (at most kUnhintedRequestIterations): the drag's next requests warm-start
-      // with it as their (unsettled) hint and skip the rate probe (deformer.hpp:
+      // A request without a rate hint (a drag's first) goes on past a newer request of the same setup until
+      // it has a contraction rate to hand on (at most kUnhintedRequestIterations): the drag's next requests
+      // warm-start with it as their (unsettled) hint and skip the rate probe (deformer.hpp:
       // ConstraintTargets::rate_hint). Stopped before (16 iterations give the first rate; 10K-vertex asan
       // requests at 30 a second got 14), no request of the drag ever had one, and the last, with the hand
-      // held still, probed: 40 more local-global steps (service_bench: 222 ms from the last submit to the
-      // converged shape on 10K vertices). Commands still stop it.
-      if (unhinted && !report.contraction_rate && report.iteration < kUnhintedRequestIterations)
+      // held still, probed: 40 more local-global steps (service_bench on 2026-12-06: 354-602 ms from the last
+      // submit to the converged shape on 10K vertices, 186-311 ms since). Commands still stop it; a newer
+      // request of another setup (its own Deformer, which would not take the rate) too.
+      const bool interrupted = interrupt.load(std::memory_order_acquire);
+      if (interrupted && unhinted && !report.contraction_rate &&
+          report.iteration < kUnhintedRequestIterations && newest_shares_setup(p.request)) {
+        held = true;
         return !command_waiting.load(std::memory_order_acquire) && !stopping.load(std::memory_order_acquire);
-      return !interrupt.load(std::memory_order_acquire) && !stopping.load(std::memory_order_acquire);
+      }
+      return !interrupted && !stopping.load(std::memory_order_acquire);
     };
     const DeformResult r = a.deformer->solve(targets, progress);
+    if (held && !r.contraction_rate) a.hold_exhausted = true;
     a.request = p.request;
     a.last_iterate = std::make_shared<const Eigen::MatrixXd>(r.V);
     a.last_rate = r.contraction_rate;

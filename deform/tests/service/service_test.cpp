@@ -410,11 +410,29 @@ TEST(Service, FloodOfSubmitsWhileAnotherThreadReads) {
   for (const auto& w : published) EXPECT_TRUE(w.expired());
 }
 
-// Deterministic supersession: runs `first` (request 1) and submits `next` from inside the publication of
-// request 1's iteration `at`, so a newer request is waiting from that iteration boundary on. Returns every
-// snapshot published, in order, once the worker is idle (empty when iteration `at` was never published).
-std::vector<std::shared_ptr<const Snapshot>> supersede_at(const Problem& p, const Request& first,
-                                                          const Request& next, int at) {
+// The first iteration at which a Deformer solving `r` from rest reports a contraction rate (0: none within
+// `within` iterations): where a service request that no newer one stops gets its rate.
+int first_rate_iteration(const Problem& p, const Request& r, int within = 200) {
+  DeformOptions options = r.options;
+  options.max_iterations = within;
+  Deformer deformer(p.mesh, build_roi(*p.mesh, p.handle, r.region.fixed, r.region.max_distance), options);
+  int first = 0;
+  (void)deformer.solve(deformer.push_pull_targets(r.d), [&](const IterationReport& report) {
+    if (report.probe_step == 0 && report.contraction_rate && first == 0) first = report.iteration;
+    return first == 0;
+  });
+  return first;
+}
+
+// Deterministic supersession: runs the `earlier` requests to their ends one after the other (sequences 1 to
+// n), then `watched` (sequence n + 1), and submits `next` from inside the publication of the watched
+// request's iteration `at`, so a newer request waits from that iteration boundary on. Returns every snapshot
+// published, in order, once the worker is idle (empty when that iteration was never published).
+std::vector<std::shared_ptr<const Snapshot>> supersede_at(const Problem& p,
+                                                          const std::vector<Request>& earlier,
+                                                          const Request& watched, const Request& next,
+                                                          int at) {
+  const std::uint64_t watched_sequence = earlier.size() + 1;
   Service* self = nullptr;
   std::atomic<bool> submitted{false};
   std::mutex seen_mutex;
@@ -425,62 +443,85 @@ std::vector<std::shared_ptr<const Snapshot>> supersede_at(const Problem& p, cons
       std::lock_guard lock(seen_mutex);
       seen.push_back(s);
     }
-    if (s->request == 1 && s->iteration == at && !submitted.exchange(true)) self->submit(next);
+    if (s->request == watched_sequence && s->iteration == at && !submitted.exchange(true)) self->submit(next);
   };
   {
     Service service(p.mesh, options);
     self = &service;
-    service.submit(first);
+    for (const Request& r : earlier) {
+      service.submit(r);
+      service.wait_idle();
+    }
+    service.submit(watched);
     service.wait_idle();
   }  // the worker has joined: nothing publishes any more
   if (!submitted) seen.clear();
   return seen;
 }
 
-// The first request of a drag (no rate hint) superseded after 24 iterations, when a newer request stops it
-// whether it has a contraction rate or not (the next test: superseded before), stops at that iteration.
+// The watched request's last snapshot (its final one).
+std::shared_ptr<const Snapshot> final_of(const std::vector<std::shared_ptr<const Snapshot>>& seen,
+                                         std::uint64_t request) {
+  std::shared_ptr<const Snapshot> last;
+  for (const auto& s : seen) {
+    if (s->request == request) last = s;
+  }
+  return last;
+}
+
+// A request of a drag that starts with a rate hint (the drag's first converged and handed on its rate)
+// stops at the iteration boundary where a newer request arrives.
 TEST(Service, NewRequestStopsTheRunningSolveAtTheNextIteration) {
   const Problem p = make_problem(20);
   const auto seen =
-      supersede_at(p, slow_request(p, {0.0, 0.0, 0.08}, 1), make_request(p, {0.0, 0.0, 0.04}, 1),
-                   /*at=*/24);
+      supersede_at(p, {make_request(p, {0.0, 0.0, 0.08}, 1)}, make_request(p, {0.0, 0.0, 0.04}, 1),
+                   make_request(p, {0.0, 0.0, 0.05}, 1), /*at=*/3);
   ASSERT_FALSE(seen.empty());
-  int last_iteration_of_first = 0;
-  bool first_final = false;
-  for (const auto& s : seen) {
-    if (s->request != 1) continue;
-    last_iteration_of_first = std::max(last_iteration_of_first, s->iteration);
-    first_final |= s->final;
-  }
-  EXPECT_EQ(last_iteration_of_first, 24);
-  EXPECT_TRUE(first_final);
-  EXPECT_EQ(seen.back()->request, 2u);
+  const auto watched = final_of(seen, 2);
+  ASSERT_TRUE(watched);
+  EXPECT_TRUE(watched->final);
+  EXPECT_FALSE(watched->converged);
+  EXPECT_EQ(watched->iteration, 3);
+  EXPECT_EQ(seen.back()->request, 3u);
   EXPECT_TRUE(seen.back()->converged);
 }
 
 // Superseded before it has a contraction rate, a drag's first request goes on to its first iteration with one
-// (so that the drag's next requests start hinted and skip the rate probe; before, at 30 requests a second on
-// 10K vertices none ever had a rate and the last one probed); the next request then takes no probe step.
+// and stops there (so that the drag's next requests start hinted and skip the rate probe; before, at 30
+// requests a second on 10K vertices none ever had a rate and the last one probed); the next request then
+// takes no probe step. (The 24-iteration bound is not exercised: every method here has a rate by 18.)
 TEST(Service, ANewerRequestLetsTheFirstRequestReachARate) {
   const Problem p = make_problem(20);
+  const Request first = make_request(p, {0.0, 0.0, 0.08}, 1);
+  const int rate_at = first_rate_iteration(p, first);
+  ASSERT_GT(rate_at, 3);
   // The same options for both: the same Deformer, so the second warm-starts from the first.
-  const auto seen =
-      supersede_at(p, make_request(p, {0.0, 0.0, 0.08}, 1), make_request(p, {0.0, 0.0, 0.079}, 1),
-                   /*at=*/3);
+  const auto seen = supersede_at(p, {}, first, make_request(p, {0.0, 0.0, 0.079}, 1), /*at=*/3);
   ASSERT_FALSE(seen.empty());
-  std::shared_ptr<const Snapshot> first_final;
-  for (const auto& s : seen) {
-    if (s->request == 1 && s->final) first_final = s;
-  }
-  ASSERT_TRUE(first_final);
-  EXPECT_FALSE(first_final->converged);  // stopped by the newer request, not by its own rule
-  EXPECT_GT(first_final->iteration, 3);
-  EXPECT_LE(first_final->iteration, 24);
-  EXPECT_TRUE(first_final->contraction_rate.has_value());
+  const auto watched = final_of(seen, 1);
+  ASSERT_TRUE(watched);
+  EXPECT_FALSE(watched->converged);  // stopped by the newer request, not by its own rule
+  EXPECT_EQ(watched->iteration, rate_at);
+  EXPECT_TRUE(watched->contraction_rate.has_value());
   const Snapshot& last = *seen.back();
   EXPECT_EQ(last.request, 2u);
   EXPECT_TRUE(last.converged);
   EXPECT_EQ(last.probe_evaluations, 0);
+}
+
+// A newer request of another setup (here another method: its own Deformer, which would not take the rate)
+// stops a drag's first request at once.
+TEST(Service, ANewerRequestOfAnotherSetupStopsTheFirstRequestAtOnce) {
+  const Problem p = make_problem(20);
+  const auto seen = supersede_at(p, {}, make_request(p, {0.0, 0.0, 0.08}, 1),
+                                 make_request(p, {0.0, 0.0, 0.08}, 1, Method::ArapSR), /*at=*/3);
+  ASSERT_FALSE(seen.empty());
+  const auto watched = final_of(seen, 1);
+  ASSERT_TRUE(watched);
+  EXPECT_EQ(watched->iteration, 3);
+  EXPECT_FALSE(watched->contraction_rate.has_value());
+  EXPECT_EQ(seen.back()->request, 2u);
+  EXPECT_TRUE(seen.back()->converged);
 }
 
 TEST(Service, RequestFromAnotherThreadSupersedesMidSolve) {

@@ -15,7 +15,10 @@
 // Model: one worker thread owns every Deformer. Requests are cheap values; the newest one supersedes the
 // one being solved at its next iteration boundary (the solver's progress callback returns false), not
 // after its solve; a cold request's coarse-to-fine start (DeformOptions::coarse_start_min_free) finishes its
-// coarse solve first, so that the drag's next request starts from the coarse shape. During a drag (same drag
+// coarse solve first, so that the drag's next request starts from the coarse shape, and a request without a
+// rate hint (a drag's first) goes on until it has a contraction rate (at most 24 iterations) when the newer
+// request has its setup, so that the drag's next requests start with that rate as their hint and skip the
+// solver's rate probe (commands and the destructor still stop it at once). During a drag (same drag
 // id, same handle, region and options, new d) the worker reuses the Deformer of the previous request
 // (symbolic analysis; numeric factorization when the weights are unchanged: always for the isotropic methods,
 // for asan while d keeps its line) and starts from the previous request's last iterate (a warm start:
