@@ -327,9 +327,9 @@ struct Service::Impl {
       // warm-start with it as their (unsettled) hint and skip the rate probe (deformer.hpp:
       // ConstraintTargets::rate_hint). Stopped before (16 iterations give the first rate; 10K-vertex asan
       // requests at 30 a second got 14), no request of the drag ever had one, and the last, with the hand
-      // held still, probed: 40 more local-global steps (service_bench on 2026-12-06: 354-602 ms from the last
-      // submit to the converged shape on 10K vertices, 186-311 ms since). Commands still stop it; a newer
-      // request of another setup (its own Deformer, which would not take the rate) too.
+      // held still, probed: 40 more local-global steps (service_bench on 2026-12-06, a quiet machine: 250-264
+      // ms from the last submit to the converged shape on 10K vertices, 78-85 ms since). Commands still stop
+      // it; a newer request of another setup (its own Deformer, which would not take the rate) too.
       const bool interrupted = interrupt.load(std::memory_order_acquire);
       if (interrupted && unhinted && !report.contraction_rate &&
           report.iteration < kUnhintedRequestIterations && newest_shares_setup(p.request)) {
@@ -339,7 +339,7 @@ struct Service::Impl {
       return !interrupted && !stopping.load(std::memory_order_acquire);
     };
     const DeformResult r = a.deformer->solve(targets, progress);
-    if (held && !r.contraction_rate) a.hold_exhausted = true;
+    if (held && !r.contraction_rate && r.iterations >= kUnhintedRequestIterations) a.hold_exhausted = true;
     a.request = p.request;
     a.last_iterate = std::make_shared<const Eigen::MatrixXd>(r.V);
     a.last_rate = r.contraction_rate;

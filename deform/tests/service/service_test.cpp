@@ -425,16 +425,17 @@ int first_rate_iteration(const Problem& p, const Request& r, int within = 200) {
 }
 
 // Deterministic supersession: runs the `earlier` requests to their ends one after the other (sequences 1 to
-// n), then `watched` (sequence n + 1), and submits `next` from inside the publication of the watched
-// request's iteration `at`, so a newer request waits from that iteration boundary on. Returns every snapshot
-// published, in order, once the worker is idle (empty when that iteration was never published).
-std::vector<std::shared_ptr<const Snapshot>> supersede_at(const Problem& p,
-                                                          const std::vector<Request>& earlier,
-                                                          const Request& watched, const Request& next,
-                                                          int at) {
-  const std::uint64_t watched_sequence = earlier.size() + 1;
+// n), then the chain: chain[0] (sequence n + 1), and chain[k + 1] submitted from inside the publication of
+// chain[k]'s iteration at[k], so a newer request waits from that iteration boundary on. Returns every
+// snapshot published, in order, once the worker is idle (empty when one of those iterations was never
+// published).
+std::vector<std::shared_ptr<const Snapshot>> supersede_chain(const Problem& p,
+                                                             const std::vector<Request>& earlier,
+                                                             const std::vector<Request>& chain,
+                                                             const std::vector<int>& at) {
+  const std::uint64_t first_sequence = earlier.size() + 1;
   Service* self = nullptr;
-  std::atomic<bool> submitted{false};
+  std::atomic<std::size_t> submitted{1};  // chain requests submitted so far
   std::mutex seen_mutex;
   std::vector<std::shared_ptr<const Snapshot>> seen;
   ServiceOptions options;
@@ -443,7 +444,11 @@ std::vector<std::shared_ptr<const Snapshot>> supersede_at(const Problem& p,
       std::lock_guard lock(seen_mutex);
       seen.push_back(s);
     }
-    if (s->request == watched_sequence && s->iteration == at && !submitted.exchange(true)) self->submit(next);
+    const std::size_t k = submitted.load();  // the newest chain request is chain[k - 1]
+    if (k < chain.size() && s->request == first_sequence + k - 1 && s->iteration == at[k - 1]) {
+      submitted = k + 1;
+      self->submit(chain[k]);
+    }
   };
   {
     Service service(p.mesh, options);
@@ -452,11 +457,18 @@ std::vector<std::shared_ptr<const Snapshot>> supersede_at(const Problem& p,
       service.submit(r);
       service.wait_idle();
     }
-    service.submit(watched);
+    service.submit(chain.front());
     service.wait_idle();
   }  // the worker has joined: nothing publishes any more
-  if (!submitted) seen.clear();
+  if (submitted != chain.size()) seen.clear();
   return seen;
+}
+
+std::vector<std::shared_ptr<const Snapshot>> supersede_at(const Problem& p,
+                                                          const std::vector<Request>& earlier,
+                                                          const Request& watched, const Request& next,
+                                                          int at) {
+  return supersede_chain(p, earlier, {watched, next}, {at});
 }
 
 // The watched request's last snapshot (its final one).
@@ -507,6 +519,27 @@ TEST(Service, ANewerRequestLetsTheFirstRequestReachARate) {
   EXPECT_EQ(last.request, 2u);
   EXPECT_TRUE(last.converged);
   EXPECT_EQ(last.probe_evaluations, 0);
+}
+
+// A drag whose first request converges at once without a rate (d = 0, a fixed point) while a newer one waits:
+// the drag's next request, without a hint, is still held until its rate (a held request's missing rate
+// marks the setup "exhausted" only when it reached the 24-iteration bound).
+TEST(Service, ARequestThatConvergesWithoutARateDoesNotEndTheHold) {
+  const Problem p = make_problem(20);
+  const Request pulled = make_request(p, {0.0, 0.0, 0.08}, 1);
+  const int rate_at = first_rate_iteration(p, pulled);
+  const auto seen = supersede_chain(
+      p, {}, {make_request(p, {0.0, 0.0, 0.0}, 1), pulled, make_request(p, {0.0, 0.0, 0.079}, 1)}, {1, 3});
+  ASSERT_FALSE(seen.empty());
+  const auto resting = final_of(seen, 1);
+  ASSERT_TRUE(resting);
+  EXPECT_TRUE(resting->converged);
+  EXPECT_FALSE(resting->contraction_rate.has_value());
+  const auto watched = final_of(seen, 2);
+  ASSERT_TRUE(watched);
+  EXPECT_EQ(watched->iteration, rate_at);
+  EXPECT_EQ(seen.back()->request, 3u);
+  EXPECT_TRUE(seen.back()->converged);
 }
 
 // A newer request of another setup (here another method: its own Deformer, which would not take the rate)
