@@ -329,10 +329,13 @@ struct Service::Impl {
       // requests at 30 a second got 14), no request of the drag ever had one, and the last, with the hand
       // held still, probed: 40 more local-global steps (service_bench on 2026-12-06, a quiet machine: 250-264
       // ms from the last submit to the converged shape on 10K vertices, 78-85 ms since). Commands still stop
-      // it; a newer request of another setup (its own Deformer, which would not take the rate) too.
+      // it; a newer request of another setup (its own Deformer, which would not take the rate) too; and the
+      // hold ends after ServiceOptions::hold_for_rate_ms of the solve (it says why).
       const bool interrupted = interrupt.load(std::memory_order_acquire);
       if (interrupted && unhinted && !report.contraction_rate &&
-          report.iteration < kUnhintedRequestIterations && newest_shares_setup(p.request)) {
+          report.iteration < kUnhintedRequestIterations &&
+          ms_between(solve_start, Clock::now()) < options.hold_for_rate_ms &&
+          newest_shares_setup(p.request)) {
         held = true;
         return !command_waiting.load(std::memory_order_acquire) && !stopping.load(std::memory_order_acquire);
       }

@@ -432,13 +432,16 @@ int first_rate_iteration(const Problem& p, const Request& r, int within = 200) {
 std::vector<std::shared_ptr<const Snapshot>> supersede_chain(const Problem& p,
                                                              const std::vector<Request>& earlier,
                                                              const std::vector<Request>& chain,
-                                                             const std::vector<int>& at) {
+                                                             const std::vector<int>& at,
+                                                             double hold_for_rate_ms = 1e9) {
   const std::uint64_t first_sequence = earlier.size() + 1;
   Service* self = nullptr;
   std::atomic<std::size_t> submitted{1};  // chain requests submitted so far
   std::mutex seen_mutex;
   std::vector<std::shared_ptr<const Snapshot>> seen;
   ServiceOptions options;
+  options.hold_for_rate_ms =
+      hold_for_rate_ms;  // by default by iterations only: the same stops on any machine
   options.on_publish = [&](const std::shared_ptr<const Snapshot>& s) {
     {
       std::lock_guard lock(seen_mutex);
@@ -539,6 +542,20 @@ TEST(Service, ARequestThatConvergesWithoutARateDoesNotEndTheHold) {
   ASSERT_TRUE(watched);
   EXPECT_EQ(watched->iteration, rate_at);
   EXPECT_EQ(seen.back()->request, 3u);
+  EXPECT_TRUE(seen.back()->converged);
+}
+
+// ServiceOptions::hold_for_rate_ms = 0: a drag's first request is never held.
+TEST(Service, NoHoldTimeStopsTheFirstRequestAtOnce) {
+  const Problem p = make_problem(20);
+  const auto seen =
+      supersede_chain(p, {}, {make_request(p, {0.0, 0.0, 0.08}, 1), make_request(p, {0.0, 0.0, 0.079}, 1)},
+                      {3}, /*hold_for_rate_ms=*/0.0);
+  ASSERT_FALSE(seen.empty());
+  const auto watched = final_of(seen, 1);
+  ASSERT_TRUE(watched);
+  EXPECT_EQ(watched->iteration, 3);
+  EXPECT_EQ(seen.back()->request, 2u);
   EXPECT_TRUE(seen.back()->converged);
 }
 

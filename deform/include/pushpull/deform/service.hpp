@@ -16,9 +16,10 @@
 // one being solved at its next iteration boundary (the solver's progress callback returns false), not
 // after its solve; a cold request's coarse-to-fine start (DeformOptions::coarse_start_min_free) finishes its
 // coarse solve first, so that the drag's next request starts from the coarse shape, and a request without a
-// rate hint (a drag's first) goes on until it has a contraction rate (at most 24 iterations) when the newer
-// request has its setup, so that the drag's next requests start with that rate as their hint and skip the
-// solver's rate probe (commands and the destructor still stop it at once). During a drag (same drag
+// rate hint (a drag's first) goes on until it has a contraction rate (at most 24 iterations and
+// ServiceOptions::hold_for_rate_ms) when the newer request has its setup, so that the drag's next requests
+// start with that rate as their hint and skip the solver's rate probe (commands and the destructor still stop
+// it at once). During a drag (same drag
 // id, same handle, region and options, new d) the worker reuses the Deformer of the previous request
 // (symbolic analysis; numeric factorization when the weights are unchanged: always for the isotropic methods,
 // for asan while d keeps its line) and starts from the previous request's last iterate (a warm start:
@@ -174,6 +175,15 @@ struct ServiceOptions {
   // frame loop gives the solver CPUs of its own so solves never take the frame loop's cores. A set the
   // system refuses leaves the worker where it was (results do not depend on it).
   std::vector<int> worker_cpus;
+  // How long (milliseconds since the request's solve began, its refactorization included) a preview request
+  // without a rate hint, a drag's first, may go on past a newer request of its setup to reach a contraction
+  // rate for the drag's next requests (then they skip the solver's rate probe). The hold delays the drag's
+  // next preview by as much, and it only pays where the drag's last request would stop within the probe's
+  // window: on 10K vertices (service_bench) the first rate came ~40 ms into the solve and the wait for the
+  // converged shape with the hand held still fell from ~255 to ~80 ms; on 50K, where the rate comes after
+  // 300-500 ms and the last request runs past the window anyway, holding lengthened that wait by 15-45%.
+  // 0: never held; tests give a large value for timing-independent results.
+  double hold_for_rate_ms = 50.0;
 };
 
 class Service {
