@@ -199,6 +199,15 @@ int run(const Problem& p, References& references) {
 // the rows with a hint count in the honesty check. iters+probe: the iterations and the rate probe's steps.
 constexpr int kEarlyIterations = 24;  // deform::Service's bound on holding a drag's first request
 
+// The warm rows: from which previous result (the converged one, or the early one) and with its rate or not.
+struct WarmRow {
+  const char* name;
+  bool early;
+  bool hinted;
+};
+constexpr WarmRow kWarmRows[] = {
+    {"none", false, false}, {"rate", false, true}, {"early rate", true, true}, {"early none", true, false}};
+
 int run_warm(const Problem& p, References& references) {
   int failures = 0;
   std::printf("\n%s, warm starts from the previous request of a drag\n", p.name.c_str());
@@ -220,11 +229,11 @@ int run_warm(const Problem& p, References& references) {
           deformer.solve(deformer.push_pull_targets(fraction * p.d), [](const pd::IterationReport& report) {
             return report.probe_step > 0 || (!report.contraction_rate && report.iteration < kEarlyIterations);
           });
-      for (const int hint : {0, 1, 2, 3}) {  // none, rate, early rate, early none
+      for (const WarmRow& row : kWarmRows) {
         pd::ConstraintTargets targets = deformer.push_pull_targets(p.d);
-        const pd::DeformResult& from = hint >= 2 ? early : previous;
+        const pd::DeformResult& from = row.early ? early : previous;
         targets.initial_guess = from.V;
-        if (hint > 0 && hint < 3) {
+        if (row.hinted) {
           targets.rate_hint = from.contraction_rate;
           targets.rate_hint_settled = from.rate_settled;  // as the service passes them
         }
@@ -232,18 +241,13 @@ int run_warm(const Problem& p, References& references) {
         const double truth = true_error(r.V, reference.V, p.d);
         const double estimate = r.error_estimate.value_or(NAN);
         const bool honest = r.converged && ratio_of(truth, estimate) <= 2.0;
-        if ((hint == 1 || hint == 2) && !honest) ++failures;
+        if (row.hinted && !honest) ++failures;
         std::printf("%-9s | %6.3f d %-10s | %5d + %3d%s %9.1e %9.1e %6.2f%s\n",
-                    std::string(pd::method_name(method)).c_str(), fraction,
-                    hint == 3   ? "early none"
-                    : hint == 2 ? "early rate"
-                    : hint == 1 ? "rate"
-                                : "none",
-                    r.iterations, r.probe_evaluations, r.converged ? " " : "*", estimate, truth,
-                    ratio_of(truth, estimate),
-                    honest ? ""
-                           : ((hint == 1 || hint == 2) ? "   <-- optimistic > 2x or not converged"
-                                                       : "   (optimistic > 2x)"));
+                    std::string(pd::method_name(method)).c_str(), fraction, row.name, r.iterations,
+                    r.probe_evaluations, r.converged ? " " : "*", estimate, truth, ratio_of(truth, estimate),
+                    honest       ? ""
+                    : row.hinted ? "   <-- optimistic > 2x or not converged"
+                                 : "   (optimistic > 2x)");
         std::fflush(stdout);
       }
     }

@@ -11,6 +11,7 @@
 
 #include <atomic>
 #include <condition_variable>
+#include <cstddef>
 #include <cstdint>
 #include <mutex>
 #include <thread>
@@ -46,6 +47,15 @@ class HelperThread {
   std::atomic<bool> stop_{false};
   std::thread thread_;  // last: started once the members above exist
 };
+
+// The two fixed halves [half_begin, half_end) of n entries that run_halves' parts take, split at a multiple
+// of `multiple` (3 keeps a vertex's coordinates together): the same split whatever the thread count.
+inline std::ptrdiff_t half_begin(int part, std::ptrdiff_t n, std::ptrdiff_t multiple = 1) {
+  return part == 0 ? 0 : multiple * ((n / multiple) / 2);
+}
+inline std::ptrdiff_t half_end(int part, std::ptrdiff_t n, std::ptrdiff_t multiple = 1) {
+  return part == 0 ? multiple * ((n / multiple) / 2) : n;
+}
 
 // job(0) then job(1): on the two threads when `threads` is given, else one after the other on the calling
 // thread (the same parts, so the same results either way).

@@ -26,14 +26,6 @@ Eigen::VectorXd probe_start(Eigen::Index dimension) {
 
 namespace {
 
-// The two fixed halves of the rows [begin, end) of a vector of n entries, the same whatever the thread count.
-Eigen::Index half_begin(int part, Eigen::Index n) {
-  return part == 0 ? 0 : n / 2;
-}
-Eigen::Index half_end(int part, Eigen::Index n) {
-  return part == 0 ? n / 2 : n;
-}
-
 // One classical Gram-Schmidt pass in the M inner product against the k basis columns of V: c = V^T (M w),
 // w -= V c, h += c. The rows are split in two fixed halves (one per thread when given one); the halves'
 // partial sums of c are added in a fixed order, so the bits do not depend on the thread count.
@@ -84,7 +76,8 @@ RateProbe probe_rate(Eigen::Index dimension, int steps,
     if (!w.allFinite()) break;
     // Classical Gram-Schmidt in the M inner product, twice (the second pass mends the first's
     // cancellation; Daniel, Gragg, Kaufman and Stewart's test, a second pass only where the first left less
-    // than 1/sqrt(2) of w, asked for it at 39 of 40 steps: J v lies mostly in the Krylov space already).
+    // than 1/sqrt(2) of w, asked for it at 39 of 40 steps in a scratch count on the 10K height field, not in
+    // the tree: J v lies mostly in the Krylov space already).
     for (int pass = 0; pass < 2; ++pass) {
       metric(w, mw);
       orthogonalise(V, j + 1, mw, w, H.col(j).head(j + 1), threads);

@@ -14,14 +14,6 @@ constexpr Eigen::Index kChunk = 3 * 1024;
 // Sums per stored column: dF_new.dF_k, dF_new.dG_k, dF_k.dG_new, dG_new.dG_k, dF_k.f.
 constexpr int kSums = 5;
 
-// The two fixed halves [begin, end) of a vector of n entries, split at a multiple of 3.
-Eigen::Index half_begin(int part, Eigen::Index n) {
-  return part == 0 ? 0 : 3 * ((n / 3) / 2);
-}
-Eigen::Index half_end(int part, Eigen::Index n) {
-  return part == 0 ? 3 * ((n / 3) / 2) : n;
-}
-
 // Largest squared norm over consecutive triples of v[0, length) (a trailing partial triple counts too).
 double largest_triple(const double* v, Eigen::Index length) {
   double largest = 0.0;
@@ -62,7 +54,7 @@ double SecantHistory::add(const Eigen::Ref<const Eigen::VectorXd>& x,
   auto part = [&](int p) {
     std::vector<double>& s = sums[static_cast<std::size_t>(p)];
     s.assign(static_cast<std::size_t>(kSums * m), 0.0);
-    const Eigen::Index begin = half_begin(p, n), end = half_end(p, n);
+    const Eigen::Index begin = half_begin(p, n, 3), end = half_end(p, n, 3);
     double big = 0.0;
     for (Eigen::Index c0 = begin; c0 < end; c0 += kChunk) {
       const Eigen::Index length = std::min(kChunk, end - c0);
@@ -117,7 +109,7 @@ bool SecantHistory::extrapolate(const Eigen::Ref<const Eigen::VectorXd>& g, cons
   const int m = static_cast<int>(std::min<Eigen::Index>(gamma.size(), stored()));
   std::array<bool, 2> finite{true, true};
   auto part = [&](int p) {
-    const Eigen::Index begin = half_begin(p, n), end = half_end(p, n);
+    const Eigen::Index begin = half_begin(p, n, 3), end = half_end(p, n, 3);
     bool ok = true;
     for (Eigen::Index c0 = begin; c0 < end; c0 += kChunk) {
       const Eigen::Index length = std::min(kChunk, end - c0);
