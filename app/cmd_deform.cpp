@@ -9,6 +9,7 @@
 #include "pushpull/assets/write.hpp"
 #include "pushpull/deform/attached_parts.hpp"
 #include "pushpull/deform/deformer.hpp"
+#include "pushpull/deform/file_output.hpp"
 #include "pushpull/deform/mesh_io.hpp"
 #include "pushpull/deform/metrics.hpp"
 #include "pushpull/deform/roi.hpp"
@@ -266,12 +267,13 @@ void run_deform(DeformCommandOptions o) {
     throw CommandError("--displacement: zero displacement (nothing to push or pull)");
   deform::DeformOptions options = solver_options(o);
   check_output_model_path(o.out);
-  for (const std::string& output : {o.out, o.metrics}) {
-    const fs::path folder = fs::path(output).parent_path();
-    if (!folder.empty() && !fs::is_directory(folder)) {
-      throw CommandError(output + ": the folder " + folder.string() + " does not exist");
-    }
-  }
+  // Every output is checked before any is written, so a bad one leaves the others as they were.
+  for (const std::string& output : {o.out, o.metrics})
+    if (const std::string problem = deform::output_path_problem(output); !problem.empty())
+      throw CommandError(output + ": " + problem);
+  if (deform::same_output_file(o.out, o.metrics))
+    throw CommandError("--out and --metrics name the same file (" + o.out +
+                       "): the metrics would replace the model");
 
   const LoadedModel model = load_model(o.mesh);
   const std::shared_ptr<const deform::Mesh>& mesh = model.mesh;

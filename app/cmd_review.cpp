@@ -107,6 +107,11 @@ void add_review_command(CLI::App& root) {
          "After the OpenXR session is lost, wait this many seconds for the headset to come back and go on "
          "(0: end the review)")
       ->check(CLI::Range(0.0, 86400.0));
+  cmd->add_option("--headset-wait", o->headset_wait_s,
+                  "At the start, wait this many seconds for a runtime's headset that has not connected yet "
+                  "(streaming runtimes: WiVRn, ALVR) before opening the desktop window instead")
+      ->check(CLI::Range(0.0, 86400.0))
+      ->capture_default_str();
   cmd->add_option_function<std::string>(
          "--solver-priority",
          [o](const std::string& value) {

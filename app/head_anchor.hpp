@@ -23,16 +23,26 @@ struct HeadAnchor {
   double time = 0.0;        // the recording time of the frame it was taken at (s)
   double x = 0.0, z = 0.0;  // the head's floor position (stage metres)
   double yaw = 0.0;         // the head's heading about +Y (radians; 0: looking down -Z, +pi/2: down -X)
+  // The floor's height (stage metres): 0 where the stage space stands on the floor, as the spec's STAGE
+  // does; otherwise (a head located outside kFloorLevelHeads above the origin: a runtime whose STAGE is its
+  // tracking origin, as Monado's is on drivers without a floor) kAssumedEyeHeight below the head.
+  double floor_y = 0.0;
 };
 
+// Heights of a located head (stage metres, above the origin) that say the stage space stands on the floor:
+// a reviewer kneeling to look under a sill to one standing on a step. Outside them the floor is taken
+// kAssumedEyeHeight below the head (the LOCAL space fallback's guess too, xr::Session).
+inline constexpr double kFloorLevelHeadMin = 0.3, kFloorLevelHeadMax = 2.5, kAssumedEyeHeight = 1.6;
+
 // The anchor of a head at `position` looking along `forward` (stage; forward need not be unit): the heading
-// of forward's horizontal part, 0 when the head looks within about 6 degrees of straight up or down; zero (no
-// move) within 1 cm and 0.01 rad of the origin's pose.
+// of forward's horizontal part, 0 when the head looks within about 6 degrees of straight up or down; the
+// floor's height (HeadAnchor::floor_y); zero (no move) within 1 cm and 0.01 rad of the origin's pose, with
+// the floor at 0.
 [[nodiscard]] HeadAnchor anchor_at_head(double time, const Eigen::Vector3d& position,
                                         const Eigen::Vector3d& forward);
 
-// T_stage_model moved to the anchor: turned about +Y by yaw, then moved by (x, 0, z). A zero anchor returns
-// `at_origin` unchanged (bit for bit).
+// T_stage_model moved to the anchor: turned about +Y by yaw, then moved by (x, floor_y, z). A zero anchor
+// returns `at_origin` unchanged (bit for bit).
 [[nodiscard]] StagePlacement anchored(const StagePlacement& at_origin, const HeadAnchor& anchor);
 
 // When the headset loop anchors, once per review: live, at the first frame whose head position is located (a

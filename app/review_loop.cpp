@@ -93,6 +93,7 @@ void run_review(const ReviewCommandOptions& o) {
   session_options.require_vulkan13_features = [](VkPhysicalDeviceVulkan13Features& f) {
     renderer::Context::require_features(f);
   };
+  session_options.headset_wait_s = o.headset_wait_s;
   if (o.eye_size.size() == 2) {
     session_options.eye_width = uint32_t(o.eye_size[0]);
     session_options.eye_height = uint32_t(o.eye_size[1]);
@@ -394,8 +395,11 @@ void run_review(const ReviewCommandOptions& o) {
         // (whole) rate places it, so a replay gives frame n the input the loop read at its frame n, whatever
         // the headset's timing (jitter, dropped frames) was.
         if (recording_rate_hz == 0) {
-          recording_rate_hz = std::max(
-              1L, std::lround(1e9 / double(std::max<XrDuration>(1, frame.predicted_display_period))));
+          // A runtime not yet synchronised may predict no period (0) or a meaningless one: the recording
+          // then counts frames at 90 Hz (only its times depend on the rate, not what frame n reads).
+          const XrDuration period = frame.predicted_display_period;
+          const long rate = period > 0 ? std::lround(1e9 / double(period)) : 0;
+          recording_rate_hz = rate >= 10 && rate <= 1000 ? rate : 90;
           recorder.write_record("clock", 0.0, {{"rate_hz", recording_rate_hz}});
         }
         t = double(std::llround(double(recording_frames++) * 1e9 / double(recording_rate_hz))) * 1e-9;
@@ -440,7 +444,17 @@ void run_review(const ReviewCommandOptions& o) {
               const StagePlacement at_head = anchored(placement, *anchor);
               grab = GrabPlacement(at_head, /*scale_on_floor=*/format_6);
               place_model(at_head);
-              recorder.write_record("anchor", t, {{"x", anchor->x}, {"z", anchor->z}, {"yaw", anchor->yaw}});
+              nlohmann::json fields{{"x", anchor->x}, {"z", anchor->z}, {"yaw", anchor->yaw}};
+              if (anchor->floor_y != 0.0) {
+                fields["floor_y"] = anchor->floor_y;
+                if (!o.quiet && !o.recorded_anchor)
+                  std::printf(
+                      "pushpull review: the head is %.2f m above the stage space's origin, not %.1f-%.1f "
+                      "m: the runtime's stage is not at floor level; the model stands %.1f m below "
+                      "the head\n",
+                      head_position.y(), kFloorLevelHeadMin, kFloorLevelHeadMax, kAssumedEyeHeight);
+              }
+              recorder.write_record("anchor", t, fields);
             }
           }
         }

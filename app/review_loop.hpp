@@ -57,6 +57,9 @@ struct ReviewCommandOptions {
   std::string solver_cpus = "none";
   // After a lost session: how long to wait for the headset to come back before ending (s; 0: end at once).
   double reconnect_s = 30.0;
+  // At the start: how long a runtime whose headset has not connected yet (a streaming runtime before the
+  // headset joins, a runtime still bringing its headset up) is given before the desktop window opens (s).
+  double headset_wait_s = 3.0;
   bool validation = false;  // Vulkan validation layer on the runtime's instance; any message fails the run
   bool mirror = false;      // the supervisor's GLFW window
   bool desktop = false;     // no headset: the window is the workspace (desktop_loop.hpp)

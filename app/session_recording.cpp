@@ -70,6 +70,7 @@ SessionRecording read_session_recording(const std::string& path) {
   SessionRecording r;
   r.path = path;
   bool ended = false;
+  std::size_t last_input_line = 0;  // the line of the latest input time so far
   // Desktop recordings before format 4 pressed the left menu button for the colour key (a replay's headset
   // loop would open its panel): read as "colour" records instead, cycling from the header's colour map.
   bool legacy_desktop = false;
@@ -108,6 +109,23 @@ SessionRecording read_session_recording(const std::string& path) {
       for (const char* key : {"mu", "handle_radius_m", "roi_radius_m", "distance_m"})
         if (!options->contains(key) || !(*options)[key].is_number())
           corrupted(path, 1, std::string("header option \"") + key + "\" is missing or not a number");
+      // The values the replay sets its review up from, checked here so that a damaged header is named as
+      // such (not as an option the user never typed, nor as every push/pull failing).
+      if (!is_method_name((*options)["method"].get<std::string>()))
+        corrupted(path, 1,
+                  "header option \"method\" names no deformation method: \"" +
+                      (*options)["method"].get<std::string>() + "\"");
+      auto positive = [&](const char* key, double above) {
+        if (!options->contains(key) || (*options)[key].is_null()) return;  // (null: not given, e.g. length_m)
+        const nlohmann::json& v = (*options)[key];
+        if (!v.is_number() || !std::isfinite(v.get<double>()) || !(v.get<double>() > above))
+          corrupted(path, 1,
+                    std::string("header option \"") + key + "\" must be a finite number > " +
+                        (above == 0.0 ? "0" : "1") + ", got " + v.dump());
+      };
+      positive("mu", 1.0);
+      for (const char* key : {"handle_radius_m", "roi_radius_m", "distance_m", "scale", "length_m"})
+        positive(key, 0.0);
       for (const char* key : {"up", "front"}) {
         const bool ok = options->contains(key) && (*options)[key].is_array() && (*options)[key].size() == 3 &&
                         (*options)[key][0].is_number() && (*options)[key][1].is_number() &&
@@ -133,7 +151,18 @@ SessionRecording read_session_recording(const std::string& path) {
         legacy_colour = parse_colour(colour->get<std::string>()).value_or(legacy_colour);
     } else if (j.contains("t")) {
       if (const std::string problem = input_line_problem(j); !problem.empty()) corrupted(path, number, problem);
-      r.last_input_time = std::max(r.last_input_time, j["t"].get<double>());
+      // Input lines come in time order (one frame's after another's): a time before the previous line's,
+      // or past the session's end, is damage (a replay would step its clock towards it without end).
+      const double t = j["t"].get<double>();
+      if (!(t >= 0.0)) corrupted(path, number, "\"t\" is negative");
+      if (t < r.last_input_time) {
+        std::ostringstream problem;
+        problem << "\"t\" " << t << " s is earlier than line " << last_input_line << "'s "
+                << r.last_input_time << " s (input lines are in time order: one of the two is damaged)";
+        corrupted(path, number, problem.str());
+      }
+      r.last_input_time = t;
+      last_input_line = number;
       if (legacy_desktop && j.value("path", "") == "/user/hand/left/input/menu/click") {
         if (j.contains("value") && j["value"].is_number() && j["value"].get<double>() > 0.5) {
           legacy_colour = next_colour(legacy_colour);
@@ -191,14 +220,24 @@ SessionRecording read_session_recording(const std::string& path) {
         if (!finite("time") || !finite("x") || !finite("z") || !finite("yaw"))
           corrupted(path, number, "an anchor record needs finite \"time\", \"x\", \"z\" and \"yaw\"");
         if (r.anchor) corrupted(path, number, "a second anchor record (a review anchors the model once)");
+        if (j.contains("floor_y") && !finite("floor_y"))
+          corrupted(path, number, "an anchor record's \"floor_y\" must be a finite number");
         r.anchor = HeadAnchor{j["time"].get<double>(), j["x"].get<double>(), j["z"].get<double>(),
-                              j["yaw"].get<double>()};
+                              j["yaw"].get<double>(), j.value("floor_y", 0.0)};
       } else if (kind == "clock") {
         r.rate_hz = j.value("rate_hz", 0.0);
       } else if (kind == "profile" && r.profile.empty()) {
         r.profile = j.value("profile", "");
       } else if (kind == "end") {
         ended = true;
+        // The last frame's input is at the end's time (one frame of slack for rounding).
+        if (j.contains("time") && j["time"].is_number() &&
+            r.last_input_time > j["time"].get<double>() + 1.0) {
+          std::ostringstream problem;
+          problem << "\"t\" " << r.last_input_time << " s is after the session's end ("
+                  << j["time"].get<double>() << " s, line " << number << ")";
+          corrupted(path, last_input_line, problem.str());
+        }
       }
       j["line"] = number;
       r.records.push_back(j);

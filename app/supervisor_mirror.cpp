@@ -29,7 +29,9 @@ std::optional<renderer::RenderPass> SupervisorMirror::pass(
   last_pass_ = now;
   target_.reset();
   if (!last_eyes) return std::nullopt;
-  target_ = window_.acquire();
+  // Inside the headset's frame: a window image that is not free now skips this mirror frame (a blocking
+  // acquire would order the runtime's work on the queue behind the window and cost headset frames).
+  target_ = window_.acquire(/*timeout_ns=*/0);
   if (!target_) return std::nullopt;
   const VkExtent2D e = target_->targets.extent;
   camera_ = view_.update(*last_eyes, dt, float(e.width) / float(e.height));

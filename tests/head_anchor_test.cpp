@@ -57,6 +57,22 @@ TEST(HeadAnchor, AHeadLookingStraightDownOrNotFiniteKeepsItsHeading) {
   EXPECT_EQ(bad.yaw, 0.0);
 }
 
+// A stage space at the tracking origin (the head at its height, not 1.6 m above it): the model's floor is
+// taken 1.6 m below the head; heads of a kneeling or standing reviewer keep the stage's floor.
+TEST(HeadAnchor, AStageNotAtFloorLevelPutsTheFloorBelowTheHead) {
+  const auto placement = box_placement();
+  const HeadAnchor at_origin = anchor_at_head(0.0, {0.0, 0.02, 0.0}, {0.0, -0.3, -1.0});
+  EXPECT_NEAR(at_origin.floor_y, 0.02 - 1.6, 1e-12);
+  EXPECT_EQ(at_origin.x, 0.0);
+  const auto moved = anchored(placement, at_origin);
+  const Eigen::Vector3d corner(1, 0, 0.5);
+  EXPECT_NEAR(moved.to_stage_point(corner).y(), placement.to_stage_point(corner).y() + 0.02 - 1.6, 1e-12);
+  EXPECT_NEAR(anchor_at_head(0.0, {0.5, 3.1, 0.0}, {0.0, 0.0, -1.0}).floor_y, 1.5, 1e-12);
+  for (const double y : {0.3, 0.5, 1.2, 1.7, 2.5})
+    EXPECT_EQ(anchor_at_head(0.0, {0.5, y, 0.0}, {0, 0, -1}).floor_y, 0.0);
+  EXPECT_EQ(anchor_at_head(0.0, {0.5, NAN, 0.0}, {0, 0, -1}).floor_y, 0.0);  // not finite: no anchor at all
+}
+
 TEST(AnchorSchedule, LiveAnchorsOnceAtTheFirstLocatedHead) {
   pushpull::app::AnchorSchedule live(std::nullopt);
   const Eigen::Vector3d forward(-1.0, 0.0, 0.0);

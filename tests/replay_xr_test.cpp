@@ -353,6 +353,30 @@ TEST(ReplayXr, AMalformedSolverThresholdIsRefused) {
       << r.output;
 }
 
+// A damaged header value is named as the recording's (not as an option the user never typed, nor as every
+// push/pull failing in the replay).
+TEST(ReplayXr, ADamagedHeaderValueIsNamedAsTheRecordings) {
+  const fs::path dir = test_dir();
+  const fs::path session = record_session(dir);
+  const auto recorded = text_lines(session);
+  ASSERT_FALSE(recorded.empty());
+  const std::pair<std::string, std::string> cases[] = {{"\"method\":\"asan\"", "\"method\":\"bogus\""},
+                                                       {"\"mu\":100.0", "\"mu\":0.5"}};
+  for (const auto& [from, to] : cases) {
+    auto lines = recorded;
+    ASSERT_NE(lines[0].find(from), std::string::npos) << from << " in " << lines[0];
+    for (std::size_t at = lines[0].find(from); at != std::string::npos; at = lines[0].find(from, at))
+      lines[0].replace(at, from.size(), to);
+    write_lines(session, lines);
+    const auto r = replay(session, dir / "out", "--no-pictures");
+    EXPECT_NE(r.status, 0) << r.output;
+    EXPECT_NE(r.output.find(session.string() + ":1: corrupted line: header option \"" +
+                            (from[1] == 'm' && from[2] == 'e' ? "method" : "mu") + "\""),
+              std::string::npos)
+        << r.output;
+  }
+}
+
 TEST(ReplayXr, CorruptedLineIsNamedByItsNumber) {
   const fs::path dir = test_dir();
   const fs::path session = record_session(dir);
@@ -377,6 +401,43 @@ TEST(ReplayXr, AMalformedPressHeldRecordIsNamedByItsLine) {
   EXPECT_NE(r.status, 0) << r.output;
   EXPECT_NE(r.output.find(session.string() + ":12: corrupted line: a press held record needs"), std::string::npos)
       << r.output;
+}
+
+// Input lines are in time order and end with the session: a time far past the end (one damaged number) is
+// named by its line instead of stepping the replay's clock towards it for ever; so is one that goes back.
+TEST(ReplayXr, AnInputTimeOutOfOrderOrPastTheEndIsNamedByItsLine) {
+  const fs::path dir = test_dir();
+  const fs::path session = record_session(dir);
+  const auto recorded = text_lines(session);
+  // The last input line before the end record, and one in the middle.
+  std::size_t last = 0, middle = 0;
+  for (std::size_t k = 0; k < recorded.size(); ++k)
+    if (recorded[k].rfind("{\"path\"", 0) == 0 || recorded[k].find("\"t\":") != std::string::npos) last = k;
+  ASSERT_GT(last, 20u);
+  middle = last / 2;
+  while (middle > 0 && recorded[middle].find("\"t\":") == std::string::npos) --middle;
+  ASSERT_GT(middle, 1u);
+  auto damaged = [](std::string line) {
+    const std::size_t at = line.find("\"t\":");
+    const std::size_t end = line.find_first_of(",}", at + 4);
+    return line.substr(0, at + 4) + "1e12" + line.substr(end);
+  };
+  for (const std::size_t k : {last, middle}) {
+    auto lines = recorded;
+    lines[k] = damaged(lines[k]);
+    write_lines(session, lines);
+    const auto r = replay(session, dir / "out", "--no-pictures");
+    EXPECT_NE(r.status, 0) << r.output;
+    const std::string where =
+        k == last ? std::to_string(k + 1) + ": corrupted line: \"t\" 1e+12 s is after the session's end"
+                  : std::to_string(k + 2) + ": corrupted line: \"t\" ";  // the next line goes back
+    EXPECT_NE(r.output.find(session.string() + ":" + where), std::string::npos) << r.output;
+    if (k == middle) {
+      EXPECT_NE(r.output.find("is earlier than line " + std::to_string(k + 1) + "'s 1e+12 s"),
+                std::string::npos)
+          << r.output;
+    }
+  }
 }
 
 // The anchor record (the model moved in front of the reviewer's head) must be one, with finite numbers.

@@ -418,6 +418,85 @@ TEST(ReviewXr, AHeadsetThatJoinsLateIsWaitedFor) {
   EXPECT_EQ(run.of("commit").size(), 1u) << run.result.output;
 }
 
+// A runtime that reports a pose that is not finite (here a script's 1e39, past float's range): the hand
+// counts as not located for that frame, the drag goes on, and the recording holds only numbers and replays.
+TEST(ReviewXr, APoseThatIsNotFiniteIsTakenAsNotLocated) {
+  const fs::path dir = test_dir();
+  const std::string script =
+      script_start() +
+      R"({"t":1.1,"path":"/user/hand/right/input/aim/pose","pose":{"p":[1e39,0.5,-0.6],"q":[-0.70710678,0,0,0.70710678]}}
+{"t":1.2,"path":"/user/hand/right/input/aim/pose","pose":{"p":[0.0123,0.5,-0.55],"q":[-0.70710678,0,0,0.70710678]}}
+{"t":1.4,"path":"/user/hand/right/input/trigger/value","value":0.0}
+{"t":2.0,"event":"exit"}
+)";
+  const fs::path recording = dir / "session.jsonl";
+  const ReviewRun run = run_review(dir, script, "--record " + recording.string());
+  ASSERT_EQ(run.result.status, 0) << run.result.output;
+  ASSERT_EQ(run.of("commit").size(), 1u) << run.result.output;
+  EXPECT_NEAR(double(run.of("commit")[0].at("d")[1]), -0.1, 1e-6);  // the hand's last located pose
+  std::ifstream in(recording);
+  int poses = 0;
+  for (std::string line; std::getline(in, line);) {
+    if (line.find("\"pose\"") == std::string::npos) continue;
+    ++poses;
+    EXPECT_EQ(line.find("null"), std::string::npos) << line;
+  }
+  EXPECT_GT(poses, 30);
+  expect_replays_with_commits(recording);
+}
+
+// --headset-wait gives a slower headset longer (WiVRn, ALVR: often more than the default 3 s).
+TEST(ReviewXr, HeadsetWaitGivesALateHeadsetLonger) {
+  const fs::path dir = test_dir();
+  const ReviewRun run = run_review(dir, pull_released_then_exit(2.0), "--headset-wait 8",
+                                   "PUSHPULL_XR_SIM_HEADSET_AFTER_MS=3500");
+  ASSERT_EQ(run.result.status, 0) << run.result.output;
+  EXPECT_NE(run.result.output.find("has no headset yet; waiting up to 8 s"), std::string::npos)
+      << run.result.output;
+  EXPECT_EQ(run.result.output.find("desktop window"), std::string::npos) << run.result.output;
+  EXPECT_EQ(run.of("commit").size(), 1u) << run.result.output;
+}
+
+// A runtime whose STAGE space is its tracking origin, not the floor (Monado on drivers without one): the
+// head at 1.6 m appears at the origin's height, and the model still stands on the real floor, 1.6 m below
+// the head: the left eye shows what a calibrated stage shows. The anchor carries the floor's height into the
+// recording, and the replay reproduces the commit.
+TEST(ReviewXr, AStageSpaceNotAtFloorLevelStillPutsTheModelOnTheFloor) {
+  const fs::path dir = test_dir();
+  std::string script = script_start();
+  const std::string head = "[0,1.0,0]";
+  ASSERT_NE(script.find(head), std::string::npos);
+  script.replace(script.find(head), head.size(), "[0,1.6,0]");
+  auto left_eye = [&](const std::string& env, const std::string& name) {
+    fs::remove_all(dir / "capture");
+    fs::create_directories(dir / "capture");
+    const ReviewRun run = run_review(dir, script + R"({"t":0.3,"event":"capture"}
+{"t":1.2,"path":"/user/hand/right/input/trigger/value","value":0.0}
+{"t":1.5,"event":"exit"}
+)",
+                                     "--record " + (dir / (name + ".jsonl")).string(), env);
+    EXPECT_EQ(run.result.status, 0) << run.result.output;
+    EXPECT_EQ(run.of("commit").size(), 1u) << run.result.output;
+    return std::make_pair(pushpull::renderer::read_png(dir / "capture" / "frame_000009_left.png"),
+                          run.result.output);
+  };
+  const auto [calibrated, calibrated_output] = left_eye("", "calibrated");
+  const auto [uncalibrated, output] = left_eye("PUSHPULL_XR_SIM_STAGE_MM=1600", "uncalibrated");
+  EXPECT_EQ(calibrated_output.find("not at floor level"), std::string::npos) << calibrated_output;
+  EXPECT_NE(output.find("the runtime's stage is not at floor level; the model stands 1.6 m below the head"),
+            std::string::npos)
+      << output;
+  ASSERT_EQ(calibrated.pixels.size(), uncalibrated.pixels.size());
+  size_t differ = 0;
+  for (size_t i = 0; i < calibrated.pixels.size(); ++i)
+    if (std::abs(int(calibrated.pixels[i]) - int(uncalibrated.pixels[i])) > 24) ++differ;
+  EXPECT_LT(differ, calibrated.pixels.size() / 200) << differ << " of " << calibrated.pixels.size();
+  const auto anchors = lines_where(dir / "uncalibrated.jsonl", "record", "anchor");
+  ASSERT_EQ(anchors.size(), 1u);
+  EXPECT_NEAR(double(anchors[0].at("floor_y")), -1.6, 1e-6);
+  expect_replays_with_commits(dir / "uncalibrated.jsonl");
+}
+
 // A see-through display (the runtime offers only ADDITIVE blending): the eyes' background is black
 // (transparent there), not the studio grey that would cover the world; the model still shows.
 TEST(ReviewXr, ASeeThroughDisplayGetsABlackBackground) {
@@ -1165,15 +1244,19 @@ TEST(ReviewXrWindow, AMirrorOutlivesASessionLostInTheMiddleOfAFrame) {
   EXPECT_EQ(run.result.output.find("VUID"), std::string::npos) << run.result.output;
 }
 
-TEST(ReviewXrWindow, AMirrorOnARuntimeThatRefusesCopiesDrawsItsOwnView) {
+// The runtime refuses transfer-source eye swapchains, with the spec's error or with another one
+// (no-transfer-src-format: XR_ERROR_SWAPCHAIN_FORMAT_UNSUPPORTED).
+class ReviewXrWindowRefusedCopies : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(ReviewXrWindowRefusedCopies, AMirrorOnARuntimeThatRefusesCopiesDrawsItsOwnView) {
   if (std::getenv("DISPLAY") == nullptr) GTEST_SKIP() << "no DISPLAY (ctest runs this under xvfb-run)";
   const fs::path dir = test_dir();
   const std::string script =
       script_start() + R"({"t":1.4,"path":"/user/hand/right/input/trigger/value","value":0.0}
 {"t":2.0,"event":"exit"}
 )";
-  const ReviewRun run =
-      run_review(dir, script, "--mirror --mirror-size 320 240", "PUSHPULL_XR_SIM_QUIRKS=no-transfer-src");
+  const ReviewRun run = run_review(dir, script, "--mirror --mirror-size 320 240",
+                                   std::string("PUSHPULL_XR_SIM_QUIRKS=") + GetParam());
   ASSERT_EQ(run.result.status, 0) << run.result.output;
   const auto at = run.result.output.find("mirror window presented ");
   ASSERT_NE(at, std::string::npos) << run.result.output;
@@ -1182,6 +1265,11 @@ TEST(ReviewXrWindow, AMirrorOnARuntimeThatRefusesCopiesDrawsItsOwnView) {
       << run.result.output;
   EXPECT_EQ(run.of("commit").size(), 1u) << run.result.output;
 }
+INSTANTIATE_TEST_SUITE_P(Quirks, ReviewXrWindowRefusedCopies,
+                         ::testing::Values("no-transfer-src", "no-transfer-src-format"),
+                         [](const auto& info) {
+                           return std::string(info.index == 0 ? "Spec" : "FormatCode");
+                         });
 
 // An X window dump (xwd -root) as RGB8 rows: ZPixmap, 24 or 32 bits per pixel, true colour (Xvfb's default).
 struct ScreenShot {
@@ -1536,8 +1624,6 @@ wait $pid
   expect_replays_with_commits(recording, 2, " --model " + bonnet.string());
 }
 
-// A runtime with only the first Vulkan binding (no XR_KHR_vulkan_enable2): the message names the extension
-// it lacks, the runtime it looked for and how to point at another.
 // A runtime with only the first Vulkan binding (XR_KHR_vulkan_enable; xr/sim's vulkan1-only, which names
 // instance and device extensions to enable): pushpull creates the Vulkan instance and device itself, says so,
 // and the review runs through a lost session and its new one (requirements asked again) to a commit, with

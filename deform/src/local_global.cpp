@@ -259,6 +259,11 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
   constexpr double kFixedPointMove = 1e-14;  // a plain step's move / reference that counts as none
   const double probe_max_rate = options.method == Method::SrArap || triangle_rotations ? 0.999 : 0.9999;
   bool probe_pending = !hinted;
+  // The local-global map is the gradient map of the energy minimised over the rotations where the local
+  // step fits them exactly (per-vertex rotations, no smoothing, no curvature term): its Jacobian is
+  // self-adjoint in Q_ff and the probe takes the Lanczos recurrence (rate_probe.hpp).
+  const bool self_adjoint_map =
+      !triangle_rotations && options.method != Method::SrArap && options.method != Method::ArapSrH;
   // DeformResult::rate_settled: a warm start with a settled hint rests on it from the start; other solves
   // once probed or past the probe window. A warm start reads its last 10 Ritz values above a settled hint
   // (Policy::Warm), so a hint from a cold solve's first iterations (a drag's request superseded before its
@@ -308,7 +313,9 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
       Eigen::Map<Eigen::Matrix3Xd>(out.data(), 3, n_free).noalias() =
           Eigen::Map<const Eigen::Matrix3Xd>(v.data(), 3, n_free) * model.Q.topLeftCorner(n_free, n_free);
     };
-    const detail::RateProbe found = detail::probe_rate(N, kProbeSteps, jacobian, metric, threads);
+    const detail::RateProbe found = self_adjoint_map
+                                        ? detail::probe_rate_self_adjoint(N, kProbeSteps, jacobian, metric)
+                                        : detail::probe_rate(N, kProbeSteps, jacobian, metric, threads);
     result.probe_evaluations += found.evaluations + (found.abandoned ? 2 : 1);
     return found;
   };

@@ -79,10 +79,6 @@ void append_binary(std::string& out, T value) {
 
 }  // namespace
 
-namespace {
-std::string write_atomically(const std::filesystem::path& path, std::string_view bytes);
-}  // namespace
-
 MeshIoError::MeshIoError(std::string file, std::size_t line, const std::string& problem)
     : std::runtime_error(describe(file, line, problem)), file_(std::move(file)), line_(line) {}
 
@@ -185,59 +181,15 @@ void write_mesh(const std::filesystem::path& path, const Mesh& mesh, const MeshW
       bytes = format_ply(mesh, options.ply_encoding);
       break;
   }
-  const std::string problem = write_atomically(path, bytes);
-  if (!problem.empty()) throw MeshIoError(path.string(), 0, problem);
-}
-
-namespace {
-
-// Writes via a temporary file and rename; returns the problem ("" on success). Never leaves the temporary.
-std::string write_atomically(const std::filesystem::path& path, std::string_view bytes) {
-  const std::filesystem::path folder =
-      path.parent_path().empty() ? std::filesystem::path(".") : path.parent_path();
-  std::string temp_leaf = ".";
-  temp_leaf += path.filename().string();
-  temp_leaf += ".tmp-XXXXXX";
-  std::string temp_name = (folder / temp_leaf).string();
-  const int fd = ::mkstemp(temp_name.data());
-  if (fd < 0) return "cannot create a temporary file in " + folder.string() + ": " + std::strerror(errno);
-  auto give_up = [&](const char* what) {
-    const int saved = errno;
-    ::close(fd);
-    ::unlink(temp_name.c_str());
-    return std::string(what) + ": " + std::strerror(saved);
-  };
-  std::size_t written = 0;
-  while (written < bytes.size()) {
-    const ssize_t n = ::write(fd, bytes.data() + written, bytes.size() - written);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      return give_up("write failed");
-    }
-    written += static_cast<std::size_t>(n);
+  try {
+    write_file_atomically(path, bytes);
+  } catch (const std::runtime_error& e) {
+    // write_file_atomically's message starts with the path; MeshIoError adds it again.
+    std::string problem = e.what();
+    const std::string prefix = path.string() + ": ";
+    if (problem.rfind(prefix, 0) == 0) problem.erase(0, prefix.size());
+    throw MeshIoError(path.string(), 0, problem);
   }
-  // mkstemp creates the file 0600; results are ordinary files others may read. (umask is not consulted:
-  // reading it means changing it, which races with other threads.)
-  if (::fchmod(fd, 0644) != 0) return give_up("chmod failed");
-  if (::fsync(fd) != 0) return give_up("fsync failed");
-  if (::close(fd) != 0) {
-    const int saved = errno;
-    ::unlink(temp_name.c_str());
-    return std::string("close failed: ") + std::strerror(saved);
-  }
-  if (::rename(temp_name.c_str(), path.c_str()) != 0) {
-    const int saved = errno;
-    ::unlink(temp_name.c_str());
-    return std::string("cannot rename the temporary file into place: ") + std::strerror(saved);
-  }
-  return {};
-}
-
-}  // namespace
-
-void write_file_atomically(const std::filesystem::path& path, std::string_view bytes) {
-  const std::string problem = write_atomically(path, bytes);
-  if (!problem.empty()) throw std::runtime_error(path.string() + ": " + problem);
 }
 
 }  // namespace pushpull::deform

@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <vector>
 
 namespace pushpull::deform::detail {
 
@@ -98,6 +99,62 @@ RateProbe probe_rate(Eigen::Index dimension, int steps,
     const double magnitude = std::abs(eigen.eigenvalues()(k));
     if (std::isfinite(magnitude)) probe.rate = std::max(probe.rate, magnitude);
   }
+  return probe;
+}
+
+RateProbe probe_rate_self_adjoint(
+    Eigen::Index dimension, int steps,
+    const std::function<bool(const Eigen::VectorXd&, Eigen::VectorXd&)>& jacobian,
+    const std::function<void(const Eigen::VectorXd&, Eigen::VectorXd&)>& metric) {
+  RateProbe probe;
+  if (dimension <= 0 || steps <= 0) return probe;
+  steps = static_cast<int>(std::min<Eigen::Index>(steps, dimension));
+  // v, mv: the current basis vector and M v; previous, m_previous: the one before (zero at the start).
+  Eigen::VectorXd v = probe_start(dimension), mv(dimension), w(dimension), mw(dimension);
+  Eigen::VectorXd previous = Eigen::VectorXd::Zero(dimension), m_previous = Eigen::VectorXd::Zero(dimension);
+  metric(v, mv);
+  const double start_norm = std::sqrt(std::max(0.0, v.dot(mv)));
+  if (!(start_norm > 0.0) || !std::isfinite(start_norm)) return probe;
+  v /= start_norm;
+  mv /= start_norm;
+  std::vector<double> diagonal, off_diagonal;  // the tridiagonal projection of J
+  for (int j = 0; j < steps; ++j) {
+    if (!jacobian(v, w)) {
+      probe.abandoned = true;
+      return probe;
+    }
+    ++probe.evaluations;
+    if (!w.allFinite()) break;
+    // Against v and the previous vector, twice (the second pass mends the first's cancellation, as
+    // probe_rate's second Gram-Schmidt pass does).
+    double alpha = 0.0;
+    for (int pass = 0; pass < 2; ++pass) {
+      const double along = w.dot(mv);
+      w -= along * v;
+      alpha += along;
+      if (j > 0) w -= w.dot(m_previous) * previous;
+    }
+    diagonal.push_back(alpha);
+    if (j + 1 == steps) break;
+    metric(w, mw);
+    const double next = std::sqrt(std::max(0.0, w.dot(mw)));
+    if (!std::isfinite(next) || !(next > 1e-12 * std::max(1.0, std::abs(alpha)))) break;
+    off_diagonal.push_back(next);
+    previous.swap(v);
+    m_previous.swap(mv);
+    v = w / next;
+    mv = mw / next;
+  }
+  const auto built = static_cast<Eigen::Index>(diagonal.size());
+  if (built == 0) return probe;
+  Eigen::MatrixXd T = Eigen::MatrixXd::Zero(built, built);
+  for (Eigen::Index k = 0; k < built; ++k) {
+    T(k, k) = diagonal[static_cast<std::size_t>(k)];
+    if (k + 1 < built) T(k + 1, k) = T(k, k + 1) = off_diagonal[static_cast<std::size_t>(k)];
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(T, Eigen::EigenvaluesOnly);
+  if (eigen.info() != Eigen::Success || !eigen.eigenvalues().allFinite()) return probe;
+  probe.rate = eigen.eigenvalues().cwiseAbs().maxCoeff();
   return probe;
 }
 

@@ -60,6 +60,65 @@ TEST(RateProbe, FindsTheSlowModeFromInsideTheSpectrum) {
   EXPECT_LE(probe.rate, 0.999 + 1e-9);  // a Ritz value of a self-adjoint map: never above its largest
 }
 
+// The Lanczos recurrence on the same self-adjoint map: Arnoldi's rate (the same Krylov space, the same
+// projection in exact arithmetic), one metric product per step.
+TEST(RateProbe, LanczosReadsArnoldisRateOnASelfAdjointMap) {
+  const LinearMap map(400, 1e-3);
+  auto jacobian = [&](const Eigen::VectorXd& v, Eigen::VectorXd& out) {
+    out = map.J * v;
+    return true;
+  };
+  int metric_calls = 0;
+  auto metric = [&](const Eigen::VectorXd& v, Eigen::VectorXd& out) {
+    ++metric_calls;
+    out = map.m.cwiseProduct(v);
+  };
+  for (const int steps : {10, 20, 40}) {
+    const detail::RateProbe arnoldi = detail::probe_rate(400, steps, jacobian, metric);
+    metric_calls = 0;
+    const detail::RateProbe lanczos = detail::probe_rate_self_adjoint(400, steps, jacobian, metric);
+    EXPECT_EQ(lanczos.evaluations, steps);
+    EXPECT_EQ(metric_calls, steps);  // the start's, then one per step but the last
+    EXPECT_NEAR(lanczos.rate, arnoldi.rate, 1e-9) << steps << " steps";
+    EXPECT_LE(lanczos.rate, 0.999 + 1e-9);
+  }
+  EXPECT_GT(detail::probe_rate_self_adjoint(400, 20, jacobian, metric).rate, 0.998);
+}
+
+// The same stops as Arnoldi: an exhausted Krylov space, a non-finite product, a Jacobian that says stop.
+TEST(RateProbe, LanczosStopsAsArnoldiDoes) {
+  auto identity = [](const Eigen::VectorXd& v, Eigen::VectorXd& out) { out = v; };
+  const detail::RateProbe exhausted = detail::probe_rate_self_adjoint(
+      50, 20,
+      [](const Eigen::VectorXd& v, Eigen::VectorXd& out) {
+        out = 0.5 * v;
+        return true;
+      },
+      identity);
+  EXPECT_EQ(exhausted.evaluations, 1);
+  EXPECT_NEAR(exhausted.rate, 0.5, 1e-12);
+  const detail::RateProbe not_finite = detail::probe_rate_self_adjoint(
+      50, 20,
+      [](const Eigen::VectorXd& v, Eigen::VectorXd& out) {
+        out = v * NAN;
+        return true;
+      },
+      identity);
+  EXPECT_EQ(not_finite.evaluations, 1);
+  EXPECT_EQ(not_finite.rate, 0.0);
+  int calls = 0;
+  const detail::RateProbe abandoned = detail::probe_rate_self_adjoint(
+      50, 20,
+      [&](const Eigen::VectorXd& v, Eigen::VectorXd& out) {
+        out = Eigen::VectorXd::LinSpaced(v.size(), 0.1, 0.9).cwiseProduct(v);
+        return ++calls < 3;
+      },
+      identity);
+  EXPECT_TRUE(abandoned.abandoned);
+  EXPECT_EQ(abandoned.evaluations, 2);
+  EXPECT_EQ(abandoned.rate, 0.0);
+}
+
 TEST(RateProbe, StopsWhenTheKrylovSpaceIsExhausted) {
   const detail::RateProbe probe = detail::probe_rate(
       50, 20,

@@ -181,7 +181,7 @@ MirrorWindow::~MirrorWindow() {
   if (impl_->window != nullptr) glfwDestroyWindow(impl_->window);
 }
 
-std::optional<MirrorWindow::Frame> MirrorWindow::acquire() {
+std::optional<MirrorWindow::Frame> MirrorWindow::acquire(uint64_t timeout_ns) {
   Impl& w = *impl_;
   if (lost()) return std::nullopt;
   if (w.needs_recreate || w.swapchain == VK_NULL_HANDLE) {
@@ -195,11 +195,10 @@ std::optional<MirrorWindow::Frame> MirrorWindow::acquire() {
   }
   VkSemaphore acquired = w.acquired[w.next_acquire].get();
   uint32_t index = 0;
-  // At most 100 ms: a window system that stalls (or a WSI that blocks on a window destroyed from outside)
-  // costs the loop a mirror frame, never the headset's frames for good.
-  constexpr uint64_t kAcquireTimeoutNs = 100'000'000;
-  const VkResult result = vkAcquireNextImageKHR(w.context.device(), w.swapchain, kAcquireTimeoutNs, acquired,
-                                                VK_NULL_HANDLE, &index);
+  // Bounded: a window system that stalls (or a WSI that blocks on a window destroyed from outside) costs
+  // the loop a mirror frame, never its frames for good.
+  const VkResult result =
+      vkAcquireNextImageKHR(w.context.device(), w.swapchain, timeout_ns, acquired, VK_NULL_HANDLE, &index);
   if (result == VK_TIMEOUT || result == VK_NOT_READY) return std::nullopt;  // nothing acquired or signalled
   if (result == VK_ERROR_SURFACE_LOST_KHR) {  // nothing was acquired: the window is gone
     w.lost = true;

@@ -1,5 +1,7 @@
 #include "pushpull/xr/input.hpp"
 
+#include "finite_pose.hpp"
+
 #include <cstdio>
 #include <cstring>
 #include <utility>
@@ -206,6 +208,7 @@ void Input::sync(XrTime time) {
   const XrResult r = PUSHPULL_XR_CHECK(s.instance, xrSyncActions(s.session, &sync));
   for (int h = 0; h < 2; ++h) {
     HandInput& in = s.state[h];
+    const std::optional<XrPosef> last_aim = in.T_stage_aim;
     in = HandInput{};
     if (r == XR_SESSION_NOT_FOCUSED) continue;  // everything reads as released
     in.trigger = s.value(Trigger, h);
@@ -224,8 +227,15 @@ void Input::sync(XrTime time) {
     const XrSpaceLocationFlags valid =
         XR_SPACE_LOCATION_ORIENTATION_VALID_BIT | XR_SPACE_LOCATION_POSITION_VALID_BIT;
     if ((location.locationFlags & valid) == valid) {
-      in.T_stage_aim = location.pose;
-      in.aim_position_tracked = (location.locationFlags & XR_SPACE_LOCATION_POSITION_TRACKED_BIT) != 0;
+      if (detail::finite_pose(location.pose)) {
+        in.T_stage_aim = location.pose;
+        in.aim_position_tracked = (location.locationFlags & XR_SPACE_LOCATION_POSITION_TRACKED_BIT) != 0;
+      } else if (last_aim) {
+        // Valid but not finite (a runtime's overflow, a driver's glitch): the hand stays where it was last
+        // located, as a controller out of its cameras' view does, and never feeds inf or NaN further.
+        in.T_stage_aim = last_aim;
+        in.aim_position_tracked = false;
+      }
     }
   }
 }

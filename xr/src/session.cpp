@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "eye_hold.hpp"
+#include "finite_pose.hpp"
 
 namespace pushpull::xr {
 namespace {
@@ -249,13 +250,17 @@ struct Session::Impl {
   std::string runtime_name, system_name;
   SessionOptions options;  // as created (eye size): a recreated session uses them again
 
+  // The OpenXR instance goes before the Vulkan device and instance (as hello_xr does): a runtime may keep
+  // objects of its own on our device until its instance is destroyed (SteamVR's command buffers,
+  // semaphores and memory: ValveSoftware/openvr#1649, #1715), and a device destroyed under them is
+  // undefined behaviour.
   ~Impl() {
     eyes.clear();
     if (stage != XR_NULL_HANDLE) xrDestroySpace(stage);
     if (session != XR_NULL_HANDLE) xrDestroySession(session);
+    if (instance != XR_NULL_HANDLE) xrDestroyInstance(instance);
     if (vk.device != VK_NULL_HANDLE) vkDestroyDevice(vk.device, nullptr);
     if (vk.instance != VK_NULL_HANDLE) vkDestroyInstance(vk.instance, nullptr);
-    if (instance != XR_NULL_HANDLE) xrDestroyInstance(instance);
   }
 
   void create_instance(const SessionOptions& options) {
@@ -293,11 +298,17 @@ struct Session::Impl {
                    runtime_name.c_str(), options.headset_wait_s);
       r = get_hmd_system(instance, system, options.headset_wait_s);
     }
-    if (XR_FAILED(r))
+    if (XR_FAILED(r)) {
+      char waited[96] = "";
+      if (r == XR_ERROR_FORM_FACTOR_UNAVAILABLE)
+        std::snprintf(waited, sizeof waited, " after %.0f s (pushpull review --headset-wait S waits longer)",
+                      options.headset_wait_s);
       throw RuntimeUnavailable("no headset: the OpenXR runtime \"" + runtime_name + "\" (" +
-                                   runtime_looked_for() + ") has no head-mounted display (xrGetSystem: " +
-                                   result_name(instance, r) + "); connect one, or " + kPointAtRuntime,
+                                   runtime_looked_for() +
+                                   ") has no head-mounted display (xrGetSystem: " + result_name(instance, r) +
+                                   waited + "); connect one, or " + kPointAtRuntime,
                                r);
+    }
     XrSystemProperties system_properties{XR_TYPE_SYSTEM_PROPERTIES};
     CHECK(xrGetSystemProperties(instance, system, &system_properties));
     system_name = system_properties.systemName;
@@ -498,7 +509,16 @@ struct Session::Impl {
           [&] { return listed_device_extensions(vk.physical_device); }, "device extensions",
           "the runtime's GPU");
     } else {
+      // XR_KHR_vulkan_enable leaves no way for the runtime to add feature structures to the device it
+      // composites with, and its compositors wait on timeline semaphores (core since Vulkan 1.2, which
+      // this device has): enabled here. (Not on the enable2 path: runtimes add their own structure there,
+      // and two of a kind in one chain are invalid.)
+      VkPhysicalDeviceTimelineSemaphoreFeatures timeline{};
+      timeline.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_TIMELINE_SEMAPHORE_FEATURES;
+      timeline.timelineSemaphore = VK_TRUE;
+      features13.pNext = &timeline;
       create_vk_device_v1(dci);
+      features13.pNext = nullptr;
     }
     vkGetDeviceQueue(vk.device, vk.queue_family_index, 0, &vk.queue);
   }
@@ -735,7 +755,16 @@ FrameViews Session::begin_frame() {
   // Orientation without position (rotation-only tracking, or positional tracking lost): the head stays where
   // it was last located (else at a standing reviewer's height) and the eyes turn about it with their live
   // orientations, rather than the view going black (eyes held in place would lose stereo as the head turns).
-  const bool position = (view_state.viewStateFlags & XR_VIEW_STATE_POSITION_VALID_BIT) != 0;
+  bool position = (view_state.viewStateFlags & XR_VIEW_STATE_POSITION_VALID_BIT) != 0;
+  // Numbers that are not finite: a view without a usable orientation or field of view is not drawn (the
+  // frame ends without layers, as without orientation); a position that is not finite counts as not valid.
+  for (XrView& view : views) {
+    if (!detail::finite_fov(view.fov)) return frame;
+    XrPosef orientation_only = view.pose;
+    orientation_only.position = {0.f, 0.f, 0.f};
+    if (!detail::finite_pose(orientation_only)) return frame;
+    if (!detail::finite_pose(view.pose)) position = false;
+  }
   std::array<XrPosef, 2> poses{views[0].pose, views[1].pose};
   s.eye_hold.apply(poses, position);
   for (size_t i = 0; i < 2; ++i) frame.eyes[i] = {poses[i], views[i].fov};

@@ -36,8 +36,11 @@ Swapchain::Swapchain(XrInstance instance, XrSession session, int64_t format, uin
   // Into a local handle: a failed call leaves its output undefined, and ~Impl destroys what it holds.
   XrSwapchain swapchain = XR_NULL_HANDLE;
   XrResult created = xrCreateSwapchain(session, &info, &swapchain);
-  // Refused usage: XR_ERROR_FEATURE_UNSUPPORTED per the spec (some runtimes say XR_ERROR_VALIDATION_FAILURE).
-  if ((created == XR_ERROR_FEATURE_UNSUPPORTED || created == XR_ERROR_VALIDATION_FAILURE) &&
+  // Refused usage: XR_ERROR_FEATURE_UNSUPPORTED per the spec, but runtimes differ
+  // (XR_ERROR_VALIDATION_FAILURE, XR_ERROR_SWAPCHAIN_FORMAT_UNSUPPORTED for the pair,
+  // XR_ERROR_RUNTIME_FAILURE): any failure with the extra usage is tried again without it, and only the plain
+  // swapchain's failure is reported.
+  if (XR_FAILED(created) && created != XR_ERROR_SESSION_LOST && created != XR_ERROR_INSTANCE_LOST &&
       transfer_source) {
     info.usageFlags = XR_SWAPCHAIN_USAGE_COLOR_ATTACHMENT_BIT;  // the mirror draws its own view instead
     transfer_source = false;

@@ -76,8 +76,11 @@ InputValue input_value(const Session& s, const std::string& component, XrTime ti
 std::optional<XrPosef> space_in_stage(const Session& s, const Space& space, XrTime time) {
   if (!space.is_action_space) {
     switch (space.reference) {
-      case XR_REFERENCE_SPACE_TYPE_STAGE:
-        return space.offset;
+      case XR_REFERENCE_SPACE_TYPE_STAGE: {
+        XrPosef origin = pose_identity();
+        origin.position.y = s.instance->config.stage_height_m;
+        return pose_mul(origin, space.offset);
+      }
       case XR_REFERENCE_SPACE_TYPE_LOCAL:
         return pose_mul(s.local_origin, space.offset);
       case XR_REFERENCE_SPACE_TYPE_VIEW:

@@ -46,6 +46,7 @@ Config Config::from_env() {
   c.pace = env_uint("PUSHPULL_XR_SIM_PACE", 0) != 0;
   c.headset_after_ms = env_uint("PUSHPULL_XR_SIM_HEADSET_AFTER_MS", 0);
   c.rotation_only = env_uint("PUSHPULL_XR_SIM_ROTATION_ONLY", 0) != 0;
+  c.stage_height_m = float(env_uint("PUSHPULL_XR_SIM_STAGE_MM", 0)) * 1e-3f;
   if (env_string("PUSHPULL_XR_SIM_BLEND") == "additive") c.blend_mode = XR_ENVIRONMENT_BLEND_MODE_ADDITIVE;
   std::set<std::string> quirks;
   {
@@ -54,6 +55,7 @@ Config Config::from_env() {
   }
   auto quirk = [&](const char* name) { return quirks.count(name) > 0; };
   c.refuse_transfer_source = quirk("no-transfer-src");
+  c.refuse_transfer_source_as_format = quirk("no-transfer-src-format");
   c.unorm_first = quirk("unorm-first");
   c.eyes_differ = quirk("eyes-differ");
   c.requirements_per_session = quirk("requirements-per-session");

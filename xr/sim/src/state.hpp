@@ -56,12 +56,16 @@ constexpr XrSystemId kSystemId = 1;
 //   PUSHPULL_XR_SIM_BLEND             additive: a see-through display (only ADDITIVE blending; default
 //                                     OPAQUE)
 //   PUSHPULL_XR_SIM_ROTATION_ONLY     1: views carry orientation, not position (a 3-DoF headset)
+//   PUSHPULL_XR_SIM_STAGE_MM          the STAGE space's origin N mm above the floor the script's poses stand
+//                                     on (a runtime whose STAGE is its tracking origin, not the floor; 0)
 //   PUSHPULL_XR_SIM_QUIRKS            comma-separated behaviours of other runtimes that the spec allows:
 //                                     no-transfer-src (xrCreateSwapchain refuses TRANSFER_SRC usage with
-//                                     XR_ERROR_FEATURE_UNSUPPORTED), unorm-first (UNORM formats listed
-//                                     before sRGB ones, B8G8R8A8 before R8G8B8A8), eyes-differ (the right
-//                                     eye's recommended size is 16 px wider and 8 px taller),
-//                                     requirements-per-session (xrCreateSession needs
+//                                     XR_ERROR_FEATURE_UNSUPPORTED), no-transfer-src-format (the same
+//                                     with XR_ERROR_SWAPCHAIN_FORMAT_UNSUPPORTED, the wrong code, as a
+//                                     runtime that checks the format and usage pair might), unorm-first
+//                                     (UNORM formats listed before sRGB ones, B8G8R8A8 before R8G8B8A8),
+//                                     eyes-differ (the right eye's recommended size is 16 px wider and 8 px
+//                                     taller), requirements-per-session (xrCreateSession needs
 //                                     xrGetVulkanGraphicsRequirements2KHR since the last session, as
 //                                     SteamVR), haptics-fail (xrApplyHapticFeedback says
 //                                     XR_ERROR_RUNTIME_FAILURE), position-late (the views' positions are
@@ -97,8 +101,10 @@ struct Config {
   // The one environment blend mode the display offers: OPAQUE (a headset), or ADDITIVE (see-through).
   XrEnvironmentBlendMode blend_mode = XR_ENVIRONMENT_BLEND_MODE_OPAQUE;
   bool rotation_only = false;  // views report orientation, not position (a 3-DoF headset)
+  float stage_height_m = 0.f;  // the STAGE origin's height above the scripts' floor
   // PUSHPULL_XR_SIM_QUIRKS (see above).
   bool refuse_transfer_source = false;
+  bool refuse_transfer_source_as_format = false;  // with XR_ERROR_SWAPCHAIN_FORMAT_UNSUPPORTED
   bool unorm_first = false;
   bool eyes_differ = false;
   bool requirements_per_session = false;

@@ -123,6 +123,9 @@ XrResult XRAPI_CALL create_swapchain(XrSession handle, const XrSwapchainCreateIn
     return XR_ERROR_FEATURE_UNSUPPORTED;
   if (s->instance->config.refuse_transfer_source && (info->usageFlags & XR_SWAPCHAIN_USAGE_TRANSFER_SRC_BIT))
     return XR_ERROR_FEATURE_UNSUPPORTED;
+  if (s->instance->config.refuse_transfer_source_as_format &&
+      (info->usageFlags & XR_SWAPCHAIN_USAGE_TRANSFER_SRC_BIT))
+    return XR_ERROR_SWAPCHAIN_FORMAT_UNSUPPORTED;
 
   if (info->faceCount == 6 && info->width != info->height) return XR_ERROR_VALIDATION_FAILURE;
   {

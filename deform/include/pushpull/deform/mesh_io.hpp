@@ -20,6 +20,7 @@
 // Thread-safety: the functions share no state; concurrent calls on different files are safe.
 #pragma once
 
+#include "pushpull/deform/file_output.hpp"  // write_file_atomically, for the callers that write other files
 #include "pushpull/deform/mesh.hpp"
 
 #include <cstddef>
@@ -71,9 +72,5 @@ void write_mesh(const std::filesystem::path& path, const Mesh& mesh, const MeshW
 [[nodiscard]] std::string format_off(const Mesh& mesh);
 [[nodiscard]] std::string format_obj(const Mesh& mesh);
 [[nodiscard]] std::string format_ply(const Mesh& mesh, PlyEncoding encoding);
-
-// Writes `bytes` to `path` atomically (temporary file in the same folder, flushed, then renamed).
-// Throws std::runtime_error naming the file and the system error on failure; the temporary is removed.
-void write_file_atomically(const std::filesystem::path& path, std::string_view bytes);
 
 }  // namespace pushpull::deform

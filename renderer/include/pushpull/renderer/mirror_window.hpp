@@ -9,7 +9,8 @@
 //   frame->sync);
 //                                         window.present(*frame); }
 // acquire() returns nullopt while the window is minimised, the swapchain was just recreated, no image came
-// within 100 ms, or the window is lost().
+// within its timeout (100 ms by default; a headset's mirror asks for 0: a window that is not ready skips
+// that mirror frame instead of holding up the headset's), or the window is lost().
 //
 // Ownership: owns the window, surface and swapchain; borrows the Context (must outlive it).
 // Thread-safety: GLFW requires the main thread; the renderer's thread rule applies too.
@@ -41,7 +42,7 @@ class MirrorWindow {
     FrameSync sync;         // wait: image acquired; signal: rendering done (present waits on it)
     uint32_t image_index = 0;
   };
-  std::optional<Frame> acquire();
+  std::optional<Frame> acquire(uint64_t timeout_ns = 100'000'000);
   void present(const Frame& frame);
   // A frame acquired and never presented (the loop's frame threw in between): its image stays acquired and
   // its semaphores may be left signalled, so the swapchain and its semaphores are made again before the next

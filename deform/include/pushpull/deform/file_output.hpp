@@ -1,0 +1,35 @@
+// Writing a result file without losing the user's data: atomically where the target is (or will be) a
+// regular file, through a symbolic link to the file it names, and straight into a stream the user named
+// (/dev/stdout, a FIFO), which cannot be replaced.
+//
+// - A regular file is written to a temporary file in its folder (".NAME.tmp-XXXXXX"), flushed and renamed
+//   over it, so a reader sees the old file or the new one, never half of one; an existing file keeps its
+//   permissions. A file without any write permission is refused, not replaced.
+// - A symbolic link is followed: the file it names is replaced the same way, the link stays.
+// - A character device, FIFO or socket is opened and written in place (no temporary).
+// - SIGINT or SIGTERM while a temporary exists removes it before the process ends (where the signal would
+//   end the process; a handler the program installed, e.g. a review's graceful Ctrl-C, is called instead).
+//
+// Thread-safety: both functions may be called from several threads at once (up to 32 writes in flight are
+// cleaned up on a signal; more still write correctly).
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+namespace pushpull::deform {
+
+// Writes `bytes` to `path` as above. Throws std::runtime_error naming the file and the problem (the system
+// error, or why it is refused); the temporary is removed.
+void write_file_atomically(const std::filesystem::path& path, std::string_view bytes);
+
+// Why `path` cannot be written as above, or "" when it can (as far as one can tell before writing): its
+// folder does not exist, it is a folder, it has no write permission. For checking every output of a
+// command before writing any of them.
+[[nodiscard]] std::string output_path_problem(const std::filesystem::path& path);
+
+// Whether two output paths name the same file (after following symbolic links; either may not exist yet).
+[[nodiscard]] bool same_output_file(const std::filesystem::path& a, const std::filesystem::path& b);
+
+}  // namespace pushpull::deform

@@ -1,0 +1,202 @@
+#include "pushpull/deform/file_output.hpp"
+
+#include <array>
+#include <atomic>
+#include <cerrno>
+#include <csignal>
+#include <cstdio>
+#include <cstring>
+#include <mutex>
+#include <stdexcept>
+#include <system_error>
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+namespace pushpull::deform {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The temporaries being written, for the signal handler: a slot is claimed (state 1), its path copied, then
+// published (state 2); the handler unlinks published slots only (unlink is async-signal-safe).
+struct TemporarySlot {
+  std::atomic<int> state{0};
+  std::array<char, 4096> path{};
+};
+std::array<TemporarySlot, 32> g_temporaries;
+struct sigaction g_previous_int {
+}, g_previous_term{};
+
+void remove_temporaries_and_end(int signal) {
+  for (TemporarySlot& slot : g_temporaries)
+    if (slot.state.load() == 2) ::unlink(slot.path.data());
+  // The signal then does what it would have done: end the process (the default action).
+  std::signal(signal, SIG_DFL);
+  std::raise(signal);
+}
+
+void on_signal(int signal) {
+  const struct sigaction& previous = signal == SIGINT ? g_previous_int : g_previous_term;
+  if (previous.sa_handler == SIG_DFL) {
+    remove_temporaries_and_end(signal);
+  } else if (previous.sa_handler != SIG_IGN) {
+    // The program's own handler (a review ends gracefully and finishes its writes): it decides.
+    if (previous.sa_flags & SA_SIGINFO)
+      previous.sa_sigaction(signal, nullptr, nullptr);
+    else
+      previous.sa_handler(signal);
+  }
+}
+
+// Makes on_signal the handler of `signal` unless it is already, remembering the one it replaces.
+void ensure_handler(int signal, struct sigaction& previous) {
+  struct sigaction current {};
+  if (::sigaction(signal, nullptr, &current) != 0) return;
+  if (current.sa_handler == &on_signal) return;
+  struct sigaction mine {};
+  mine.sa_handler = &on_signal;
+  sigemptyset(&mine.sa_mask);
+  previous = current;
+  (void)::sigaction(signal, &mine, nullptr);
+}
+
+// Registers a temporary for the signal handler for its lifetime (none when every slot is taken).
+class TemporaryGuard {
+ public:
+  explicit TemporaryGuard(const std::string& path) {
+    static std::mutex handlers;  // two first writes at once install the handlers once
+    {
+      const std::lock_guard lock(handlers);
+      ensure_handler(SIGINT, g_previous_int);
+      ensure_handler(SIGTERM, g_previous_term);
+    }
+    if (path.size() >= std::tuple_size_v<decltype(TemporarySlot::path)>) return;
+    for (TemporarySlot& s : g_temporaries) {
+      int free = 0;
+      if (s.state.compare_exchange_strong(free, 1)) {
+        std::memcpy(s.path.data(), path.c_str(), path.size() + 1);
+        s.state.store(2);
+        slot_ = &s;
+        return;
+      }
+    }
+  }
+  ~TemporaryGuard() {
+    if (slot_) slot_->state.store(0);
+  }
+  TemporaryGuard(const TemporaryGuard&) = delete;
+  TemporaryGuard& operator=(const TemporaryGuard&) = delete;
+
+ private:
+  TemporarySlot* slot_ = nullptr;
+};
+
+// The file a path names: a symbolic link's target (its chain followed, relative targets resolved), else the
+// path itself.
+fs::path followed(const fs::path& path) {
+  std::error_code error;
+  if (!fs::is_symlink(fs::symlink_status(path, error))) return path;
+  const fs::path target = fs::weakly_canonical(path, error);
+  return error ? path : target;
+}
+
+std::string mode_text(mode_t mode) {
+  char text[8];
+  std::snprintf(text, sizeof text, "%04o", unsigned(mode & 07777));
+  return text;
+}
+
+// Writes all of `bytes` to `fd`; returns errno, 0 on success.
+int write_all(int fd, std::string_view bytes) {
+  std::size_t written = 0;
+  while (written < bytes.size()) {
+    const ssize_t n = ::write(fd, bytes.data() + written, bytes.size() - written);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      return errno;
+    }
+    written += static_cast<std::size_t>(n);
+  }
+  return 0;
+}
+
+// Returns the problem ("" on success).
+std::string write_to(const fs::path& requested, std::string_view bytes) {
+  const fs::path path = followed(requested);
+  struct stat existing {};
+  const bool exists = ::stat(path.c_str(), &existing) == 0;
+  if (exists && S_ISDIR(existing.st_mode)) return "is a folder, not a file";
+  if (exists && !S_ISREG(existing.st_mode)) {  // a device, FIFO or socket: written in place
+    const int fd = ::open(path.c_str(), O_WRONLY | O_CLOEXEC);
+    if (fd < 0) return std::string("cannot open it for writing: ") + std::strerror(errno);
+    const int failed = write_all(fd, bytes);
+    ::close(fd);
+    return failed ? std::string("write failed: ") + std::strerror(failed) : std::string();
+  }
+  if (exists && (existing.st_mode & 0222) == 0)
+    return "is read-only (mode " + mode_text(existing.st_mode) + "); not overwritten";
+  const fs::path folder = path.parent_path().empty() ? fs::path(".") : path.parent_path();
+  std::string temp_leaf = ".";  // (built in steps: GCC 12 warns falsely on a + b + c here)
+  temp_leaf += path.filename().string();
+  temp_leaf += ".tmp-XXXXXX";
+  std::string temp_name = (folder / temp_leaf).string();
+  const int fd = ::mkstemp(temp_name.data());
+  if (fd < 0) return "cannot create a temporary file in " + folder.string() + ": " + std::strerror(errno);
+  const TemporaryGuard guard(temp_name);
+  auto give_up = [&](const char* what, int error) {
+    ::close(fd);
+    ::unlink(temp_name.c_str());
+    return std::string(what) + ": " + std::strerror(error);
+  };
+  if (const int failed = write_all(fd, bytes)) return give_up("write failed", failed);
+  // mkstemp creates the file 0600: a new result is an ordinary file others may read (umask is not
+  // consulted: reading it means changing it, which races with other threads); a replaced one keeps its mode.
+  if (::fchmod(fd, exists ? (existing.st_mode & 07777) : 0644) != 0) return give_up("chmod failed", errno);
+  if (::fsync(fd) != 0) return give_up("fsync failed", errno);
+  if (::close(fd) != 0) {
+    const int saved = errno;
+    ::unlink(temp_name.c_str());
+    return std::string("close failed: ") + std::strerror(saved);
+  }
+  if (::rename(temp_name.c_str(), path.c_str()) != 0) {
+    const int saved = errno;
+    ::unlink(temp_name.c_str());
+    return std::string("cannot rename the temporary file into place: ") + std::strerror(saved);
+  }
+  return {};
+}
+
+}  // namespace
+
+void write_file_atomically(const fs::path& path, std::string_view bytes) {
+  const std::string problem = write_to(path, bytes);
+  if (!problem.empty()) throw std::runtime_error(path.string() + ": " + problem);
+}
+
+std::string output_path_problem(const fs::path& requested) {
+  const fs::path path = followed(requested);
+  struct stat existing {};
+  if (::stat(path.c_str(), &existing) == 0) {
+    if (S_ISDIR(existing.st_mode)) return "is a folder, not a file";
+    if (S_ISREG(existing.st_mode) && (existing.st_mode & 0222) == 0)
+      return "is read-only (mode " + mode_text(existing.st_mode) + "); not overwritten";
+    return {};
+  }
+  const fs::path folder = path.parent_path();
+  std::error_code error;
+  if (!folder.empty() && !fs::is_directory(folder, error))
+    return "the folder " + folder.string() + " does not exist";
+  return {};
+}
+
+bool same_output_file(const fs::path& a, const fs::path& b) {
+  std::error_code error_a, error_b;
+  const fs::path ca = fs::weakly_canonical(fs::absolute(a, error_a), error_a);
+  const fs::path cb = fs::weakly_canonical(fs::absolute(b, error_b), error_b);
+  if (error_a || error_b) return a.lexically_normal() == b.lexically_normal();
+  return ca == cb;
+}
+
+}  // namespace pushpull::deform
