@@ -1,8 +1,11 @@
 // `pushpull deform`: one push/pull on a model in batch, writing the deformed model and METRICS.json.
 #include "band_reversals_text.hpp"
 #include "commands.hpp"
+#include "drag_notes.hpp"
 #include "life_size.hpp"
 #include "metrics_json.hpp"
+#include "number_checks.hpp"
+#include "region_notes.hpp"
 #include "vertex_selection.hpp"
 
 #include "pushpull/assets/model.hpp"
@@ -160,7 +163,9 @@ deform::Method parse_method_or_throw(const std::string& name, const char* option
 // the surface (on that point's component only), the rule the headset uses for a ray hit.
 // o is in file units (convert_to_file_units); `scale` (metres per file unit) puts the message back in the
 // life-size metres the user typed.
-std::vector<int> pick_handle(const DeformCommandOptions& o, const deform::Mesh& mesh, double scale) {
+// `notes`, when given, receives warnings about the handle (a handle far from the point asked for).
+std::vector<int> pick_handle(const DeformCommandOptions& o, const deform::Mesh& mesh, double scale,
+                             std::vector<std::string>* notes = nullptr) {
   if (!o.handle_file.empty()) return read_index_file(o.handle_file, mesh.vertex_count());
   const Eigen::Vector3d point = vector3(o.handle_at, "--handle-at");
   deform::SurfacePoint hit;
@@ -185,7 +190,22 @@ std::vector<int> pick_handle(const DeformCommandOptions& o, const deform::Mesh& 
                        "; the nearest surface point is --handle-at " + metres(hit.point) +
                        (scale != 1.0 ? " (life-size metres)" : ""));
   }
-  return deform::surface_handle(mesh, hit, o.handle_radius);
+  std::vector<int> handle = deform::surface_handle(mesh, hit, o.handle_radius);
+  // No vertex within the radius (large triangles): the handle is the hit triangle's nearest corner, wherever
+  // it is; said, with how far, since a push/pull there is a spike at that corner.
+  if (handle.size() == 1 && notes != nullptr) {
+    const double away = (mesh.V.row(handle[0]).transpose() - hit.point).norm();
+    if (away > o.handle_radius) {
+      char text[256];
+      std::snprintf(text, sizeof text,
+                    "no vertex lies within --handle-radius %.6g m of the surface point: the handle is the "
+                    "nearest corner of its triangle, vertex %d, %.3g m away (a larger --handle-radius "
+                    "takes more of the surface)",
+                    o.handle_radius * scale, handle[0], away * scale);
+      notes->push_back(text);
+    }
+  }
+  return handle;
 }
 
 deform::DeformOptions solver_options(const DeformCommandOptions& o) {
@@ -280,7 +300,20 @@ void run_deform(DeformCommandOptions o) {
   const LifeSize life(o.life_size, bounds_of(mesh->V), o.mesh);
   convert_to_file_units(o, life);
   const Eigen::Vector3d d = vector3(o.displacement, "--displacement");
-  const std::vector<int> handle = pick_handle(o, *mesh, life.scale());
+  {
+    // A pull many times the model's size is a typing slip (units, an exponent), not a push/pull: refused
+    // before it overflows the solver's numbers.
+    const double across = (mesh->V.colwise().maxCoeff() - mesh->V.colwise().minCoeff()).norm();
+    if (across > 0.0 && !(d.norm() <= 100.0 * across)) {
+      char text[192];
+      std::snprintf(text, sizeof text,
+                    "--displacement: |d| = %.6g m is more than 100 times the model's size (%.6g m across)",
+                    d.norm() * life.scale(), across * life.scale());
+      throw CommandError(text);
+    }
+  }
+  std::vector<std::string> handle_notes;
+  const std::vector<int> handle = pick_handle(o, *mesh, life.scale(), &handle_notes);
   const std::vector<int> fixed =
       o.fixed_file.empty() ? std::vector<int>{} : read_index_file(o.fixed_file, mesh->vertex_count());
 
@@ -289,24 +322,46 @@ void run_deform(DeformCommandOptions o) {
     roi = deform::build_roi(*mesh, handle, fixed,
                             o.roi_radius.value_or(std::numeric_limits<double>::infinity()));
   } catch (const std::invalid_argument& error) {
-    throw CommandError(std::string("region of interest: ") + error.what());
+    const std::string what = error.what();  // (build_roi may name the region itself)
+    throw CommandError(what.rfind("region of interest", 0) == 0 ? what : "region of interest: " + what);
   }
   // No border holds the part (the region covers the whole connected part): it moves with the handle as a
-  // whole, as a push/pull on it does in the headset (drag_notes.cpp); said, not refused.
-  const bool whole_part = roi.fixed.empty();
+  // whole, as a push/pull on it does in the headset (drag_notes.cpp); said, not refused. No border and not a
+  // whole part: the region is the handle alone (--roi-radius 0), torn from the surface around it.
+  const std::optional<UnheldRegion> unheld = unheld_region(*mesh, roi);
 
   DeformRunRecord record;
+  if (!o.handle_at.empty()) {
+    record.handle_at = vector3(o.handle_at, "--handle-at");
+    record.handle_radius = o.handle_radius;
+  }
+  record.handle_file = o.handle_file;
+  record.fixed_file = o.fixed_file;
+  record.roi_radius = o.roi_radius;
   try {
     deform::Deformer deformer(mesh, roi, options);
     record.result = deformer.solve(d);
   } catch (const std::invalid_argument& error) {
     throw CommandError(o.mesh + ": " + error.what());
   }
-  if (whole_part) {
+  if (unheld) {
     record.result.warnings.insert(
         record.result.warnings.begin(),
-        "the whole part moves: the region covers its connected part and no border holds "
-        "it (give --fixed or a smaller --roi-radius to hold it)");
+        unheld_region_text(*unheld) + (*unheld == UnheldRegion::WholePart
+                                           ? " (give --fixed or a smaller --roi-radius to hold it)"
+                                           : " (give a --roi-radius that reaches past the handle)"));
+  }
+  for (const std::string& note : handle_notes)
+    record.result.warnings.insert(record.result.warnings.begin(), note);
+  // The review's readout says it of a pull over kSteepPull handle radii; so does deform.
+  if (!o.handle_at.empty() && d.norm() > kSteepPull * o.handle_radius) {
+    char text[160];
+    std::snprintf(
+        text, sizeof text,
+        "steep: |d| is %.0fx the handle radius, a spike rather than a bulge (a larger --handle-radius "
+        "spreads it)",
+        d.norm() / o.handle_radius);
+    record.result.warnings.insert(record.result.warnings.begin(), text);
   }
   // Parts on the solved surface (lamps, plates, trims) follow it; the metrics below stay those of the region.
   if (o.attached_parts) {
@@ -423,12 +478,14 @@ void add_deform_command(CLI::App& root) {
                   "Handle = vertices within --handle-radius, measured along the surface, of the surface point "
                   "closest to this one (model frame, metres at life size)")
       ->expected(3);
-  cmd->add_option("--handle-radius", o->handle_radius, "Radius for --handle-at (metres at life size)");
+  cmd->add_option("--handle-radius", o->handle_radius, "Radius for --handle-at (metres at life size)")
+      ->check(finite_above(0.0));
   cmd->add_option("--fixed", o->fixed_file, "File of 0-based fixed vertex indices (the region stops there)");
-  cmd->add_option(
-      "--roi-radius", o->roi_radius,
-      "Region = vertices within this geodesic (edge-path) distance of the handle (metres at life size); its "
-      "border is fixed");
+  cmd->add_option("--roi-radius", o->roi_radius,
+                  "Region = vertices within this geodesic (edge-path) distance of the handle (metres at life "
+                  "size); its "
+                  "border is fixed")
+      ->check(finite_above(0.0, false));
   cmd->add_option("--displacement", o->displacement,
                   "Push/pull displacement d of the handle (metres at life size)")
       ->expected(3)
@@ -481,7 +538,7 @@ void add_deform_command(CLI::App& root) {
       ->check(CLI::Range(-1, std::numeric_limits<int>::max()));
   cmd->add_option("--sections", o->sections, "Number of section planes (perpendicular to d) in the metrics")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(0, 1000));
   cmd->add_flag("!--no-attached-parts", o->attached_parts,
                "Leave separate parts (lamps, plates, trims) where they are instead of letting the ones near the "
                "region follow the deformed surface");

@@ -2,11 +2,13 @@
 // review colour maps (displacement magnitude, sign of Gaussian curvature) and overlays.
 #include "commands.hpp"
 #include "life_size.hpp"
+#include "number_checks.hpp"
 #include "render_inputs.hpp"
 #include "render_model.hpp"
 #include "render_session.hpp"
 
 #include "pushpull/assets/model.hpp"
+#include "pushpull/deform/file_output.hpp"
 
 #include <CLI/CLI.hpp>
 
@@ -44,6 +46,10 @@ void convert_to_file_units(RenderCommandOptions& o, const LifeSize& life) {
 }
 
 void run_render(RenderCommandOptions options) {
+  if (options.up.size() == 3 && options.up[0] == 0.0 && options.up[1] == 0.0 && options.up[2] == 0.0)
+    throw CommandError("--up: the up direction must not be zero");
+  if (const std::string problem = deform::output_path_problem(options.out); !problem.empty())
+    throw CommandError(options.out + ": " + problem);
   const assets::Model model = load(options.model, "model");
   const LifeSize life(options.life_size, model.bounds, options.model);
   convert_to_file_units(options, life);
@@ -99,16 +105,20 @@ void add_render_command(CLI::App& root) {
   cmd->add_option("--target", options->target,
                   "Point looked at X Y Z (model frame, metres at life size; default: the model's centre)")
       ->expected(3);
-  cmd->add_option("--up", options->up, "World up X Y Z (default 0 1 0, glTF)")->expected(3);
+  cmd->add_option("--up", options->up, "World up X Y Z (default 0 1 0, glTF)")
+      ->expected(3)
+      ->check(finite_number());
   cmd->add_option("--fov", options->fov_deg, "Vertical field of view, degrees")
       ->check(CLI::Range(1.0, 170.0));
   cmd->add_option(
-      "--scalar-max", options->scalar_max,
-      "Displacement shown as the top of the colour map (metres at life size; default: the largest)");
+         "--scalar-max", options->scalar_max,
+         "Displacement shown as the top of the colour map (metres at life size; default: the largest)")
+      ->check(finite_above(0.0));
   cmd->add_option("--dead-band", options->dead_band,
                   "Curvature sign: |K| L^2 <= dead-band counts as flat (grey), L = MODEL's bounding-box "
                   "diagonal (the rule of deform's metrics); faces of flat panels are drawn flat")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(finite_above(0.0, false));
   cmd->add_option("--handle", options->handle_file,
                   "Handle vertices (index file of deform vertices), drawn red");
   cmd->add_option("--fixed", options->fixed_file, "Fixed vertices (index file), drawn blue");
@@ -116,19 +126,22 @@ void add_render_command(CLI::App& root) {
   cmd->add_option("--handle-at", options->handle_at,
                   "Handle = vertices near X Y Z (model frame, metres at life size)")
       ->expected(3);
-  cmd->add_option("--handle-radius", options->handle_radius, "Radius for --handle-at (metres at life size)");
+  cmd->add_option("--handle-radius", options->handle_radius, "Radius for --handle-at (metres at life size)")
+      ->check(finite_above(0.0));
   cmd->add_option("--arrow", options->arrow,
                   "Draw the push/pull arrow p0 -> p1: X0 Y0 Z0 X1 Y1 Z1 (model frame, metres at life size)")
       ->expected(6);
   cmd->add_option(
-      "--sections", options->sections,
-      "Draw N section curves of the (deformed) surface, planes orthogonal to the --arrow direction");
+         "--sections", options->sections,
+         "Draw N section curves of the (deformed) surface, planes orthogonal to the --arrow direction")
+      ->check(CLI::Range(0, 1000));
   add_life_size_options(*cmd, options->life_size);
   cmd->add_flag("--no-legend", options->no_legend, "Leave out the colour-map legend");
   cmd->add_flag("--flat", options->flat, "Colour maps without lighting (exact colours)");
-  cmd->add_option(
-      "--stereo", options->ipd,
-      "Render two eyes IPD apart (metres at life size, e.g. 0.064) in one frame; the PNG holds left | right");
+  cmd->add_option("--stereo", options->ipd,
+                  "Render two eyes IPD apart (metres at life size, e.g. 0.064) in one frame; the PNG holds "
+                  "left | right")
+      ->check(finite_above(0.0));
   cmd->add_option("--samples", options->samples, "MSAA samples")->check(CLI::IsMember({1, 2, 4, 8}));
   cmd->add_flag("--validation", options->validation,
                 "Enable VK_LAYER_KHRONOS_validation; fail on any message");

@@ -5,6 +5,7 @@
 
 #include <cstdio>
 #include <exception>
+#include <string>
 
 int main(int argc, char** argv) {
   // Line by line also into a file or a pipe (a review's log survives a kill; its lines interleave with
@@ -24,6 +25,16 @@ int main(int argc, char** argv) {
   try {
     root.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
+    // A first word that is neither an option nor a command: say so, with the commands there are (CLI11
+    // would only say that a subcommand is required).
+    if (argc > 1 && argv[1][0] != '-' && dynamic_cast<const CLI::RequiredError*>(&e) != nullptr) {
+      std::string commands;
+      for (const CLI::App* command : root.get_subcommands({}))
+        commands += (commands.empty() ? "" : ", ") + command->get_name();
+      std::fprintf(stderr, "pushpull: error: unknown command '%s' (the commands: %s; pushpull --help)\n",
+                   argv[1], commands.c_str());
+      return 109;  // CLI11's exit code for an unknown argument
+    }
     return root.exit(e);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "pushpull: error: %s\n", e.what());

@@ -41,6 +41,18 @@ std::string metrics_json(const DeformRunRecord& record) {
   doc["asan_base"] = std::string(deform::method_name(options.asan_base));
   doc["mu"] = options.mu;
   doc["d"] = vec3(record.d);
+  {
+    json region;  // how the region was asked for (model units); null where not given
+    region["handle_at"] = record.handle_at ? vec3(*record.handle_at) : json(nullptr);
+    region["handle_radius"] = record.handle_at ? json(record.handle_radius) : json(nullptr);
+    region["handle_file"] = record.handle_file.empty() ? json(nullptr) : json(record.handle_file);
+    region["roi_radius"] = record.roi_radius ? json(*record.roi_radius) : json(nullptr);
+    region["fixed_file"] = record.fixed_file.empty() ? json(nullptr) : json(record.fixed_file);
+    doc["region"] = region;
+  }
+  doc["units"] = {{"lengths", "model units (life_size_scale metres each)"},
+                  {"error_estimate", "fraction of |d|"},
+                  {"times", "milliseconds"}};
   doc["stretch_direction"] = options.stretch_direction ? vec3(*options.stretch_direction) : json(nullptr);
   doc["sr_arap_alpha"] = options.sr_arap_alpha;
   doc["arap_h_lambda"] = options.arap_h_lambda;

@@ -56,6 +56,12 @@ struct DeformRunRecord {
   std::vector<AttachedPartRecord> attached;  // parts that follow the surface (empty when turned off)
   double attach_reach = 0.0;                 // the distance that decided which parts follow
   double life_size_scale = 1.0;  // metres per model unit (--scale / --length)
+  // How the region was asked for (deform's options; model units), so that the run can be repeated from its
+  // metrics: --handle-at and --handle-radius, or the --handle file; --roi-radius and the --fixed file.
+  std::optional<Eigen::Vector3d> handle_at;
+  double handle_radius = 0.0;
+  std::optional<double> roi_radius;
+  std::string handle_file, fixed_file;
 };
 
 // The JSON text (pretty-printed, trailing newline).

@@ -10,6 +10,7 @@
 #include "pushpull/renderer/image_io.hpp"
 #include "pushpull/renderer/offscreen_target.hpp"
 #include "pushpull/renderer/renderer.hpp"
+#include "pushpull/renderer/vk_check.hpp"
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -302,14 +303,28 @@ void PictureRenderer::benchmark(const RenderInputs& inputs, const RenderCommandO
 }
 
 void render_to_png(const RenderInputs& inputs, const RenderCommandOptions& o) {
-  PictureRenderer pictures(inputs.render, o.samples, o.validation);
-  const TextureRGBA8 image = pictures.render(inputs, o);
-  if (o.benchmark_frames > 0) pictures.benchmark(inputs, o);
-  const std::size_t validation_messages = pictures.close();
+  TextureRGBA8 image;
+  std::size_t validation_messages = 0;
+  try {
+    PictureRenderer pictures(inputs.render, o.samples, o.validation);
+    image = pictures.render(inputs, o);
+    if (o.benchmark_frames > 0) pictures.benchmark(inputs, o);
+    validation_messages = pictures.close();
+  } catch (const renderer::VulkanError& e) {
+    // Out of memory: the size asked for is the likely cause, and the user's to change.
+    if (e.result() != VK_ERROR_OUT_OF_DEVICE_MEMORY && e.result() != VK_ERROR_OUT_OF_HOST_MEMORY) throw;
+    throw CommandError("--size " + std::to_string(o.size.at(0)) + " " + std::to_string(o.size.at(1)) +
+                       (o.ipd ? " (two eyes)" : "") +
+                       (o.samples > 1 ? " with " + std::to_string(o.samples) + " samples" : "") +
+                       ": the picture does not fit in the Vulkan device's memory; a smaller --size (or "
+                       "--samples) does (" +
+                       e.what() + ")");
+  }
   if (o.validation && validation_messages > 0)
     throw CommandError("Vulkan validation reported " + std::to_string(validation_messages) +
                        " message(s) (printed above)");
   write_picture(o.out, image);
+  std::printf("pushpull render: wrote %s (%u x %u)\n", o.out.c_str(), image.width, image.height);
 }
 
 void write_picture(const std::filesystem::path& path, const TextureRGBA8& image) {

@@ -116,6 +116,8 @@ void write_replay_report(const std::string& path, const ReportSession& s, const 
     h << "<tr><th>region</th><td>" << c.region_vertices << " vertices; " << c.attached_parts
       << " separate part(s) near it bound to the surface, " << c.attached_moved
       << " of them moved with it</td></tr>\n";
+    for (const std::string& warning : c.warnings)
+      h << "<tr><th>warning</th><td class=\"bad\">" << escape(warning) << "</td></tr>\n";
     if (m.curvature_vertices == 0)  // a strip of a region: no vertex with its whole ring inside, no measure
       h << "<tr><th>Gaussian curvature sign reversals</th><td>not measured (no interior vertex in the region)"
         << "</td></tr>\n";

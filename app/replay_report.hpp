@@ -26,6 +26,7 @@ struct ReportCommit {
   std::size_t region_vertices = 0;   // the solved region (handle, free and fixed border)
   std::size_t attached_parts = 0;    // separate parts bound to the surface (lamps, glass, trims)
   std::size_t attached_moved = 0;    // those of them the commit moved
+  std::vector<std::string> warnings;   // the commit's (as in its metrics file)
   deform::DeformationMetrics metrics;  // with sections (plotted before / after)
   Eigen::Vector3d d = Eigen::Vector3d::Zero();  // model units: the sections' planes are perpendicular to it
   double scale = 1.0;  // metres per model unit (metrics lengths are model units)

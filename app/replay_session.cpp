@@ -1,4 +1,5 @@
 #include "replay_session.hpp"
+#include "region_notes.hpp"
 
 #include "commands.hpp"
 #include "commit_watch.hpp"
@@ -120,8 +121,9 @@ void run_replay(const ReplayOptions& o) {
     if (fs::exists(beside)) model_path = beside.lexically_normal().string();
   }
   if (!fs::exists(model_path))
-    throw CommandError(model_path + ": the recorded model file does not exist (recording " + o.recording +
-                       "); pass --model FILE");
+    throw CommandError(o.model.empty() ? model_path + ": the recorded model file does not exist (recording " +
+                                             o.recording + "); pass --model FILE"
+                                       : model_path + ": --model: no such file");
   if (fs::is_directory(model_path))
     throw CommandError(model_path + ": is a folder, not the recorded model file (recording " + o.recording +
                        ")");
@@ -415,6 +417,10 @@ void run_replay(const ReplayOptions& o) {
     record.total_ms = s.setup_ms + s.factorize_ms + s.solve_ms;  // the commit's solve (no file reading here)
     record.dead_band_fraction = deform::MetricsOptions{}.flat_band;  // the band the metrics below use
     record.result.warnings = s.warnings;
+    // What `pushpull deform` says of the same region (a whole part moved, a handle torn out).
+    if (s.region)
+      if (const std::optional<UnheldRegion> unheld = unheld_region(before_mesh, *s.region))
+        record.result.warnings.insert(record.result.warnings.begin(), unheld_region_text(*unheld));
     if (s.energy_trace) record.result.energy_trace = *s.energy_trace;
     record.result.initial_energy = s.initial_energy;
     // The parts bound to the surface, each with how far it moved (as `pushpull deform` reports them).
@@ -454,6 +460,7 @@ void run_replay(const ReplayOptions& o) {
     rc.converged = s.converged;
     rc.error_estimate = s.error_estimate;
     rc.region_vertices = roi.size();
+    rc.warnings = record.result.warnings;
     rc.attached_parts = s.attached_parts;
     rc.attached_moved =
         std::size_t(std::count_if(record.attached.begin(), record.attached.end(),

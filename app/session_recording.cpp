@@ -151,18 +151,21 @@ SessionRecording read_session_recording(const std::string& path) {
         legacy_colour = parse_colour(colour->get<std::string>()).value_or(legacy_colour);
     } else if (j.contains("t")) {
       if (const std::string problem = input_line_problem(j); !problem.empty()) corrupted(path, number, problem);
-      // Input lines come in time order (one frame's after another's): a time before the previous line's,
-      // or past the session's end, is damage (a replay would step its clock towards it without end).
+      // Input lines come in time order (one frame's after another's; a desktop session's within a frame's
+      // rounding): a time over a second before an earlier line's, or past the session's end, is damage (a
+      // replay would step its clock towards it without end).
       const double t = j["t"].get<double>();
       if (!(t >= 0.0)) corrupted(path, number, "\"t\" is negative");
-      if (t < r.last_input_time) {
+      if (t < r.last_input_time - 1.0) {
         std::ostringstream problem;
         problem << "\"t\" " << t << " s is earlier than line " << last_input_line << "'s "
                 << r.last_input_time << " s (input lines are in time order: one of the two is damaged)";
         corrupted(path, number, problem.str());
       }
-      r.last_input_time = t;
-      last_input_line = number;
+      if (t >= r.last_input_time) {
+        r.last_input_time = t;
+        last_input_line = number;
+      }
       if (legacy_desktop && j.value("path", "") == "/user/hand/left/input/menu/click") {
         if (j.contains("value") && j["value"].is_number() && j["value"].get<double>() > 0.5) {
           legacy_colour = next_colour(legacy_colour);

@@ -55,7 +55,10 @@ bool allowed(FsContext& context, const std::string& path) {
 bool fs_file_exists(const std::string& path, void* user) {
   auto& context = *static_cast<FsContext*>(user);
   std::error_code ec;
-  return allowed(context, path) && fs::is_regular_file(path, ec);
+  // A file that is not there is not refused (tinygltf tries several places and then names the file it did
+  // not find); one that is there must be inside the model's folder.
+  if (!fs::is_regular_file(path, ec)) return false;
+  return allowed(context, path);
 }
 
 std::string fs_expand_path(const std::string& path, void*) {

@@ -123,7 +123,13 @@ Model load_model_from_memory(const std::vector<std::uint8_t>& bytes, const std::
         set[static_cast<std::size_t>(map[v])] = true;
       }
   }
-  if (model.deform_mesh.F.rows() == 0) throw AssetError(name + ": the model has no triangles");
+  if (model.deform_mesh.F.rows() == 0) {
+    if (model.report.weld.collapsed_triangles > 0)  // there were some: the weld's tolerance took them all
+      throw AssetError(name + ": welding collapsed every triangle (" +
+                       std::to_string(model.report.weld.collapsed_triangles) +
+                       "): the weld tolerance is too large for this model");
+    throw AssetError(name + ": the model has no triangles");
+  }
   for (Eigen::Index v = 0; v < model.deform_mesh.V.rows(); ++v)
     model.bounds.extend(model.deform_mesh.V.row(v).transpose());
 

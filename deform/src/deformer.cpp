@@ -375,7 +375,7 @@ double Deformer::Impl::prepare_weights(const Eigen::Vector3d& push_direction,
       system.factorize(model.Q);
     } catch (const detail::FactorizationError& e) {
       throw std::runtime_error(detail::factorization_failure_message(
-          options.method, {static_cast<int>(P.cols()), n_free, n_handle, n_fixed}, e.what()));
+          options.method, {static_cast<int>(P.cols()), n_free, n_handle, n_fixed}, e.what(), options.mu));
     }
     factored = true;
     ++factorizations;

@@ -433,8 +433,11 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
     result.stop_reason = StopReason::ErrorTolerance;
     result.error_estimate = n_free == 0 ? 0.0 : *start_gap / reference;
   }
-  result.converged =
-      result.stop_reason == StopReason::ErrorTolerance || result.stop_reason == StopReason::EnergyTolerance;
+  // Converged means close to the minimiser: a stop on the energy's change (an explicit energy_tolerance)
+  // counts only where the distance estimate is within the tolerance too.
+  result.converged = result.stop_reason == StopReason::ErrorTolerance ||
+                     (result.stop_reason == StopReason::EnergyTolerance && result.error_estimate &&
+                      *result.error_estimate <= options.tolerance);
   result.V = to_full(X);
   result.timing.solve = ms_since(solve_start) - start_factorize_ms;
   const int evaluations = result.iterations + result.probe_evaluations;

@@ -204,4 +204,13 @@ RegionOfInterest roi_from_selection(const Mesh& mesh, std::span<const int> selec
   return finish(graph, in_omega, handle, fixed, options, std::move(warnings));
 }
 
+bool covers_whole_parts(const Mesh& mesh, const RegionOfInterest& roi) {
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
+    int inside = 0;
+    for (int k = 0; k < 3; ++k) inside += roi.contains(mesh.F(f, k)) ? 1 : 0;
+    if (inside != 0 && inside != 3) return false;
+  }
+  return true;
+}
+
 }  // namespace pushpull::deform

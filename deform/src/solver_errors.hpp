@@ -19,7 +19,7 @@ struct RegionSize {
 // "deformer: <method>: <reason> for a region of <n> vertices (...): <what to try>".
 // `reason` is FactorizationError::what(). Thread-safety: pure function.
 [[nodiscard]] std::string factorization_failure_message(Method method, const RegionSize& region,
-                                                        std::string_view reason);
+                                                        std::string_view reason, double mu = 100.0);
 
 // The message of the std::runtime_error the Deformer throws when arap-s ends with a negative energy: its
 // spokes carry negative weights (cot a + cot b < 0) strong enough that the energy is not bounded below by 0

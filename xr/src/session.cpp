@@ -283,8 +283,12 @@ struct Session::Impl {
       const std::string why = r == XR_ERROR_EXTENSION_NOT_PRESENT
                                   ? "it does not offer " + missing
                                   : "xrCreateInstance failed with " + result_name(XR_NULL_HANDLE, r);
+      // A runtime that was found but would not start (its own messages above say why, e.g. xr/sim's about
+      // its input script) needs fixing, not finding.
+      const bool found = r != XR_ERROR_RUNTIME_UNAVAILABLE && std::getenv("XR_RUNTIME_JSON") != nullptr;
       throw RuntimeUnavailable("no usable OpenXR runtime: looked for " + runtime_looked_for() + ", " + why +
                                    " (the loader's and runtime's messages above say more); " +
+                                   (found ? std::string("fix what they name, or ") : std::string()) +
                                    kPointAtRuntime,
                                r);
     }

@@ -213,7 +213,8 @@ struct TimingMs {
 struct DeformResult {
   Eigen::MatrixXd V;  // #V by 3 deformed positions of the full mesh (Outside vertices unchanged)
   int iterations = 0;
-  bool converged = false;  // stop_reason is ErrorTolerance or EnergyTolerance
+  // stop_reason is ErrorTolerance, or EnergyTolerance with error_estimate <= DeformOptions::tolerance
+  bool converged = false;
   // Estimated largest vertex distance to the exact minimiser / reference length, at the last iteration.
   std::optional<double> error_estimate;
   // The contraction rate of the plain local-global step over the last iterations (in [0, 1); empty until

@@ -69,4 +69,10 @@ struct RoiOptions {
 [[nodiscard]] RegionOfInterest roi_from_selection(const Mesh& mesh, std::span<const int> selection,
                                                   const RoiOptions& options = {});
 
+// Whether the region is made of whole connected parts: no vertex of Omega shares an edge with an Outside
+// vertex. With no Fixed vertex, such a region moves with its handle as one piece; a region with no Fixed
+// vertex that is not whole (Omega is the handle alone, e.g. build_roi with max_distance 0) leaves its
+// handle torn from the surface around it. O(#F).
+[[nodiscard]] bool covers_whole_parts(const Mesh& mesh, const RegionOfInterest& roi);
+
 }  // namespace pushpull::deform
