@@ -17,7 +17,7 @@ void finish_review(std::optional<std::string>& failure, SessionRecorder& recorde
     recorder.write_record("end", t, end_fields);
     log.write({{"event", "end"},
                {"revision", service.revision()},
-               {"hash", current.hash},
+               {"hash", hash_text(current.hash)},  // a string: 64 bits lose digits in a JSON double
                {"commits", service.history_position()}});
   });
   if (!out.empty()) {

@@ -1,7 +1,9 @@
 #include "vulkan_validation.hpp"
 
 #include <cstdio>
+
 #include <stdexcept>
+#include "pushpull/xr/runtime_calls.hpp"
 
 namespace pushpull::app {
 
@@ -36,9 +38,11 @@ VKAPI_ATTR VkBool32 VKAPI_CALL VulkanValidation::callback(VkDebugUtilsMessageSev
                                                           const VkDebugUtilsMessengerCallbackDataEXT* data,
                                                           void* user) {
   auto* self = static_cast<VulkanValidation*>(user);
-  self->count_.fetch_add(1);
-  std::fprintf(stderr, "vulkan validation %s: %s\n",
+  const bool runtime = xr::inside_runtime_call() || std::this_thread::get_id() != self->owner_;
+  (runtime ? self->runtime_count_ : self->count_).fetch_add(1);
+  std::fprintf(stderr, "vulkan validation %s%s: %s\n",
                (severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT) ? "error" : "warning",
+               runtime ? " (inside the OpenXR runtime's work)" : "",
                data && data->pMessage ? data->pMessage : "");
   return VK_FALSE;
 }

@@ -445,6 +445,27 @@ TEST(ReviewXr, APoseThatIsNotFiniteIsTakenAsNotLocated) {
   expect_replays_with_commits(recording);
 }
 
+// --validation tells the runtime's own Vulkan messages (its work on the shared device inside its calls, as
+// SteamVR's in xrEndFrame) from pushpull's: on another runtime they are said and do not fail the review; on
+// our simulated runtime, whose code is ours too, they do.
+TEST(ReviewXr, ValidationTellsTheRuntimesMessagesFromOurs) {
+  const fs::path dir = test_dir();
+  const std::string script = pull_released_then_exit(2.0);
+  const ReviewRun other = run_review(dir, script, "--validation",
+                                     "PUSHPULL_XR_SIM_QUIRKS=validation-noise "
+                                     "PUSHPULL_XR_SIM_RUNTIME_NAME=OtherVendor");
+  ASSERT_EQ(other.result.status, 0) << other.result.output;
+  EXPECT_NE(other.result.output.find("(inside the OpenXR runtime's work)"), std::string::npos)
+      << other.result.output;
+  EXPECT_NE(other.result.output.find("from inside the OpenXR runtime \"OtherVendor\"'s work"),
+            std::string::npos)
+      << other.result.output;
+  EXPECT_EQ(other.of("commit").size(), 1u) << other.result.output;
+  const ReviewRun ours = run_review(dir, script, "--validation", "PUSHPULL_XR_SIM_QUIRKS=validation-noise");
+  EXPECT_NE(ours.result.status, 0) << ours.result.output;
+  EXPECT_NE(ours.result.output.find("Vulkan validation reported"), std::string::npos) << ours.result.output;
+}
+
 // --headset-wait gives a slower headset longer (WiVRn, ALVR: often more than the default 3 s).
 TEST(ReviewXr, HeadsetWaitGivesALateHeadsetLonger) {
   const fs::path dir = test_dir();

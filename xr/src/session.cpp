@@ -255,6 +255,7 @@ struct Session::Impl {
   // semaphores and memory: ValveSoftware/openvr#1649, #1715), and a device destroyed under them is
   // undefined behaviour.
   ~Impl() {
+    const RuntimeCallScope runtime;  // the runtime may release its work on our device here
     eyes.clear();
     if (stage != XR_NULL_HANDLE) xrDestroySpace(stage);
     if (session != XR_NULL_HANDLE) xrDestroySession(session);
@@ -635,7 +636,8 @@ struct Session::Impl {
   }
 };
 
-#define CHECK_UNLESS_LOST(expression) impl_->ok_unless_lost((expression), #expression, __LINE__)
+#define CHECK_UNLESS_LOST(expression) \
+  impl_->ok_unless_lost((::pushpull::xr::RuntimeCallScope{}, (expression)), #expression, __LINE__)
 
 Session::Session(const SessionOptions& options) : impl_(std::make_unique<Impl>()) {
   impl_->options = options;
@@ -814,6 +816,7 @@ bool Session::recreate_after_loss(double timeout_s, const std::function<bool()>&
   // The lost session's handles go first (the spec: destroy it, then poll xrGetSystem until the headset is
   // back).
   s.eyes.clear();
+  const RuntimeCallScope runtime;
   if (s.stage != XR_NULL_HANDLE) xrDestroySpace(s.stage);
   if (s.session != XR_NULL_HANDLE) xrDestroySession(s.session);
   s.stage = XR_NULL_HANDLE;

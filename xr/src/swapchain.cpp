@@ -12,6 +12,7 @@ struct Swapchain::Impl {
   bool acquired = false;
 
   ~Impl() {
+    const RuntimeCallScope runtime;
     if (swapchain != XR_NULL_HANDLE) xrDestroySwapchain(swapchain);
   }
 };
@@ -35,6 +36,7 @@ Swapchain::Swapchain(XrInstance instance, XrSession session, int64_t format, uin
   info.mipCount = 1;
   // Into a local handle: a failed call leaves its output undefined, and ~Impl destroys what it holds.
   XrSwapchain swapchain = XR_NULL_HANDLE;
+  const RuntimeCallScope runtime;  // swapchain images are made on our device
   XrResult created = xrCreateSwapchain(session, &info, &swapchain);
   // Refused usage: XR_ERROR_FEATURE_UNSUPPORTED per the spec, but runtimes differ
   // (XR_ERROR_VALIDATION_FAILURE, XR_ERROR_SWAPCHAIN_FORMAT_UNSUPPORTED for the pair,

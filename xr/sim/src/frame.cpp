@@ -112,6 +112,17 @@ XrResult XRAPI_CALL end_frame(XrSession handle, const XrFrameEndInfo* info) {
     }
     return XR_ERROR_SESSION_LOST;
   }
+  if (s->instance->config.validation_noise && s->frames_ended == 0 && s->vk.device != VK_NULL_HANDLE) {
+    // A zero-sized buffer (VUID-VkBufferCreateInfo-size-00912): the runtime's mistake, on the app's device.
+    VkBufferCreateInfo create{};
+    create.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO;
+    create.size = 0;
+    create.usage = VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
+    create.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+    VkBuffer buffer = VK_NULL_HANDLE;
+    if (vkCreateBuffer(s->vk.device, &create, nullptr, &buffer) == VK_SUCCESS && buffer != VK_NULL_HANDLE)
+      vkDestroyBuffer(s->vk.device, buffer, nullptr);
+  }
   capture_frame(*s, *info, s->frames_ended);
   s->frames_ended++;
   return s->loss_pending ? XR_SESSION_LOSS_PENDING : XR_SUCCESS;

@@ -106,11 +106,13 @@ XrResult XRAPI_CALL destroy_instance(XrInstance handle) {
 
 XrResult XRAPI_CALL get_instance_properties(XrInstance handle, XrInstanceProperties* properties) {
   Lock lock(big_lock());
-  if (lookup<Instance>(handle) == nullptr) return XR_ERROR_HANDLE_INVALID;
+  const Instance* instance = lookup<Instance>(handle);
+  if (instance == nullptr) return XR_ERROR_HANDLE_INVALID;
   if (properties == nullptr || properties->type != XR_TYPE_INSTANCE_PROPERTIES)
     return XR_ERROR_VALIDATION_FAILURE;
   properties->runtimeVersion = XR_MAKE_VERSION(0, 1, 0);
-  std::snprintf(properties->runtimeName, XR_MAX_RUNTIME_NAME_SIZE, "pushpull simulated runtime");
+  std::snprintf(properties->runtimeName, XR_MAX_RUNTIME_NAME_SIZE, "%s",
+                instance->config.runtime_name.c_str());
   return XR_SUCCESS;
 }
 

@@ -56,6 +56,9 @@ Config Config::from_env() {
   auto quirk = [&](const char* name) { return quirks.count(name) > 0; };
   c.refuse_transfer_source = quirk("no-transfer-src");
   c.refuse_transfer_source_as_format = quirk("no-transfer-src-format");
+  c.validation_noise = quirk("validation-noise");
+  if (const std::string name = env_string("PUSHPULL_XR_SIM_RUNTIME_NAME"); !name.empty())
+    c.runtime_name = name;
   c.unorm_first = quirk("unorm-first");
   c.eyes_differ = quirk("eyes-differ");
   c.requirements_per_session = quirk("requirements-per-session");

@@ -56,13 +56,18 @@ constexpr XrSystemId kSystemId = 1;
 //   PUSHPULL_XR_SIM_BLEND             additive: a see-through display (only ADDITIVE blending; default
 //                                     OPAQUE)
 //   PUSHPULL_XR_SIM_ROTATION_ONLY     1: views carry orientation, not position (a 3-DoF headset)
+//   PUSHPULL_XR_SIM_RUNTIME_NAME      the runtime's name in xrGetInstanceProperties (default "pushpull
+//                                     simulated runtime"), to pose as another runtime
 //   PUSHPULL_XR_SIM_STAGE_MM          the STAGE space's origin N mm above the floor the script's poses stand
 //                                     on (a runtime whose STAGE is its tracking origin, not the floor; 0)
 //   PUSHPULL_XR_SIM_QUIRKS            comma-separated behaviours of other runtimes that the spec allows:
 //                                     no-transfer-src (xrCreateSwapchain refuses TRANSFER_SRC usage with
 //                                     XR_ERROR_FEATURE_UNSUPPORTED), no-transfer-src-format (the same
 //                                     with XR_ERROR_SWAPCHAIN_FORMAT_UNSUPPORTED, the wrong code, as a
-//                                     runtime that checks the format and usage pair might), unorm-first
+//                                     runtime that checks the format and usage pair might),
+//                                     validation-noise (the first xrEndFrame creates a zero-sized buffer on
+//                                     the application's device, as a runtime's own Vulkan mistakes would),
+//                                     unorm-first
 //                                     (UNORM formats listed before sRGB ones, B8G8R8A8 before R8G8B8A8),
 //                                     eyes-differ (the right eye's recommended size is 16 px wider and 8 px
 //                                     taller), requirements-per-session (xrCreateSession needs
@@ -105,6 +110,8 @@ struct Config {
   // PUSHPULL_XR_SIM_QUIRKS (see above).
   bool refuse_transfer_source = false;
   bool refuse_transfer_source_as_format = false;  // with XR_ERROR_SWAPCHAIN_FORMAT_UNSUPPORTED
+  bool validation_noise = false;  // the first xrEndFrame makes a Vulkan call the validation layer flags
+  std::string runtime_name = "pushpull simulated runtime";  // PUSHPULL_XR_SIM_RUNTIME_NAME
   bool unorm_first = false;
   bool eyes_differ = false;
   bool requirements_per_session = false;

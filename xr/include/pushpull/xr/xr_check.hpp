@@ -16,6 +16,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "pushpull/xr/runtime_calls.hpp"
+
 namespace pushpull::xr {
 
 // A failed OpenXR call. what(): "file:line: expr failed with XR_ERROR_... (-n)".
@@ -41,5 +43,8 @@ XrResult check_xr(XrResult result, XrInstance instance, const char* expression, 
 }  // namespace pushpull::xr
 
 // `instance` may be XR_NULL_HANDLE (before xrCreateInstance): the result is then printed as a number.
-#define PUSHPULL_XR_CHECK(instance, expression) \
-  ::pushpull::xr::check_xr((expression), (instance), #expression, __FILE__, __LINE__)
+// The call runs inside a RuntimeCallScope (runtime_calls.hpp): the temporary lives to the end of the
+// full expression.
+#define PUSHPULL_XR_CHECK(instance, expression)                                                         \
+  ::pushpull::xr::check_xr((::pushpull::xr::RuntimeCallScope{}, (expression)), (instance), #expression, \
+                           __FILE__, __LINE__)
