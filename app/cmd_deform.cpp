@@ -344,6 +344,22 @@ void run_deform(DeformCommandOptions o) {
   } catch (const std::invalid_argument& error) {
     throw CommandError(o.mesh + ": " + error.what());
   }
+  // Not converged (the paper's setting says so in its stop text): a warning too, for scripts that read them.
+  if (!record.result.converged && !o.paper_iterations) {
+    char text[200];
+    if (record.result.error_estimate)
+      std::snprintf(text, sizeof text,
+                    "not converged: stopped after %d iterations (%s) with the estimated distance to the "
+                    "minimiser %.2g |d|, above --tolerance %.2g",
+                    record.result.iterations,
+                    std::string(deform::stop_reason_name(record.result.stop_reason)).c_str(),
+                    *record.result.error_estimate, options.tolerance);
+    else
+      std::snprintf(
+          text, sizeof text, "not converged: stopped after %d iterations (%s) without a distance estimate",
+          record.result.iterations, std::string(deform::stop_reason_name(record.result.stop_reason)).c_str());
+    record.result.warnings.push_back(text);
+  }
   if (unheld) {
     record.result.warnings.insert(
         record.result.warnings.begin(),

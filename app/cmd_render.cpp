@@ -98,7 +98,8 @@ void add_render_command(CLI::App& root) {
          "--camera", options->camera,
          "Orbit camera: AZIMUTH ELEVATION [ZOOM] (degrees around --up from the model's front +Z towards "
          "+X; ZOOM > 1 moves closer). Default 35 20 1 frames the whole model")
-      ->expected(2, 3);
+      ->expected(2, 3)
+      ->type_name("AZIMUTH ELEVATION [ZOOM]");
   cmd->add_option("--eye", options->eye,
                   "Camera position X Y Z (model frame, metres at life size); overrides --camera")
       ->expected(3);

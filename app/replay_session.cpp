@@ -305,10 +305,13 @@ void run_replay(const ReplayOptions& o) {
       }
     }
     checks.push_back(check);
-    char line[320];
+    char line[320], of[48];
+    // "3/3"; past the recording's count (a recording short of commit records): "4 (of 3 recorded)".
+    std::snprintf(of, sizeof of, c.index <= recorded ? "%zu/%zu" : "%zu (of %zu recorded)", c.index,
+                  recorded);
     std::snprintf(line, sizeof line,
-                  "pushpull replay: commit %zu/%zu  |d| %.1f mm  %d it  %s  hash %s  %s  (%.1f s)", c.index,
-                  recorded, 1000.0 * life_size_scale * c.snapshot->d.norm(), c.snapshot->iteration,
+                  "pushpull replay: commit %s  |d| %.1f mm  %d it  %s  hash %s  %s  (%.1f s)", of,
+                  1000.0 * life_size_scale * c.snapshot->d.norm(), c.snapshot->iteration,
                   c.snapshot->converged ? "converged" : "not converged", hash_text(c.hash).c_str(),
                   check.c_str(), seconds_since(start));
     bar.print(line);
