@@ -328,7 +328,7 @@ void run_deform(DeformCommandOptions o) {
   // No border holds the part (the region covers the whole connected part): it moves with the handle as a
   // whole, as a push/pull on it does in the headset (drag_notes.cpp); said, not refused. No border and not a
   // whole part: the region is the handle alone (--roi-radius 0), torn from the surface around it.
-  const std::optional<UnheldRegion> unheld = unheld_region(*mesh, roi);
+  const std::optional<UnheldRegion> unheld = unheld_region(roi);
 
   DeformRunRecord record;
   if (!o.handle_at.empty()) {

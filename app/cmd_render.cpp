@@ -99,13 +99,16 @@ void add_render_command(CLI::App& root) {
          "Orbit camera: AZIMUTH ELEVATION [ZOOM] (degrees around --up from the model's front +Z towards "
          "+X; ZOOM > 1 moves closer). Default 35 20 1 frames the whole model")
       ->expected(2, 3)
+      ->check(finite_number())
       ->type_name("AZIMUTH ELEVATION [ZOOM]");
   cmd->add_option("--eye", options->eye,
                   "Camera position X Y Z (model frame, metres at life size); overrides --camera")
-      ->expected(3);
+      ->expected(3)
+      ->check(finite_number());
   cmd->add_option("--target", options->target,
                   "Point looked at X Y Z (model frame, metres at life size; default: the model's centre)")
-      ->expected(3);
+      ->expected(3)
+      ->check(finite_number());
   cmd->add_option("--up", options->up, "World up X Y Z (default 0 1 0, glTF)")
       ->expected(3)
       ->check(finite_number());
@@ -126,12 +129,14 @@ void add_render_command(CLI::App& root) {
   cmd->add_option("--roi", options->roi_file, "Region-of-interest vertices (index file), tinted");
   cmd->add_option("--handle-at", options->handle_at,
                   "Handle = vertices near X Y Z (model frame, metres at life size)")
-      ->expected(3);
+      ->expected(3)
+      ->check(finite_number());
   cmd->add_option("--handle-radius", options->handle_radius, "Radius for --handle-at (metres at life size)")
       ->check(finite_above(0.0));
   cmd->add_option("--arrow", options->arrow,
                   "Draw the push/pull arrow p0 -> p1: X0 Y0 Z0 X1 Y1 Z1 (model frame, metres at life size)")
-      ->expected(6);
+      ->expected(6)
+      ->check(finite_number());
   cmd->add_option(
          "--sections", options->sections,
          "Draw N section curves of the (deformed) surface, planes orthogonal to the --arrow direction")

@@ -19,7 +19,9 @@ std::vector<std::string> drag_notes(double pull, double handle_radius, const def
     std::snprintf(c, sizeof c, "the surface moves %.1fx the pull", s.max_displacement / solved_pull);
     lines.emplace_back(c);
   }
-  if (s.region && s.region->fixed.empty()) lines.emplace_back("the whole part moves: no border holds it");
+  if (s.region && s.region->fixed.empty())
+    lines.emplace_back(s.region->whole_parts ? "the whole part moves: no border holds it"
+                                             : "only the handle moves: no region beyond it");
   return lines;
 }
 

@@ -18,7 +18,8 @@ inline constexpr double kOvershoot = 1.5;
 
 // The lines for a drag of |d| = pull with handles of `handle_radius`, given the newest snapshot: steep, the
 // surface moving more than the pull, and a region that is a whole part with no border to hold it (a lamp, a
-// windscreen: the part moves as one piece; "the whole part moves: no border holds it").
+// windscreen: the part moves as one piece; "the whole part moves: no border holds it") or the handle alone (a
+// region too small for the triangles around it: "only the handle moves: no region beyond it").
 [[nodiscard]] std::vector<std::string> drag_notes(double pull, double handle_radius,
                                                   const deform::Snapshot& s);
 

@@ -3,6 +3,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <csignal>
 #include <cstdio>
 #include <exception>
 #include <string>
@@ -11,6 +12,9 @@ int main(int argc, char** argv) {
   // Line by line also into a file or a pipe (a review's log survives a kill; its lines interleave with
   // stderr's in the order they happened).
   std::setvbuf(stdout, nullptr, _IOLBF, 0);
+  // A reader that goes away (a FIFO or pipe named as an output, closed early) is a write error the command
+  // reports with the file's name, not a silent death by SIGPIPE.
+  std::signal(SIGPIPE, SIG_IGN);
   CLI::App root{
       "pushpull: push and pull a tessellated design model with As-Stiff-As-Needed deformation\n"
       "(Le Vaou et al., Computer-Aided Design 121, 2020) and the ARAP family it is compared with."};

@@ -2,9 +2,9 @@
 
 namespace pushpull::app {
 
-std::optional<UnheldRegion> unheld_region(const deform::Mesh& mesh, const deform::RegionOfInterest& roi) {
+std::optional<UnheldRegion> unheld_region(const deform::RegionOfInterest& roi) {
   if (!roi.fixed.empty()) return std::nullopt;
-  return deform::covers_whole_parts(mesh, roi) ? UnheldRegion::WholePart : UnheldRegion::HandleOnly;
+  return roi.whole_parts ? UnheldRegion::WholePart : UnheldRegion::HandleOnly;
 }
 
 std::string unheld_region_text(UnheldRegion kind) {

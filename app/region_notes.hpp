@@ -4,7 +4,6 @@
 // Thread-safety: a pure function.
 #pragma once
 
-#include "pushpull/deform/mesh.hpp"
 #include "pushpull/deform/roi.hpp"
 
 #include <optional>
@@ -15,8 +14,7 @@ namespace pushpull::app {
 enum class UnheldRegion { WholePart, HandleOnly };
 
 // Which, or none when a border (a Fixed vertex) holds the region.
-[[nodiscard]] std::optional<UnheldRegion> unheld_region(const deform::Mesh& mesh,
-                                                        const deform::RegionOfInterest& roi);
+[[nodiscard]] std::optional<UnheldRegion> unheld_region(const deform::RegionOfInterest& roi);
 
 // The warning for it, without advice on options: "the whole part moves: ..." / "only the handle moves: ...".
 [[nodiscard]] std::string unheld_region_text(UnheldRegion kind);

@@ -422,7 +422,7 @@ void run_replay(const ReplayOptions& o) {
     record.result.warnings = s.warnings;
     // What `pushpull deform` says of the same region (a whole part moved, a handle torn out).
     if (s.region)
-      if (const std::optional<UnheldRegion> unheld = unheld_region(before_mesh, *s.region))
+      if (const std::optional<UnheldRegion> unheld = unheld_region(*s.region))
         record.result.warnings.insert(record.result.warnings.begin(), unheld_region_text(*unheld));
     if (s.energy_trace) record.result.energy_trace = *s.energy_trace;
     record.result.initial_energy = s.initial_energy;

@@ -3,6 +3,7 @@
 #include "commands.hpp"
 
 #include "pushpull/assets/write.hpp"
+#include "pushpull/deform/file_output.hpp"
 #include "pushpull/deform/mesh_io.hpp"
 
 #include <cctype>
@@ -32,6 +33,25 @@ ReviewSetup prepare_review(const ReviewCommandOptions& o) {
     throw CommandError(o.out + ": --out is a folder; name the file to write");
   if (!o.out.empty() && !deform::mesh_format_from_path(o.out) && lower_extension(o.out) != ".glb")
     throw CommandError(o.out + ": unsupported output format (expected .glb, .off, .obj or .ply)");
+  // The review's outputs, checked before the session (a review is not repeated for a bad path): none may be
+  // a folder or read-only, and no two may name one file (a recording written over by the event log, or the
+  // model by either, is lost). Missing folders are made, as --record's default one is.
+  {
+    const std::pair<const char*, const std::string*> outputs[] = {
+        {"--out", &o.out}, {"--record", &o.record}, {"--events", &o.events}};
+    for (const auto& [option, path] : outputs) {
+      if (path->empty()) continue;
+      const std::string problem = deform::output_path_problem(*path);
+      if (!problem.empty() && problem.find("does not exist") == std::string::npos)
+        throw CommandError(*path + ": " + option + " " + problem);
+    }
+    for (std::size_t a = 0; a < 3; ++a)
+      for (std::size_t b = a + 1; b < 3; ++b)
+        if (!outputs[a].second->empty() && !outputs[b].second->empty() &&
+            deform::same_output_file(*outputs[a].second, *outputs[b].second))
+          throw CommandError(*outputs[a].second + ": " + outputs[a].first + " and " + outputs[b].first +
+                             " name the same file");
+  }
   ReviewSetup s;
   try {
     s.model = assets::load_model(o.model);

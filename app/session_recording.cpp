@@ -162,6 +162,15 @@ SessionRecording read_session_recording(const std::string& path) {
                 << r.last_input_time << " s (input lines are in time order: one of the two is damaged)";
         corrupted(path, number, problem.str());
       }
+      // The clock counts frames, so consecutive lines are a frame apart: a jump of over a minute is damage
+      // too, which a recording cut short (no end record to check against) would otherwise replay for ever.
+      if (last_input_line > 0 && t > r.last_input_time + 60.0) {
+        std::ostringstream problem;
+        problem << "\"t\" " << t << " s jumps " << t - r.last_input_time << " s ahead of line "
+                << last_input_line << "'s " << r.last_input_time
+                << " s (consecutive input lines are a frame apart)";
+        corrupted(path, number, problem.str());
+      }
       if (t >= r.last_input_time) {
         r.last_input_time = t;
         last_input_line = number;

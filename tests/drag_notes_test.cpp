@@ -25,6 +25,7 @@ deform::Snapshot preview(double pull, double max_displacement, bool region_has_b
   region->handle = {0, 1};
   region->free = {2, 3};
   if (region_has_border) region->fixed = {4, 5};
+  region->whole_parts = !region_has_border;  // a borderless region here is a grabbed part
   s.region = region;
   return s;
 }
@@ -42,6 +43,19 @@ TEST(DragNotes, ASteepPullAndAnOvershootingSurfaceAreSaid) {
 TEST(DragNotes, AGrabbedWholePartIsSaidToMoveWhole) {
   EXPECT_TRUE(has(drag_notes(0.1, 0.05, preview(0.1, 0.1, false)), "the whole part moves"));
   EXPECT_FALSE(has(drag_notes(0.1, 0.05, preview(0.1, 0.1, true)), "the whole part moves"));
+}
+
+// A region with no border that is not a whole part is the handle alone (a region too small for the
+// triangles around it): said as such, not as a whole part moving.
+TEST(DragNotes, AHandleAloneIsNotCalledAWholePart) {
+  deform::Snapshot s = preview(0.1, 0.1, false);
+  auto region = std::make_shared<deform::RegionOfInterest>(*s.region);
+  region->free.clear();
+  region->whole_parts = false;
+  s.region = region;
+  const auto lines = drag_notes(0.1, 0.05, s);
+  EXPECT_TRUE(has(lines, "only the handle moves"));
+  EXPECT_FALSE(has(lines, "the whole part moves"));
 }
 
 TEST(DragNotes, BeforeTheDragsFirstPreviewOnlyTheHandsPullCounts) {

@@ -403,41 +403,60 @@ TEST(ReplayXr, AMalformedPressHeldRecordIsNamedByItsLine) {
       << r.output;
 }
 
-// Input lines are in time order and end with the session: a time far past the end (one damaged number) is
-// named by its line instead of stepping the replay's clock towards it for ever; so is one that goes back.
+// Input lines are in time order, a frame apart, and end with the session: a damaged time far ahead (which
+// would step the replay's clock on without end, also in a recording cut short), one that goes back, or one
+// past the end record is named by its line.
 TEST(ReplayXr, AnInputTimeOutOfOrderOrPastTheEndIsNamedByItsLine) {
   const fs::path dir = test_dir();
   const fs::path session = record_session(dir);
   const auto recorded = text_lines(session);
-  // The last input line before the end record, and one in the middle.
-  std::size_t last = 0, middle = 0;
+  std::size_t last = 0;  // the last input line (before the end record)
   for (std::size_t k = 0; k < recorded.size(); ++k)
-    if (recorded[k].rfind("{\"path\"", 0) == 0 || recorded[k].find("\"t\":") != std::string::npos) last = k;
+    if (recorded[k].find("\"t\":") != std::string::npos) last = k;
   ASSERT_GT(last, 20u);
-  middle = last / 2;
+  std::size_t middle = last / 2;
   while (middle > 0 && recorded[middle].find("\"t\":") == std::string::npos) --middle;
   ASSERT_GT(middle, 1u);
-  auto damaged = [](std::string line) {
+  auto with_time = [](std::string line, const std::string& t) {
     const std::size_t at = line.find("\"t\":");
     const std::size_t end = line.find_first_of(",}", at + 4);
-    return line.substr(0, at + 4) + "1e12" + line.substr(end);
+    return line.substr(0, at + 4) + t + line.substr(end);
   };
-  for (const std::size_t k : {last, middle}) {
+  double end_time = 0.0;
+  for (const std::string& l : recorded)
+    if (l.find("\"record\":\"end\"") != std::string::npos)
+      end_time = nlohmann::json::parse(l).at("time").get<double>();
+  ASSERT_GT(end_time, 1.0);
+  struct Case {
+    std::size_t line;
+    std::string t, says;
+  };
+  const Case cases[] = {{last, "1e12", "\"t\" 1e+12 s jumps"},
+                        {middle, "1e12", "\"t\" 1e+12 s jumps"},
+                        {middle, "0.0", "\"t\" 0 s is earlier than line"},
+                        {last, std::to_string(end_time + 30.0), "is after the session's end"}};
+  for (const Case& c : cases) {
     auto lines = recorded;
-    lines[k] = damaged(lines[k]);
+    lines[c.line] = with_time(lines[c.line], c.t);
     write_lines(session, lines);
     const auto r = replay(session, dir / "out", "--no-pictures");
     EXPECT_NE(r.status, 0) << r.output;
-    const std::string where =
-        k == last ? std::to_string(k + 1) + ": corrupted line: \"t\" 1e+12 s is after the session's end"
-                  : std::to_string(k + 2) + ": corrupted line: \"t\" ";  // the next line goes back
-    EXPECT_NE(r.output.find(session.string() + ":" + where), std::string::npos) << r.output;
-    if (k == middle) {
-      EXPECT_NE(r.output.find("is earlier than line " + std::to_string(k + 1) + "'s 1e+12 s"),
-                std::string::npos)
-          << r.output;
-    }
+    EXPECT_NE(r.output.find(session.string() + ":" + std::to_string(c.line + 1) + ": corrupted line: "),
+              std::string::npos)
+        << c.t << ": " << r.output;
+    EXPECT_NE(r.output.find(c.says), std::string::npos) << c.t << ": " << r.output;
   }
+  // Cut short (no end record) with a damaged last time: still named, not replayed for ever.
+  auto cut = recorded;
+  cut[last] = with_time(cut[last], "1e12");
+  cut.resize(last + 1);
+  write_lines(session, cut);
+  const auto r = replay(session, dir / "out", "--no-pictures");
+  EXPECT_NE(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find(session.string() + ":" + std::to_string(last + 1) +
+                          ": corrupted line: \"t\" 1e+12 s jumps"),
+            std::string::npos)
+      << r.output;
 }
 
 // The anchor record (the model moved in front of the reviewer's head) must be one, with finite numbers.

@@ -466,6 +466,29 @@ TEST(ReviewXr, ValidationTellsTheRuntimesMessagesFromOurs) {
   EXPECT_NE(ours.result.output.find("Vulkan validation reported"), std::string::npos) << ours.result.output;
 }
 
+// The review's outputs are checked before the session: one file named twice (the recording written over by
+// the event log) and a read-only --out are refused at once, and nothing is written.
+TEST(ReviewXr, ItsOutputsAreCheckedBeforeTheSession) {
+  const fs::path dir = test_dir();
+  const std::string script = pull_released_then_exit(2.0);
+  const ReviewRun twice = run_review(dir, script, "--record " + (dir / "events.jsonl").string());
+  EXPECT_NE(twice.result.status, 0) << twice.result.output;
+  EXPECT_NE(twice.result.output.find("--record and --events name the same file"), std::string::npos)
+      << twice.result.output;
+  const fs::path read_only = dir / "reviewed.glb";
+  { std::ofstream(read_only) << "kept"; }
+  fs::permissions(read_only, fs::perms::owner_read | fs::perms::group_read | fs::perms::others_read);
+  const ReviewRun refused = run_review(dir, script, "--out " + read_only.string());
+  EXPECT_NE(refused.result.status, 0) << refused.result.output;
+  EXPECT_NE(refused.result.output.find("--out is read-only"), std::string::npos) << refused.result.output;
+  EXPECT_EQ(refused.result.output.find("press at"), std::string::npos)
+      << refused.result.output;  // no session
+  std::ifstream in(read_only);
+  std::string kept;
+  in >> kept;
+  EXPECT_EQ(kept, "kept");
+}
+
 // --headset-wait gives a slower headset longer (WiVRn, ALVR: often more than the default 3 s).
 TEST(ReviewXr, HeadsetWaitGivesALateHeadsetLonger) {
   const fs::path dir = test_dir();

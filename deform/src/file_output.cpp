@@ -3,10 +3,12 @@
 #include <array>
 #include <atomic>
 #include <cerrno>
+#include <charconv>
 #include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <mutex>
+#include <optional>
 #include <stdexcept>
 #include <system_error>
 
@@ -93,13 +95,35 @@ class TemporaryGuard {
   TemporarySlot* slot_ = nullptr;
 };
 
-// The file a path names: a symbolic link's target (its chain followed, relative targets resolved), else the
-// path itself.
+// The file a path names: a symbolic link's target, its chain followed (up to 40 links, a relative target
+// taken from the link's folder); a dangling link gives the file it would create; otherwise the path itself.
 fs::path followed(const fs::path& path) {
-  std::error_code error;
-  if (!fs::is_symlink(fs::symlink_status(path, error))) return path;
-  const fs::path target = fs::weakly_canonical(path, error);
-  return error ? path : target;
+  fs::path p = path;
+  for (int hops = 0; hops < 40; ++hops) {
+    std::error_code error;
+    if (!fs::is_symlink(fs::symlink_status(p, error))) return p;
+    const fs::path target = fs::read_symlink(p, error);
+    if (error) return p;
+    p = target.is_absolute() ? target : p.parent_path() / target;
+  }
+  return p;
+}
+
+// The descriptor a path names that the process already holds (/dev/stdout, /dev/stderr, /dev/fd/N,
+// /proc/self/fd/N): written through as it is, so that a shell's redirection (`>> log`, a pipe) keeps its
+// meaning; reopening it would start at the file's beginning or replace the file.
+std::optional<int> inherited_descriptor(const fs::path& path) {
+  const std::string p = path.lexically_normal().string();
+  if (p == "/dev/stdout") return 1;
+  if (p == "/dev/stderr") return 2;
+  for (const std::string_view prefix : {std::string_view("/dev/fd/"), std::string_view("/proc/self/fd/")}) {
+    if (p.size() <= prefix.size() || p.compare(0, prefix.size(), prefix) != 0) continue;
+    int fd = -1;
+    const char* first = p.data() + prefix.size();
+    const auto [end, error] = std::from_chars(first, p.data() + p.size(), fd);
+    if (error == std::errc() && end == p.data() + p.size() && fd >= 0) return fd;
+  }
+  return std::nullopt;
 }
 
 std::string mode_text(mode_t mode) {
@@ -124,6 +148,11 @@ int write_all(int fd, std::string_view bytes) {
 
 // Returns the problem ("" on success).
 std::string write_to(const fs::path& requested, std::string_view bytes) {
+  if (const std::optional<int> fd = inherited_descriptor(requested)) {
+    if (::fcntl(*fd, F_GETFD) == -1) return "no such open file descriptor";
+    const int failed = write_all(*fd, bytes);
+    return failed ? std::string("write failed: ") + std::strerror(failed) : std::string();
+  }
   const fs::path path = followed(requested);
   struct stat existing {};
   const bool exists = ::stat(path.c_str(), &existing) == 0;
@@ -176,6 +205,7 @@ void write_file_atomically(const fs::path& path, std::string_view bytes) {
 }
 
 std::string output_path_problem(const fs::path& requested) {
+  if (inherited_descriptor(requested)) return {};
   const fs::path path = followed(requested);
   struct stat existing {};
   if (::stat(path.c_str(), &existing) == 0) {
@@ -192,10 +222,12 @@ std::string output_path_problem(const fs::path& requested) {
 }
 
 bool same_output_file(const fs::path& a, const fs::path& b) {
+  // The descriptors a shell hands over are streams: two results may go to one (both to stdout).
+  if (inherited_descriptor(a) || inherited_descriptor(b)) return false;
   std::error_code error_a, error_b;
-  const fs::path ca = fs::weakly_canonical(fs::absolute(a, error_a), error_a);
-  const fs::path cb = fs::weakly_canonical(fs::absolute(b, error_b), error_b);
-  if (error_a || error_b) return a.lexically_normal() == b.lexically_normal();
+  const fs::path ca = fs::weakly_canonical(fs::absolute(followed(a), error_a), error_a);
+  const fs::path cb = fs::weakly_canonical(fs::absolute(followed(b), error_b), error_b);
+  if (error_a || error_b) return followed(a).lexically_normal() == followed(b).lexically_normal();
   return ca == cb;
 }
 

@@ -57,12 +57,14 @@ RegionOfInterest finish(const VertexGraph& graph, const std::vector<char>& in_om
   RegionOfInterest roi;
   roi.warnings = std::move(warnings);
   roi.role.assign(static_cast<std::size_t>(nv), VertexRole::Outside);
+  roi.whole_parts = true;
   for (int v = 0; v < nv; ++v) {
     if (!in_omega[static_cast<std::size_t>(v)]) continue;
     bool on_boundary = false;
     for (const int* n = graph.begin(v); n != graph.end(v); ++n)
       on_boundary |= !in_omega[static_cast<std::size_t>(*n)];
     roi.role[static_cast<std::size_t>(v)] = on_boundary ? VertexRole::Fixed : VertexRole::Free;
+    if (on_boundary) roi.whole_parts = false;
   }
   for (int v : fixed) {
     if (in_omega[static_cast<std::size_t>(v)]) roi.role[static_cast<std::size_t>(v)] = VertexRole::Fixed;
@@ -202,15 +204,6 @@ RegionOfInterest roi_from_selection(const Mesh& mesh, std::span<const int> selec
   }
   const VertexGraph graph = detail::build_vertex_graph(static_cast<int>(mesh.V.rows()), mesh.F);
   return finish(graph, in_omega, handle, fixed, options, std::move(warnings));
-}
-
-bool covers_whole_parts(const Mesh& mesh, const RegionOfInterest& roi) {
-  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
-    int inside = 0;
-    for (int k = 0; k < 3; ++k) inside += roi.contains(mesh.F(f, k)) ? 1 : 0;
-    if (inside != 0 && inside != 3) return false;
-  }
-  return true;
 }
 
 }  // namespace pushpull::deform

@@ -13,6 +13,7 @@
 #include <string>
 #include <thread>
 
+#include <fcntl.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -75,6 +76,38 @@ TEST(FileOutput, ASymbolicLinkIsFollowedAndStays) {
   EXPECT_EQ(read_all(target), "new");
   EXPECT_TRUE(pd::same_output_file(link, target));
   EXPECT_FALSE(pd::same_output_file(link, dir.path / "other.json"));
+}
+
+// A link to a file not there yet (and a chain of links) names that file: it is created, the links stay, and
+// two outputs reaching one file through links are the same output.
+TEST(FileOutput, ALinkToAFileNotThereYetCreatesThatFile) {
+  TempDir dir;
+  const fs::path target = dir.path / "model.off", link = dir.path / "link.off",
+                 chain = dir.path / "chain.off";
+  fs::create_symlink("model.off", link);
+  fs::create_symlink("link.off", chain);
+  EXPECT_TRUE(pd::same_output_file(chain, target));
+  EXPECT_TRUE(pd::same_output_file(link, chain));
+  pd::write_file_atomically(chain, "new");
+  EXPECT_TRUE(fs::is_symlink(fs::symlink_status(link)));
+  EXPECT_TRUE(fs::is_symlink(fs::symlink_status(chain)));
+  EXPECT_EQ(read_all(target), "new");
+}
+
+// A descriptor the process holds (a shell's `>> log` on stdout) is written through as it is: appended to, not
+// replaced.
+TEST(FileOutput, ADescriptorItHoldsIsWrittenThrough) {
+  TempDir dir;
+  const fs::path log = dir.path / "log.txt";
+  const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
+  ASSERT_GE(fd, 0);
+  ASSERT_EQ(::write(fd, "earlier\n", 8), 8);
+  pd::write_file_atomically("/dev/fd/" + std::to_string(fd), "{\"metrics\": 1}\n");
+  pd::write_file_atomically("/proc/self/fd/" + std::to_string(fd), "more\n");
+  ::close(fd);
+  EXPECT_EQ(read_all(log), "earlier\n{\"metrics\": 1}\nmore\n");
+  EXPECT_EQ(entries(dir.path), 1);
+  EXPECT_FALSE(pd::same_output_file("/dev/stdout", "/dev/stdout"));  // streams: both results may go there
 }
 
 TEST(FileOutput, AFifoIsWrittenInPlace) {

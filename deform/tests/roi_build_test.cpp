@@ -40,6 +40,13 @@ TEST(RoiBuild, MaxDistanceIsGeodesicAlongEdgesAndBoundaryIsFixed) {
   const RegionOfInterest all = build_roi(mesh, std::vector<int>{vertex(10, 10)}, {});
   EXPECT_EQ(all.size(), mesh.V.rows());
   EXPECT_TRUE(all.fixed.empty());
+  EXPECT_TRUE(all.whole_parts);  // the whole sheet: it moves as one piece
+  EXPECT_FALSE(roi.whole_parts);
+  // Distance 0: the handle alone, no border (handles stay handles) and not a whole part: torn out.
+  const RegionOfInterest alone = build_roi(mesh, std::vector<int>{vertex(10, 10), vertex(11, 10)}, {}, 0.0);
+  EXPECT_EQ(alone.size(), 2u);
+  EXPECT_TRUE(alone.fixed.empty());
+  EXPECT_FALSE(alone.whole_parts);
 }
 
 TEST(RoiBuild, WarnsWhenHandleIsNearTheFixedBoundary) {

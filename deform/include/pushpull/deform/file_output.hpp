@@ -5,7 +5,10 @@
 // - A regular file is written to a temporary file in its folder (".NAME.tmp-XXXXXX"), flushed and renamed
 //   over it, so a reader sees the old file or the new one, never half of one; an existing file keeps its
 //   permissions. A file without any write permission is refused, not replaced.
-// - A symbolic link is followed: the file it names is replaced the same way, the link stays.
+// - A symbolic link is followed (a chain too, and a link to a file not there yet): the file it names is
+//   replaced the same way, the link stays.
+// - A descriptor the process holds (/dev/stdout, /dev/stderr, /dev/fd/N, /proc/self/fd/N) is written through
+//   as it is, so a shell's `> file`, `>> log` or pipe keeps its meaning.
 // - A character device, FIFO or socket is opened and written in place (no temporary).
 // - SIGINT or SIGTERM while a temporary exists removes it before the process ends (where the signal would
 //   end the process; a handler the program installed, e.g. a review's graceful Ctrl-C, is called instead).

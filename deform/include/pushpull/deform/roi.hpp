@@ -33,6 +33,11 @@ struct RegionOfInterest {
   // Human-readable notes about the region: handles close to the fixed boundary (the paper's conclusion asks
   // to tell the user, the result may then differ from what they expect), vertices listed twice, ...
   std::vector<std::string> warnings;
+  // Whether Omega is made of whole connected parts: no vertex of it shares an edge with an Outside vertex.
+  // With no Fixed vertex, such a region moves with its handle as one piece; a region with no Fixed vertex
+  // that is not whole (Omega is the handle alone, e.g. build_roi with max_distance 0) leaves its handle torn
+  // from the surface around it.
+  bool whole_parts = false;
 
   [[nodiscard]] std::size_t size() const { return handle.size() + fixed.size() + free.size(); }
   [[nodiscard]] bool contains(int vertex) const {
@@ -68,11 +73,5 @@ struct RoiOptions {
 // anything else (e.g. -1) = outside. Throws if selection.size() != #V or no vertex is a handle.
 [[nodiscard]] RegionOfInterest roi_from_selection(const Mesh& mesh, std::span<const int> selection,
                                                   const RoiOptions& options = {});
-
-// Whether the region is made of whole connected parts: no vertex of Omega shares an edge with an Outside
-// vertex. With no Fixed vertex, such a region moves with its handle as one piece; a region with no Fixed
-// vertex that is not whole (Omega is the handle alone, e.g. build_roi with max_distance 0) leaves its
-// handle torn from the surface around it. O(#F).
-[[nodiscard]] bool covers_whole_parts(const Mesh& mesh, const RegionOfInterest& roi);
 
 }  // namespace pushpull::deform
