@@ -349,14 +349,14 @@ void run_deform(DeformCommandOptions o) {
     char text[200];
     if (record.result.error_estimate)
       std::snprintf(text, sizeof text,
-                    "not converged: stopped after %d iterations (%s) with the estimated distance to the "
+                    "not converged: stopped after %d iteration(s) (%s) with the estimated distance to the "
                     "minimiser %.2g |d|, above --tolerance %.2g",
                     record.result.iterations,
                     std::string(deform::stop_reason_name(record.result.stop_reason)).c_str(),
                     *record.result.error_estimate, options.tolerance);
     else
       std::snprintf(
-          text, sizeof text, "not converged: stopped after %d iterations (%s) without a distance estimate",
+          text, sizeof text, "not converged: stopped after %d iteration(s) (%s) without a distance estimate",
           record.result.iterations, std::string(deform::stop_reason_name(record.result.stop_reason)).c_str());
     record.result.warnings.push_back(text);
   }

@@ -31,9 +31,20 @@ std::array<TemporarySlot, 32> g_temporaries;
 struct sigaction g_previous_int {
 }, g_previous_term{};
 
+// write(2) of a NUL-terminated text (async-signal-safe; no strlen, which POSIX does not list).
+void say(const char* text) {
+  std::size_t n = 0;
+  while (text[n] != '\0') ++n;
+  (void)!::write(STDERR_FILENO, text, n);
+}
+
 void remove_temporaries_and_end(int signal) {
   for (TemporarySlot& slot : g_temporaries)
-    if (slot.state.load() == 2) ::unlink(slot.path.data());
+    if (slot.state.load() == 2 && ::unlink(slot.path.data()) == 0) {
+      say("pushpull: interrupted while writing; removed the unfinished ");
+      say(slot.path.data());
+      say(" (the file it was to replace is as it was)\n");
+    }
   // The signal then does what it would have done: end the process (the default action).
   std::signal(signal, SIG_DFL);
   std::raise(signal);
@@ -217,7 +228,8 @@ std::string output_path_problem(const fs::path& requested) {
   const fs::path folder = path.parent_path();
   std::error_code error;
   if (!folder.empty() && !fs::is_directory(folder, error))
-    return "the folder " + folder.string() + " does not exist";
+    return fs::exists(folder, error) ? folder.string() + " is a file, not a folder"
+                                     : "the folder " + folder.string() + " does not exist";
   return {};
 }
 

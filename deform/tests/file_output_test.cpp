@@ -148,6 +148,8 @@ TEST(FileOutput, AReadOnlyFileAndAFolderAreRefusedAndLeftAlone) {
   EXPECT_NE(pd::output_path_problem(dir.path / "missing" / "out.off").find("does not exist"),
             std::string::npos);
   EXPECT_EQ(pd::output_path_problem(dir.path / "new.off"), "");
+  EXPECT_NE(pd::output_path_problem(read_only / "m.json").find("ro.off is a file, not a folder"),
+            std::string::npos);
 }
 
 // A child process interrupted (SIGINT, default action) while it writes a large file: it ends by the signal,
