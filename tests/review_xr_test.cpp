@@ -1082,7 +1082,8 @@ TEST(ReviewXr, TheOutFolderIsSettledBeforeTheSession) {
   const ReviewRun blocked =
       run_review(dir, pull_released_then_exit(2.5), "--out " + (dir / "a_file" / "reviewed.off").string());
   EXPECT_NE(blocked.result.status, 0);
-  EXPECT_NE(blocked.result.output.find("cannot make its folder"), std::string::npos) << blocked.result.output;
+  EXPECT_NE(blocked.result.output.find("a_file is a file, not a folder"), std::string::npos)
+      << blocked.result.output;
   EXPECT_EQ(blocked.result.output.find("press at"), std::string::npos) << "the session ran";
   // A folder given as the model is named as one.
   const ReviewRun model_folder = run_review(dir, pull_released_then_exit(2.5), "", "", dir.string());
