@@ -499,8 +499,7 @@ void add_deform_command(CLI::App& root) {
   cmd->add_option("--fixed", o->fixed_file, "File of 0-based fixed vertex indices (the region stops there)");
   cmd->add_option("--roi-radius", o->roi_radius,
                   "Region = vertices within this geodesic (edge-path) distance of the handle (metres at life "
-                  "size); its "
-                  "border is fixed")
+                  "size); its border is fixed")
       ->check(finite_above(0.0, false));
   cmd->add_option("--displacement", o->displacement,
                   "Push/pull displacement d of the handle (metres at life size)")

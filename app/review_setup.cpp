@@ -41,9 +41,8 @@ ReviewSetup prepare_review(const ReviewCommandOptions& o) {
         {"--out", &o.out}, {"--record", &o.record}, {"--events", &o.events}};
     for (const auto& [option, path] : outputs) {
       if (path->empty()) continue;
-      const std::string problem = deform::output_path_problem(*path);
-      if (!problem.empty() && problem.find("does not exist") == std::string::npos)
-        throw CommandError(*path + ": " + option + " " + problem);
+      const std::string problem = deform::output_path_problem(*path, deform::MissingFolder::WillBeMade);
+      if (!problem.empty()) throw CommandError(*path + ": " + option + " " + problem);
     }
     for (std::size_t a = 0; a < 3; ++a)
       for (std::size_t b = a + 1; b < 3; ++b)

@@ -118,10 +118,12 @@ SessionRecording read_session_recording(const std::string& path) {
       auto positive = [&](const char* key, double above) {
         if (!options->contains(key) || (*options)[key].is_null()) return;  // (null: not given, e.g. length_m)
         const nlohmann::json& v = (*options)[key];
-        if (!v.is_number() || !std::isfinite(v.get<double>()) || !(v.get<double>() > above))
-          corrupted(path, 1,
-                    std::string("header option \"") + key + "\" must be a finite number > " +
-                        (above == 0.0 ? "0" : "1") + ", got " + v.dump());
+        if (!v.is_number() || !std::isfinite(v.get<double>()) || !(v.get<double>() > above)) {
+          std::ostringstream problem;
+          problem << "header option \"" << key << "\" must be a finite number > " << above << ", got "
+                  << v.dump();
+          corrupted(path, 1, problem.str());
+        }
       };
       positive("mu", 1.0);
       for (const char* key : {"handle_radius_m", "roi_radius_m", "distance_m", "scale", "length_m"})
@@ -151,9 +153,9 @@ SessionRecording read_session_recording(const std::string& path) {
         legacy_colour = parse_colour(colour->get<std::string>()).value_or(legacy_colour);
     } else if (j.contains("t")) {
       if (const std::string problem = input_line_problem(j); !problem.empty()) corrupted(path, number, problem);
-      // Input lines come in time order (one frame's after another's; a desktop session's within a frame's
-      // rounding): a time over a second before an earlier line's, or past the session's end, is damage (a
-      // replay would step its clock towards it without end).
+      // Input lines come in time order (one frame's after another's; a second of slack for a desktop
+      // session's rounding): a time over a second before an earlier line's, or past the session's end, is
+      // damage (a replay would step its clock towards it without end).
       const double t = j["t"].get<double>();
       if (!(t >= 0.0)) corrupted(path, number, "\"t\" is negative");
       if (t < r.last_input_time - 1.0) {
@@ -242,7 +244,7 @@ SessionRecording read_session_recording(const std::string& path) {
         r.profile = j.value("profile", "");
       } else if (kind == "end") {
         ended = true;
-        // The last frame's input is at the end's time (one frame of slack for rounding).
+        // The last frame's input is at the end's time (a second of slack, as for the order above).
         if (j.contains("time") && j["time"].is_number() &&
             r.last_input_time > j["time"].get<double>() + 1.0) {
           std::ostringstream problem;

@@ -215,7 +215,7 @@ void write_file_atomically(const fs::path& path, std::string_view bytes) {
   if (!problem.empty()) throw std::runtime_error(path.string() + ": " + problem);
 }
 
-std::string output_path_problem(const fs::path& requested) {
+std::string output_path_problem(const fs::path& requested, MissingFolder missing) {
   if (inherited_descriptor(requested)) return {};
   const fs::path path = followed(requested);
   struct stat existing {};
@@ -228,8 +228,9 @@ std::string output_path_problem(const fs::path& requested) {
   const fs::path folder = path.parent_path();
   std::error_code error;
   if (!folder.empty() && !fs::is_directory(folder, error))
-    return fs::exists(folder, error) ? folder.string() + " is a file, not a folder"
-                                     : "the folder " + folder.string() + " does not exist";
+    return fs::exists(folder, error)              ? folder.string() + " is a file, not a folder"
+           : missing == MissingFolder::WillBeMade ? std::string()
+                                                  : "the folder " + folder.string() + " does not exist";
   return {};
 }
 

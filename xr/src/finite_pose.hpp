@@ -9,10 +9,16 @@
 
 namespace pushpull::xr::detail {
 
+[[nodiscard]] inline bool finite_orientation(const XrQuaternionf& q) {
+  return std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z) && std::isfinite(q.w);
+}
+
+[[nodiscard]] inline bool finite_position(const XrVector3f& p) {
+  return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
+}
+
 [[nodiscard]] inline bool finite_pose(const XrPosef& p) {
-  return std::isfinite(p.position.x) && std::isfinite(p.position.y) && std::isfinite(p.position.z) &&
-         std::isfinite(p.orientation.x) && std::isfinite(p.orientation.y) && std::isfinite(p.orientation.z) &&
-         std::isfinite(p.orientation.w);
+  return finite_orientation(p.orientation) && finite_position(p.position);
 }
 
 [[nodiscard]] inline bool finite_fov(const XrFovf& f) {

@@ -764,12 +764,9 @@ FrameViews Session::begin_frame() {
   bool position = (view_state.viewStateFlags & XR_VIEW_STATE_POSITION_VALID_BIT) != 0;
   // Numbers that are not finite: a view without a usable orientation or field of view is not drawn (the
   // frame ends without layers, as without orientation); a position that is not finite counts as not valid.
-  for (XrView& view : views) {
-    if (!detail::finite_fov(view.fov)) return frame;
-    XrPosef orientation_only = view.pose;
-    orientation_only.position = {0.f, 0.f, 0.f};
-    if (!detail::finite_pose(orientation_only)) return frame;
-    if (!detail::finite_pose(view.pose)) position = false;
+  for (const XrView& view : views) {
+    if (!detail::finite_fov(view.fov) || !detail::finite_orientation(view.pose.orientation)) return frame;
+    if (!detail::finite_position(view.pose.position)) position = false;
   }
   std::array<XrPosef, 2> poses{views[0].pose, views[1].pose};
   s.eye_hold.apply(poses, position);

@@ -27,10 +27,14 @@ namespace pushpull::deform {
 // error, or why it is refused); the temporary is removed.
 void write_file_atomically(const std::filesystem::path& path, std::string_view bytes);
 
+// What a command does about an output's folder that is not there yet.
+enum class MissingFolder { Refused, WillBeMade };
+
 // Why `path` cannot be written as above, or "" when it can (as far as one can tell before writing): its
-// folder does not exist, it is a folder, it has no write permission. For checking every output of a
-// command before writing any of them.
-[[nodiscard]] std::string output_path_problem(const std::filesystem::path& path);
+// folder does not exist (unless it will be made) or is a file, it is a folder, it has no write permission.
+// For checking every output of a command before writing any of them.
+[[nodiscard]] std::string output_path_problem(const std::filesystem::path& path,
+                                              MissingFolder missing = MissingFolder::Refused);
 
 // Whether two output paths name the same file (after following symbolic links; either may not exist yet).
 [[nodiscard]] bool same_output_file(const std::filesystem::path& a, const std::filesystem::path& b);
