@@ -30,6 +30,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace pushpull::app {
@@ -115,23 +116,33 @@ void check_output_model_path(const fs::path& path) {
 }
 
 // V: #V by 3 deformed positions of model.mesh.
-void save_model(const fs::path& path, const LoadedModel& model, const Eigen::MatrixXd& V) {
+// Writes the deformed model; returns what the output cannot carry (warnings for the run's list).
+std::vector<std::string> save_model(const fs::path& path, const LoadedModel& model,
+                                    const Eigen::MatrixXd& V) {
   if (is_glb_path(path)) {
     try {
       const assets::Model plain =
           model.scene ? assets::Model{} : assets::model_from_mesh(*model.mesh, path.stem().string());
-      for (const std::string& warning : assets::write_glb(model.scene ? *model.scene : plain, V, path))
-        std::printf("  warning: %s\n", warning.c_str());
+      return assets::write_glb(model.scene ? *model.scene : plain, V, path);
     } catch (const assets::AssetError& error) {
       throw CommandError(error.what());
     }
-    return;
   }
   try {
     deform::write_mesh(path, deform::Mesh{V, model.mesh->F});
   } catch (const deform::MeshIoError& error) {
     throw CommandError(error.what());
   }
+  if (!model.scene) return {};
+  // A glTF scene written as a bare mesh keeps the welded surface only: said, not silently dropped.
+  char text[320];
+  std::snprintf(
+      text, sizeof text,
+      "%s holds the welded surface only (%ld vertices, %ld triangles): the glTF's %zu primitive(s), "
+      "%zu material(s) and texture coordinates are not in it (an --out ending in .glb keeps them)",
+      path.string().c_str(), static_cast<long>(V.rows()), static_cast<long>(model.mesh->F.rows()),
+      model.scene->primitives.size(), model.scene->materials.size());
+  return {text};
 }
 
 // ------------------------------------------------------------------------------------------------------
@@ -404,7 +415,8 @@ void run_deform(DeformCommandOptions o) {
   metrics_options.section_offsets = section_offsets(*mesh, omega, d, o.sections);
   record.metrics = deform::evaluate_deformation(*mesh, record.result.V, d, omega, metrics_options);
 
-  save_model(o.out, model, record.result.V);
+  for (std::string& warning : save_model(o.out, model, record.result.V))
+    record.result.warnings.push_back(std::move(warning));
 
   record.input = o.mesh;
   record.output = o.out;
@@ -457,9 +469,9 @@ void run_deform(DeformCommandOptions o) {
               life.to_mm(m.displacement.max), life.to_mm(m.along_d.rms), life.to_mm(m.orthogonal.rms));
   std::printf(
       "  Gaussian-curvature sign reversals (+ to -, - to +) %.2f%% of %zu vertices; %zu went flat, %zu left "
-      "flat (flat: |K| L^2 <= %g, L = %g)\n",
+      "flat (flat: |K| L^2 <= %g, L = %.3g m, the model's diagonal)\n",
       100.0 * m.sign_reversal_fraction, m.curvature_vertices, m.into_flat, m.out_of_flat, o.dead_band,
-      m.reference_length);
+      life.to_mm(m.reference_length) / 1000.0);
   if (!m.reversals_by_band.empty())
     std::printf("  reversals where clearly curved: %s\n",
                 describe_band_reversals(m.reversals_by_band, life.to_mm(1.0) / 1000.0).c_str());

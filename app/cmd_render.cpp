@@ -13,6 +13,7 @@
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <memory>
@@ -50,6 +51,15 @@ void run_render(RenderCommandOptions options) {
     throw CommandError("--up: the up direction must not be zero");
   if (const std::string problem = deform::output_path_problem(options.out); !problem.empty())
     throw CommandError(options.out + ": " + problem);
+  // The picture is PNG whatever the name says: a name that promises another format (x.jpg) is refused
+  // rather than written as a PNG under it. A name without an extension (/dev/stdout) is taken as it is.
+  {
+    std::string extension = fs::path(options.out).extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    if (!extension.empty() && extension != ".png")
+      throw CommandError(options.out + ": render writes PNG pictures; give --out a name ending in .png");
+  }
   const assets::Model model = load(options.model, "model");
   const LifeSize life(options.life_size, model.bounds, options.model);
   convert_to_file_units(options, life);

@@ -7,6 +7,13 @@
 #include <cstdio>
 #include <exception>
 #include <string>
+#include <vector>
+
+namespace {
+// The exit status of a command line that cannot be used (an unknown command or option, a value out of range),
+// as for the shell's own builtins; 1 is an error while the command ran (a file, a solve).
+constexpr int kUsageError = 2;
+}  // namespace
 
 int main(int argc, char** argv) {
   // Line by line also into a file or a pipe (a review's log survives a kill; its lines interleave with
@@ -31,15 +38,33 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     // A first word that is neither an option nor a command: say so, with the commands there are (CLI11
     // would only say that a subcommand is required).
-    if (argc > 1 && argv[1][0] != '-' && dynamic_cast<const CLI::RequiredError*>(&e) != nullptr) {
-      std::string commands;
-      for (const CLI::App* command : root.get_subcommands({}))
-        commands += (commands.empty() ? "" : ", ") + command->get_name();
+    std::string commands;
+    bool known = false;
+    for (const CLI::App* command : root.get_subcommands({})) {
+      commands += (commands.empty() ? "" : ", ") + command->get_name();
+      known = known || (argc > 1 && command->get_name() == argv[1]);
+    }
+    if (argc > 1 && argv[1][0] != '-' && !known && dynamic_cast<const CLI::RequiredError*>(&e) != nullptr) {
       std::fprintf(stderr, "pushpull: error: unknown command '%s' (the commands: %s; pushpull --help)\n",
                    argv[1], commands.c_str());
-      return 109;  // CLI11's exit code for an unknown argument
+      return kUsageError;
     }
-    return root.exit(e);
+    // --help and --version end here too (success): CLI11 prints them.
+    if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) return root.exit(e);
+    // A command line that cannot be used: in the same form as every other error, with the command named
+    // (CLI11 alone prints the bare message and exits 105-109 by the kind of mistake).
+    std::string command, message = e.what();
+    for (const CLI::App* sub : root.get_subcommands()) {
+      command = " " + sub->get_name();
+      // CLI11 checks what is required before what is left over: a mistyped option is named as such, not
+      // as the missing argument it displaced.
+      const std::vector<std::string> left = sub->remaining();
+      if (dynamic_cast<const CLI::RequiredError*>(&e) != nullptr && !left.empty())
+        message = "unknown argument '" + left.front() + "'";
+    }
+    std::fprintf(stderr, "pushpull%s: error: %s\n(pushpull%s --help lists the options)\n", command.c_str(),
+                 message.c_str(), command.c_str());
+    return kUsageError;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "pushpull: error: %s\n", e.what());
     return 1;

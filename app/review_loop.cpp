@@ -266,7 +266,7 @@ void run_review(const ReviewCommandOptions& o) {
     };
     auto history_text = [&] { return edit_counts_text(edit_counts(service)); };
     std::optional<xr::Input> input;  // per session, like the eyes
-    input.emplace(xr.instance(), xr.handle(), xr.stage_space());
+    input.emplace(xr.instance(), xr.handle(), xr.stage_space(), xr.enabled_extensions());
     FrameStats stats;
     SizeSteering sizes;
     const bool format_6 = o.behaviour_of_format >= 6;
@@ -333,7 +333,7 @@ void run_review(const ReviewCommandOptions& o) {
         return false;
       }
       eyes.emplace(vk.device, xr.eye(0), xr.eye(1));
-      input.emplace(xr.instance(), xr.handle(), xr.stage_space());
+      input.emplace(xr.instance(), xr.handle(), xr.stage_space(), xr.enabled_extensions());
       menu = ReviewMenu{};
       log.write({{"event", "session recreated"}});
       recorder.write_record("resumed", t);

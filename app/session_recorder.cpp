@@ -31,41 +31,27 @@ json pose_json(const XrPosef& p) {
        {double(p.orientation.x), double(p.orientation.y), double(p.orientation.z), double(p.orientation.w)}}};
 }
 
+// The components a hand's state is written to: those xr::Input binds its actions to in the profile
+// (xr::suggested_component), Touch's for a profile it does not know. Empty: none on that hand.
 struct ButtonPaths {
-  std::array<const char*, 2> undo{nullptr, nullptr}, redo{nullptr, nullptr}, menu{nullptr, nullptr};
-  const char* trigger = "/input/trigger/value";
-  const char* grip = "/input/squeeze/value";
-  const char* stick = "/input/thumbstick";
+  std::array<std::string, 2> trigger, grip, stick, undo, redo, menu;
 };
 
-// The component each action is bound to in xr::Input's bindings (xr/src/input.cpp), per profile.
 ButtonPaths button_paths(const std::string& profile) {
+  const std::string known =
+      xr::suggested_component(profile, xr::BoundAction::Trigger, xr::Hand::Right).empty()
+          ? std::string("/interaction_profiles/oculus/touch_controller")
+          : profile;
   ButtonPaths b;
-  if (profile == "/interaction_profiles/khr/simple_controller") {
-    b.trigger = "/input/select/click";
-    b.grip = nullptr;
-    b.stick = nullptr;
-    b.undo = {"/input/menu/click", nullptr};
-    b.redo = {nullptr, "/input/menu/click"};
-  } else if (profile == "/interaction_profiles/valve/index_controller") {
-    b.undo = {"/input/a/click", "/input/a/click"};
-    b.redo = {"/input/b/click", "/input/b/click"};
-    b.menu = {"/input/thumbstick/click", "/input/thumbstick/click"};
-  } else if (profile == "/interaction_profiles/htc/vive_controller") {
-    b.grip = "/input/squeeze/click";
-    b.stick = "/input/trackpad";
-    b.undo = {"/input/menu/click", nullptr};
-    b.redo = {nullptr, "/input/menu/click"};
-    b.menu = {"/input/trackpad/click", "/input/trackpad/click"};
-  } else if (profile == "/interaction_profiles/microsoft/motion_controller") {
-    b.grip = "/input/squeeze/click";
-    b.undo = {"/input/menu/click", nullptr};
-    b.redo = {nullptr, "/input/menu/click"};
-    b.menu = {"/input/thumbstick/click", "/input/thumbstick/click"};
-  } else {  // oculus/touch_controller (and the default)
-    b.undo = {"/input/x/click", "/input/a/click"};
-    b.redo = {"/input/y/click", "/input/b/click"};
-    b.menu = {"/input/menu/click", nullptr};
+  for (int h = 0; h < 2; ++h) {
+    const auto hand = xr::Hand(h);
+    const auto at = [&](xr::BoundAction action) { return xr::suggested_component(known, action, hand); };
+    b.trigger[size_t(h)] = at(xr::BoundAction::Trigger);
+    b.grip[size_t(h)] = at(xr::BoundAction::Grip);
+    b.stick[size_t(h)] = at(xr::BoundAction::Thumbstick);
+    b.undo[size_t(h)] = at(xr::BoundAction::Undo);
+    b.redo[size_t(h)] = at(xr::BoundAction::Redo);
+    b.menu[size_t(h)] = at(xr::BoundAction::Menu);
   }
   return b;
 }
@@ -199,15 +185,16 @@ void SessionRecorder::write_frame_input(double t, const std::optional<XrPosef>& 
       if (!in.aim_position_tracked) line["tracked"] = false;  // a guess: the replay's runtime reports it so
       write_line(line);
     }
-    write_value(t, hand + b.trigger, double(in.trigger));
-    if (b.grip) write_value(t, hand + b.grip, double(in.grip));
-    if (b.stick) write_value(t, hand + b.stick, json{double(in.thumbstick.x), double(in.thumbstick.y)});
+    if (!b.trigger[h].empty()) write_value(t, hand + b.trigger[h], double(in.trigger));
+    if (!b.grip[h].empty()) write_value(t, hand + b.grip[h], double(in.grip));
+    if (!b.stick[h].empty())
+      write_value(t, hand + b.stick[h], json{double(in.thumbstick.x), double(in.thumbstick.y)});
     // Buttons: a press (went down since the last frame) is 1 at this frame and 0 at the next.
-    const std::array<std::pair<const char*, bool>, 3> buttons{
-        {{b.undo[h], in.undo_pressed}, {b.redo[h], in.redo_pressed}, {b.menu[h], in.menu_pressed}}};
+    const std::array<std::pair<const std::string*, bool>, 3> buttons{
+        {{&b.undo[h], in.undo_pressed}, {&b.redo[h], in.redo_pressed}, {&b.menu[h], in.menu_pressed}}};
     for (const auto& [component, pressed] : buttons) {
-      if (component == nullptr) continue;
-      const std::string path = hand + component;
+      if (component->empty()) continue;
+      const std::string path = hand + *component;
       if (pressed) {
         write_value(t, path, 1.0);
         button_down_[path] = true;

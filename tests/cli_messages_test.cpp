@@ -30,6 +30,16 @@ std::size_t count(const std::string& text, const std::string& what) {
   return n;
 }
 
+// How often `what` occurs in the "warnings" of the METRICS.json at `file`, and the list, for a failure
+// message.
+std::pair<std::size_t, std::string> warnings_with(const std::string& file, const std::string& what) {
+  std::ifstream in(file);
+  const nlohmann::json metrics = nlohmann::json::parse(in);
+  std::size_t n = 0;
+  for (const auto& warning : metrics.at("warnings")) n += count(warning.get<std::string>(), what);
+  return {n, metrics.at("warnings").dump(2)};
+}
+
 class CliMessages : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -57,12 +67,8 @@ TEST_F(CliMessages, HandleNearTheFixedBorderIsWarnedOnce) {
       " --displacement 0 0 0.1 --out " + path("o.off") + " --metrics " + path("m.json"));
   ASSERT_EQ(run.status, 0) << run.output;
   EXPECT_EQ(count(run.output, "handle vertices lie within"), 1u) << run.output;
-  std::ifstream in(path("m.json"));
-  const nlohmann::json metrics = nlohmann::json::parse(in);
-  std::size_t in_json = 0;
-  for (const auto& warning : metrics["warnings"])
-    in_json += count(warning.get<std::string>(), "handle vertices lie within");
-  EXPECT_EQ(in_json, 1u) << metrics["warnings"].dump(2);
+  const auto [in_json, listed] = warnings_with(path("m.json"), "handle vertices lie within");
+  EXPECT_EQ(in_json, 1u) << listed;
 }
 
 // A --handle-at point off the surface is refused in the life-size metres the user typed, with the nearest
@@ -234,6 +240,99 @@ TEST_F(CliMessages, OrbitCameraInsideTheModelIsWarned) {
   const CommandResult framed = run_pushpull("render " + car + " --size 48 36 --out " + path("framed.png"));
   ASSERT_EQ(framed.status, 0) << framed.output;
   EXPECT_EQ(framed.output.find("warning"), std::string::npos) << framed.output;
+}
+
+// A command line that cannot be used (an unknown option, a value out of range) reads like every other error,
+// names the command and exits 2; a mistyped option is named as such, not as the argument it displaced.
+TEST_F(CliMessages, UnusableCommandLinesNameTheCommandAndExitTwo) {
+  const std::string model = kHemisphere.string();
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"render " + model + " --out " + path("r.png") + " --eye nan 0 0",
+       "pushpull render: error: --eye: nan must be a finite number"},
+      {"render " + model + " --out " + path("r.png") + " --target 0 inf 0",
+       "pushpull render: error: --target: inf must be a finite number"},
+      {"render " + model + " --out " + path("r.png") + " --arrow 0 0 nan",
+       "pushpull render: error: --arrow: nan must be a finite number"},
+      {"render " + model + " --out " + path("r.png") + " --size 0 16", "pushpull render: error: --size"},
+      {"deform --bogus", "pushpull deform: error: unknown argument '--bogus'"},
+      {"deform " + model + " --out " + path("o.off"), "pushpull deform: error: --displacement is required"},
+      {"bogus", "pushpull: error: unknown command 'bogus'"},
+      {"", "pushpull: error: A subcommand is required"},
+  };
+  for (const auto& [arguments, message] : cases) {
+    const CommandResult run = run_pushpull(arguments);
+    EXPECT_EQ(run.status, 2) << arguments << "\n" << run.output;
+    EXPECT_NE(run.output.find(message), std::string::npos) << arguments << "\n" << run.output;
+  }
+  EXPECT_FALSE(fs::exists(path("r.png")));
+  EXPECT_FALSE(fs::exists(path("o.off")));
+  EXPECT_EQ(run_pushpull("--version").status, 0);
+  EXPECT_EQ(run_pushpull("render --help").status, 0);
+}
+
+// What deform says of a pull that is not a push/pull: over 100 times the model's size is refused before
+// anything is written; a spike, a handle torn out, a whole part moved and a solve cut short are warned
+// about, on the terminal and in METRICS.json's warnings (scripts read those), each once.
+TEST_F(CliMessages, DeformWarnsOfPullsThatAreNotAPushPull) {
+  const std::string model = kHemisphere.string();
+  const std::string outputs = " --out " + path("o.off") + " --metrics " + path("m.json");
+  const CommandResult huge = run_pushpull("deform " + model +
+                                          " --handle-at 0 0 1 --handle-radius 0.2 --roi-radius 0.8 "
+                                          "--displacement 0 0 1000" +
+                                          outputs);
+  EXPECT_EQ(huge.status, 1) << huge.output;
+  EXPECT_NE(
+      huge.output.find("--displacement: |d| = 1000 m is more than 100 times the model's size (2.95579 m "
+                       "across)"),
+      std::string::npos)
+      << huge.output;
+  EXPECT_FALSE(fs::exists(path("o.off")));
+  EXPECT_FALSE(fs::exists(path("m.json")));
+
+  auto warned = [&](const std::string& arguments, const std::string& warning) {
+    const CommandResult run = run_pushpull("deform " + model + " " + arguments + outputs);
+    ASSERT_EQ(run.status, 0) << arguments << "\n" << run.output;
+    EXPECT_EQ(count(run.output, "warning: " + warning), 1u) << arguments << "\n" << run.output;
+    const auto [in_json, listed] = warnings_with(path("m.json"), warning);
+    EXPECT_EQ(in_json, 1u) << arguments << "\n" << listed;
+  };
+  // 0.5 m on a 0.05 m handle: 10 radii (a spike from 4 on).
+  warned("--handle-at 0 0 1 --handle-radius 0.05 --roi-radius 0.8 --displacement 0 0 0.5",
+         "steep: |d| is 10x the handle radius, a spike rather than a bulge");
+  warned("--handle-at 0 0 1 --handle-radius 0.2 --roi-radius 0 --displacement 0 0 0.1",
+         "only the handle moves, torn from the surface around it");
+  warned("--handle-at 0 0 1 --handle-radius 0.2 --roi-radius 10 --displacement 0 0 0.1",
+         "the whole part moves: the region covers its connected part and no border holds it");
+  warned("--handle-at 0 0 1 --handle-radius 0.2 --roi-radius 0.8 --displacement 0 0 0.1 --iterations 2",
+         "not converged: stopped after 2 iteration(s) (max-iterations)");
+  // The paper's setting says "not converged" in its stop text, not as a warning.
+  const CommandResult paper = run_pushpull("deform " + model +
+                                           " --handle-at 0 0 1 --handle-radius 0.2 --roi-radius 0.8 "
+                                           "--displacement 0 0 0.1 --paper-iterations" +
+                                           outputs);
+  ASSERT_EQ(paper.status, 0) << paper.output;
+  EXPECT_EQ(paper.output.find("warning: not converged"), std::string::npos) << paper.output;
+}
+
+// A glTF written out as OFF/OBJ/PLY keeps the welded surface only: said (not dropped silently), in the output
+// and METRICS.json; a .glb keeps the scene and says nothing of the kind.
+TEST_F(CliMessages, AGltfWrittenAsABareMeshSaysWhatItLeavesOut) {
+  const std::string box = (fs::path(PUSHPULL_SHARED_DATA) / "gltf" / "Box_Draco" / "Box_Draco.glb").string();
+  const std::string pull =
+      "deform " + box +
+      " --handle-at 0.5 0.5 0.5 --handle-radius 0.1 --roi-radius 1.2 --displacement 0 0 0.05";
+  const CommandResult off = run_pushpull(pull + " --out " + path("box.off") + " --metrics " + path("m.json"));
+  ASSERT_EQ(off.status, 0) << off.output;
+  const std::string said =
+      path("box.off") +
+      " holds the welded surface only (8 vertices, 12 triangles): the glTF's 1 primitive(s), "
+      "1 material(s) and texture coordinates are not in it";
+  EXPECT_NE(off.output.find("warning: " + said), std::string::npos) << off.output;
+  const auto [in_json, listed] = warnings_with(path("m.json"), said);
+  EXPECT_EQ(in_json, 1u) << listed;
+  const CommandResult glb = run_pushpull(pull + " --out " + path("box.glb") + " --metrics " + path("g.json"));
+  ASSERT_EQ(glb.status, 0) << glb.output;
+  EXPECT_EQ(glb.output.find("welded surface only"), std::string::npos) << glb.output;
 }
 
 }  // namespace

@@ -162,6 +162,14 @@ TEST(RenderCli, ErrorsNameTheFileAndTheProblem) {
   r = run("render " + flat.string() + " --out /nonexistent-dir/x.png --size 16 16");
   EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.output.find("/nonexistent-dir/x.png"), std::string::npos) << r.output;
+  // A name that promises another format is refused, not written as a PNG under it.
+  const fs::path jpeg = temp_dir() / "picture.jpg";
+  r = run("render " + flat.string() + " --out " + jpeg.string() + " --size 16 16");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find(jpeg.string() + ": render writes PNG pictures; give --out a name ending in .png"),
+            std::string::npos)
+      << r.output;
+  EXPECT_FALSE(fs::exists(jpeg));
 }
 
 }  // namespace

@@ -875,6 +875,48 @@ TEST(ReviewXr, UndoRestoresTheModelAndRedoReappliesIt) {
             std::string::npos);
 }
 
+// Controllers whose interaction profiles come with an extension (HP Reverb G2's, Vive Cosmos's): the review
+// enables the extension where the runtime offers it and binds them like Touch (trigger, X = undo, Y = redo);
+// the recording names the profile and writes their components, so the replay presses the same buttons.
+// A runtime without the extensions gets no suggestion for them (its default profile is the simple
+// controller's, on which this script presses nothing).
+TEST(ReviewXr, ExtensionControllersPushPullUndoRedoAndReplay) {
+  const std::string script =
+      script_start() + R"({"t":1.4,"path":"/user/hand/right/input/trigger/value","value":1.0}
+{"t":1.5,"path":"/user/hand/right/input/trigger/value","value":0.0}
+{"t":2.0,"path":"/user/hand/left/input/x/click","value":true}
+{"t":2.1,"path":"/user/hand/left/input/x/click","value":false}
+{"t":2.5,"path":"/user/hand/left/input/y/click","value":true}
+{"t":2.6,"path":"/user/hand/left/input/y/click","value":false}
+{"t":3.0,"event":"exit"}
+)";
+  for (const std::string profile : {"/interaction_profiles/hp/mixed_reality_controller",
+                                    "/interaction_profiles/htc/vive_cosmos_controller"}) {
+    const fs::path dir = test_dir();
+    const ReviewRun run = run_review(dir, script, "--record " + (dir / "session.jsonl").string(),
+                                     "PUSHPULL_XR_SIM_PROFILE=" + profile);
+    ASSERT_EQ(run.result.status, 0) << profile << "\n" << run.result.output;
+    EXPECT_EQ(run.of("commit").size(), 1u) << profile << "\n" << run.result.output;
+    EXPECT_EQ(run.of("undo").size(), 1u) << profile << "\n" << run.result.output;
+    EXPECT_EQ(run.of("redo").size(), 1u) << profile << "\n" << run.result.output;
+    const auto profiles = recording_records(dir / "session.jsonl", "profile");
+    ASSERT_FALSE(profiles.empty()) << profile;
+    EXPECT_EQ(profiles[0].at("profile"), profile);
+    expect_replays_with_commits(dir / "session.jsonl");
+  }
+  const fs::path dir = test_dir();
+  const ReviewRun without =
+      run_review(dir, script, "--record " + (dir / "session.jsonl").string(),
+                 "PUSHPULL_XR_SIM_PROFILE=/interaction_profiles/hp/mixed_reality_controller"
+                 " PUSHPULL_XR_SIM_QUIRKS=no-controller-extensions");
+  ASSERT_EQ(without.result.status, 0) << without.result.output;
+  EXPECT_EQ(without.result.output.find("refused the bindings"), std::string::npos) << without.result.output;
+  EXPECT_EQ(without.of("commit").size(), 0u) << without.result.output;
+  const auto profiles = recording_records(dir / "session.jsonl", "profile");
+  ASSERT_FALSE(profiles.empty());
+  EXPECT_EQ(profiles[0].at("profile"), "/interaction_profiles/khr/simple_controller");
+}
+
 // hood.off's bonnet (scripts/make-example-hood.py) with nx by ny vertices, written to `path` as OFF.
 void write_bonnet(const fs::path& path, int nx, int ny) {
   constexpr double kWidth = 1.5, kLength = 1.2;

@@ -57,6 +57,7 @@ struct OurRun {
   double per_iteration_ms = 0.0;
   double converge_ms = 0.0;  // factorize + iterations to the stopping rule (precompute: once per region)
   int iterations = 0;
+  int probe_evaluations = 0;  // the rate probe's local-global steps (DeformResult::probe_evaluations)
   bool converged = false;
   // The solve started from the biharmonic spread (DeformOptions::smooth_start_min_free).
   bool smooth_start = false;
@@ -85,6 +86,7 @@ OurRun run_ours(const pb::HeightFieldProblem& problem, const pd::RegionOfInteres
   run.factorize_ms = r.timing.factorize;
   run.converge_ms = r.timing.factorize + r.timing.solve;
   run.iterations = r.iterations;
+  run.probe_evaluations = r.probe_evaluations;
   run.converged = r.converged;
   run.smooth_start = r.smooth_start;
   run.coarse_start = r.coarse_start;
@@ -106,9 +108,9 @@ OurRun run_ours(const pb::HeightFieldProblem& problem, const pd::RegionOfInteres
 }
 
 void print_row(long vertices, const char* method, const char* setting, const OurRun& r) {
-  std::printf("%8ld %-8s %-15s %9.1f %9.1f %8.2f %5d%s %10.1f %8.1e %8.1e\n", vertices, method, setting,
-              r.precompute_ms, r.factorize_ms, r.per_iteration_ms, r.iterations, r.converged ? " " : "*",
-              r.converge_ms, r.estimate, r.error);
+  std::printf("%8ld %-8s %-15s %9.1f %9.1f %8.2f %5d+%-3d%s %10.1f %8.1e %8.1e\n", vertices, method, setting,
+              r.precompute_ms, r.factorize_ms, r.per_iteration_ms, r.iterations, r.probe_evaluations,
+              r.converged ? " " : "*", r.converge_ms, r.estimate, r.error);
 }
 
 }  // namespace
@@ -156,8 +158,8 @@ int main(int argc, char** argv) {
   std::printf(
       "ours: default accuracy (estimated distance to the minimiser <= 1e-2 |d|); err/|d| measured against\n"
       "the same energy solved to 1e-9; times in ms; * = stopped by the iteration cap\n\n");
-  std::printf("%8s %-8s %-15s %9s %9s %8s %6s %10s %8s %8s\n", "vertices", "method", "setting", "precomp",
-              "factorize", "per-iter", "iters", "to-result", "estimate", "err/|d|");
+  std::printf("%8s %-8s %-15s %9s %9s %8s %-10s %10s %8s %8s\n", "vertices", "method", "setting", "precomp",
+              "factorize", "per-iter", "iter+probe", "to-result", "estimate", "err/|d|");
   double per_iteration_10k = 0.0, per_iteration_100k = 0.0, asan_10k = 0.0, arap_sr_10k = 0.0,
          largest_ms = 0.0;
   for (const int n : sides) {
@@ -214,7 +216,7 @@ int main(int argc, char** argv) {
             pb::run_cgal_spokes_and_rims(problem.mesh, problem.handle, problem.fixed, problem.d, reference,
                                          one.error * problem.d.norm(), 2000);
         std::printf(
-            "%8ld %-8s %-15s %9.1f %9s %8.2f %5d%s %10.1f %8s %8.1e   ratio %.1fx (CGAL / ours, 1 thread "
+            "%8ld %-8s %-15s %9.1f %9s %8.2f %5d    %s %10.1f %8s %8.1e   ratio %.1fx (CGAL / ours, 1 thread "
             "each, same accuracy)\n",
             vertices, name.c_str(), "CGAL, 1 thread", peer.preprocess_ms, "-", peer.per_iteration_ms,
             peer.iterations, peer.converged ? " " : "*", peer.converge_ms, "-", peer.error / problem.d.norm(),
@@ -230,6 +232,7 @@ int main(int argc, char** argv) {
       "CGAL: preprocess (its matrix and factorization) + iterations, run until within our 1-thread arap-sr "
       "error\n"
       "of the reference; ratio = CGAL to-result / (our precompute + to-result);\n"
+      "iter+probe: iterations and the rate probe's local-global steps (per-iter is the cost of either);\n"
       "smooth / rest: a cold solve from the constrained moves spread biharmonically (the default from %d "
       "free\n"
       "vertices on; factorize includes its factorization) / from the rest positions;\n"

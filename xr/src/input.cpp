@@ -2,6 +2,7 @@
 
 #include "finite_pose.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 #include <utility>
@@ -32,6 +33,7 @@ using Binding = std::pair<ActionIndex, const char*>;
 struct Profile {
   const char* path;
   std::vector<Binding> bindings;
+  const char* extension = nullptr;  // the instance extension that brings the profile (none: OpenXR 1.0 core)
 };
 
 // Both hands get the same component unless a binding names a hand ("L:" / "R:" prefix).
@@ -81,12 +83,95 @@ std::vector<Profile> profiles() {
         {Redo, "R/input/menu/click"},
         {Menu, "*/input/thumbstick/click"},
         {Haptic, "*/output/haptic"}}},
+      // HP Reverb G2: Touch's layout (X/Y left, A/B right), a menu button on each hand.
+      {"/interaction_profiles/hp/mixed_reality_controller",
+       {{Trigger, "*/input/trigger/value"},
+        {Grip, "*/input/squeeze/value"},
+        {Aim, "*/input/aim/pose"},
+        {Thumbstick, "*/input/thumbstick"},
+        {Undo, "L/input/x/click"},
+        {Undo, "R/input/a/click"},
+        {Redo, "L/input/y/click"},
+        {Redo, "R/input/b/click"},
+        {Menu, "*/input/menu/click"},
+        {Haptic, "*/output/haptic"}},
+       XR_EXT_HP_MIXED_REALITY_CONTROLLER_EXTENSION_NAME},
+      {"/interaction_profiles/htc/vive_cosmos_controller",
+       {{Trigger, "*/input/trigger/value"},
+        {Grip, "*/input/squeeze/click"},
+        {Aim, "*/input/aim/pose"},
+        {Thumbstick, "*/input/thumbstick"},
+        {Undo, "L/input/x/click"},
+        {Undo, "R/input/a/click"},
+        {Redo, "L/input/y/click"},
+        {Redo, "R/input/b/click"},
+        {Menu, "L/input/menu/click"},
+        {Haptic, "*/output/haptic"}},
+       XR_HTC_VIVE_COSMOS_CONTROLLER_INTERACTION_EXTENSION_NAME},
+      // Samsung Odyssey: the Windows Mixed Reality motion controller's components.
+      {"/interaction_profiles/samsung/odyssey_controller",
+       {{Trigger, "*/input/trigger/value"},
+        {Grip, "*/input/squeeze/click"},
+        {Aim, "*/input/aim/pose"},
+        {Thumbstick, "*/input/thumbstick"},
+        {Undo, "L/input/menu/click"},
+        {Redo, "R/input/menu/click"},
+        {Menu, "*/input/thumbstick/click"},
+        {Haptic, "*/output/haptic"}},
+       XR_EXT_SAMSUNG_ODYSSEY_CONTROLLER_EXTENSION_NAME},
   };
+}
+
+const std::vector<Profile>& known_profiles() {
+  static const std::vector<Profile> all = profiles();
+  return all;
 }
 
 constexpr const char* kHandPaths[2] = {"/user/hand/left", "/user/hand/right"};
 
 }  // namespace
+
+std::string suggested_component(const std::string& profile, BoundAction action, Hand hand) {
+  ActionIndex index = Trigger;
+  switch (action) {
+    case BoundAction::Trigger:
+      index = Trigger;
+      break;
+    case BoundAction::Grip:
+      index = Grip;
+      break;
+    case BoundAction::Thumbstick:
+      index = Thumbstick;
+      break;
+    case BoundAction::Undo:
+      index = Undo;
+      break;
+    case BoundAction::Redo:
+      index = Redo;
+      break;
+    case BoundAction::Menu:
+      index = Menu;
+      break;
+  }
+  const char own = hand == Hand::Left ? 'L' : 'R';
+  for (const Profile& p : known_profiles()) {
+    if (profile != p.path) continue;
+    for (const auto& [bound, component] : p.bindings)
+      if (bound == index && (component[0] == '*' || component[0] == own)) return component + 1;
+    return {};
+  }
+  return {};
+}
+
+const std::vector<std::string>& controller_profile_extensions() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> list;
+    for (const Profile& p : known_profiles())
+      if (p.extension != nullptr) list.emplace_back(p.extension);
+    return list;
+  }();
+  return names;
+}
 
 struct Input::Impl {
   XrInstance instance = XR_NULL_HANDLE;
@@ -147,7 +232,9 @@ struct Input::Impl {
   }
 };
 
-Input::Input(XrInstance instance, XrSession session, XrSpace stage_space) : impl_(std::make_unique<Impl>()) {
+Input::Input(XrInstance instance, XrSession session, XrSpace stage_space,
+             const std::vector<std::string>& enabled_extensions)
+    : impl_(std::make_unique<Impl>()) {
   Impl& s = *impl_;
   s.instance = instance;
   s.session = session;
@@ -166,7 +253,11 @@ Input::Input(XrInstance instance, XrSession session, XrSpace stage_space) : impl
     info.subactionPaths = s.hands;
     PUSHPULL_XR_CHECK(instance, xrCreateAction(s.set, &info, &s.actions[a]));
   }
-  for (const Profile& profile : profiles()) {
+  for (const Profile& profile : known_profiles()) {
+    // A profile an extension brings exists for the runtime only with that extension enabled.
+    if (profile.extension != nullptr && std::find(enabled_extensions.begin(), enabled_extensions.end(),
+                                                  profile.extension) == enabled_extensions.end())
+      continue;
     std::vector<XrActionSuggestedBinding> suggested;
     for (const auto& [action, component] : profile.bindings) {
       const char which = component[0];

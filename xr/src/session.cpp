@@ -13,6 +13,7 @@
 
 #include "eye_hold.hpp"
 #include "finite_pose.hpp"
+#include "pushpull/xr/input.hpp"
 
 namespace pushpull::xr {
 namespace {
@@ -248,6 +249,7 @@ struct Session::Impl {
   // names).
   bool vulkan_enable2 = true;
   std::string runtime_name, system_name;
+  std::vector<std::string> enabled_extensions;
   SessionOptions options;  // as created (eye size): a recreated session uses them again
 
   // The OpenXR instance goes before the Vulkan device and instance (as hello_xr does): a runtime may keep
@@ -271,6 +273,11 @@ struct Session::Impl {
     std::vector<const char*> extensions{vulkan_enable2 ? XR_KHR_VULKAN_ENABLE2_EXTENSION_NAME
                                                        : XR_KHR_VULKAN_ENABLE_EXTENSION_NAME};
     for (const auto& e : options.extensions) extensions.push_back(e.c_str());
+    // Interaction profiles beyond OpenXR 1.0's (input.hpp): optional, enabled where offered.
+    for (const std::string& e : controller_profile_extensions())
+      if (lists(offered, e.c_str()) &&
+          std::find(options.extensions.begin(), options.extensions.end(), e) == options.extensions.end())
+        extensions.push_back(e.c_str());
     XrInstanceCreateInfo info{XR_TYPE_INSTANCE_CREATE_INFO};
     std::snprintf(info.applicationInfo.applicationName, XR_MAX_APPLICATION_NAME_SIZE, "%s",
                   options.application_name.c_str());
@@ -293,6 +300,7 @@ struct Session::Impl {
                                    kPointAtRuntime,
                                r);
     }
+    enabled_extensions.assign(extensions.begin(), extensions.end());
     XrInstanceProperties properties{XR_TYPE_INSTANCE_PROPERTIES};
     CHECK(xrGetInstanceProperties(instance, &properties));
     runtime_name = properties.runtimeName;
@@ -867,6 +875,9 @@ bool Session::stage_is_local() const {
 }
 const std::string& Session::runtime_name() const {
   return impl_->runtime_name;
+}
+const std::vector<std::string>& Session::enabled_extensions() const {
+  return impl_->enabled_extensions;
 }
 const std::string& Session::system_name() const {
   return impl_->system_name;

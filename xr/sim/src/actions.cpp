@@ -183,6 +183,10 @@ XrResult XRAPI_CALL suggest_bindings(XrInstance handle, const XrInteractionProfi
   if (profile_path == nullptr) return XR_ERROR_PATH_INVALID;
   const InteractionProfile* profile = find_profile(*profile_path);
   if (profile == nullptr) return XR_ERROR_PATH_UNSUPPORTED;
+  // A profile an extension brings exists only with that extension enabled (the spec's rule for
+  // extension-defined interaction profile paths).
+  if (!profile->extension.empty() && instance->extensions.count(profile->extension) == 0)
+    return XR_ERROR_PATH_UNSUPPORTED;
   std::vector<std::pair<Action*, std::string>> bindings;
   for (uint32_t i = 0; i < info->countSuggestedBindings; ++i) {
     Action* action = lookup<Action>(info->suggestedBindings[i].action);

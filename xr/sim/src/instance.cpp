@@ -21,12 +21,19 @@ constexpr ExtensionInfo kExtensions[] = {
     {XR_KHR_CONVERT_TIMESPEC_TIME_EXTENSION_NAME, XR_KHR_convert_timespec_time_SPEC_VERSION},
     {XR_EXT_CONFORMANCE_AUTOMATION_EXTENSION_NAME, XR_EXT_conformance_automation_SPEC_VERSION},
     {XR_KHR_COMPOSITION_LAYER_DEPTH_EXTENSION_NAME, XR_KHR_composition_layer_depth_SPEC_VERSION},
+    // Interaction profiles beyond OpenXR 1.0's (profiles.cpp; withheld by the no-controller-extensions
+    // quirk).
+    {XR_EXT_HP_MIXED_REALITY_CONTROLLER_EXTENSION_NAME, XR_EXT_hp_mixed_reality_controller_SPEC_VERSION},
+    {XR_HTC_VIVE_COSMOS_CONTROLLER_INTERACTION_EXTENSION_NAME,
+     XR_HTC_vive_cosmos_controller_interaction_SPEC_VERSION},
+    {XR_EXT_SAMSUNG_ODYSSEY_CONTROLLER_EXTENSION_NAME, XR_EXT_samsung_odyssey_controller_SPEC_VERSION},
 };
 
 // Whether the runtime offers the extension `name` (the vulkan1-only quirk withdraws XR_KHR_vulkan_enable2,
-// no-vulkan both Vulkan extensions).
+// no-vulkan both Vulkan extensions, no-controller-extensions those that bring interaction profiles).
 bool offered(const char* name) {
   const Config config = Config::from_env();
+  if (config.no_controller_extensions && profile_extension(name)) return false;
   if ((config.vulkan1_only || config.no_vulkan) &&
       std::strcmp(name, XR_KHR_VULKAN_ENABLE2_EXTENSION_NAME) == 0)
     return false;

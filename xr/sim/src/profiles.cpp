@@ -1,5 +1,7 @@
 #include "profiles.hpp"
 
+#include <openxr/openxr.h>
+
 #include <cctype>
 
 namespace pushpull::xrsim {
@@ -29,13 +31,13 @@ std::vector<InteractionProfile> make_profiles() {
   };
   {
     InteractionProfile p{
-        "/interaction_profiles/khr/simple_controller", "Khronos Simple Controller", {L, R}, {}};
+        "/interaction_profiles/khr/simple_controller", "Khronos Simple Controller", {L, R}, {}, {}};
     both(p, {{"/input/select/click", K::boolean}, {"/input/menu/click", K::boolean}});
     all.push_back(p);
   }
   {
     InteractionProfile p{
-        "/interaction_profiles/oculus/touch_controller", "Oculus Touch Controller", {L, R}, {}};
+        "/interaction_profiles/oculus/touch_controller", "Oculus Touch Controller", {L, R}, {}, {}};
     both(p, {{"/input/squeeze/value", K::scalar},
              {"/input/trigger/value", K::scalar},
              {"/input/trigger/touch", K::boolean},
@@ -61,7 +63,7 @@ std::vector<InteractionProfile> make_profiles() {
   }
   {
     InteractionProfile p{
-        "/interaction_profiles/valve/index_controller", "Valve Index Controller", {L, R}, {}};
+        "/interaction_profiles/valve/index_controller", "Valve Index Controller", {L, R}, {}, {}};
     both(p, {{"/input/system/click", K::boolean},     {"/input/system/touch", K::boolean},
              {"/input/a/click", K::boolean},          {"/input/a/touch", K::boolean},
              {"/input/b/click", K::boolean},          {"/input/b/touch", K::boolean},
@@ -76,7 +78,7 @@ std::vector<InteractionProfile> make_profiles() {
     all.push_back(p);
   }
   {
-    InteractionProfile p{"/interaction_profiles/htc/vive_controller", "HTC Vive Controller", {L, R}, {}};
+    InteractionProfile p{"/interaction_profiles/htc/vive_controller", "HTC Vive Controller", {L, R}, {}, {}};
     both(p, {{"/input/system/click", K::boolean},
              {"/input/squeeze/click", K::boolean},
              {"/input/menu/click", K::boolean},
@@ -93,7 +95,69 @@ std::vector<InteractionProfile> make_profiles() {
     InteractionProfile p{"/interaction_profiles/microsoft/motion_controller",
                          "Microsoft Mixed Reality Motion Controller",
                          {L, R},
+                         {},
                          {}};
+    both(p, {{"/input/menu/click", K::boolean},
+             {"/input/squeeze/click", K::boolean},
+             {"/input/trigger/value", K::scalar},
+             {"/input/thumbstick", K::vector2},
+             {"/input/thumbstick/x", K::scalar},
+             {"/input/thumbstick/y", K::scalar},
+             {"/input/thumbstick/click", K::boolean},
+             {"/input/trackpad", K::vector2},
+             {"/input/trackpad/x", K::scalar},
+             {"/input/trackpad/y", K::scalar},
+             {"/input/trackpad/click", K::boolean},
+             {"/input/trackpad/touch", K::boolean}});
+    all.push_back(p);
+  }
+  // The extensions' profiles, after the core ones (the default choice stays the core profile).
+  {
+    InteractionProfile p{"/interaction_profiles/hp/mixed_reality_controller",
+                         "HP Mixed Reality Controller",
+                         {L, R},
+                         {},
+                         XR_EXT_HP_MIXED_REALITY_CONTROLLER_EXTENSION_NAME};
+    both(p, {{"/input/menu/click", K::boolean},
+             {"/input/squeeze/value", K::scalar},
+             {"/input/trigger/value", K::scalar},
+             {"/input/thumbstick", K::vector2},
+             {"/input/thumbstick/x", K::scalar},
+             {"/input/thumbstick/y", K::scalar},
+             {"/input/thumbstick/click", K::boolean}});
+    add(p, L, {{"/input/x/click", K::boolean}, {"/input/y/click", K::boolean}});
+    add(p, R, {{"/input/a/click", K::boolean}, {"/input/b/click", K::boolean}});
+    all.push_back(p);
+  }
+  {
+    InteractionProfile p{"/interaction_profiles/htc/vive_cosmos_controller",
+                         "HTC Vive Cosmos Controller",
+                         {L, R},
+                         {},
+                         XR_HTC_VIVE_COSMOS_CONTROLLER_INTERACTION_EXTENSION_NAME};
+    both(p, {{"/input/shoulder/click", K::boolean},
+             {"/input/squeeze/click", K::boolean},
+             {"/input/trigger/click", K::boolean},
+             {"/input/trigger/value", K::scalar},
+             {"/input/thumbstick", K::vector2},
+             {"/input/thumbstick/x", K::scalar},
+             {"/input/thumbstick/y", K::scalar},
+             {"/input/thumbstick/click", K::boolean},
+             {"/input/thumbstick/touch", K::boolean}});
+    add(p, L,
+        {{"/input/x/click", K::boolean}, {"/input/y/click", K::boolean}, {"/input/menu/click", K::boolean}});
+    add(p, R,
+        {{"/input/a/click", K::boolean},
+         {"/input/b/click", K::boolean},
+         {"/input/system/click", K::boolean}});
+    all.push_back(p);
+  }
+  {
+    InteractionProfile p{"/interaction_profiles/samsung/odyssey_controller",
+                         "Samsung Odyssey Controller",
+                         {L, R},
+                         {},
+                         XR_EXT_SAMSUNG_ODYSSEY_CONTROLLER_EXTENSION_NAME};
     both(p, {{"/input/menu/click", K::boolean},
              {"/input/squeeze/click", K::boolean},
              {"/input/trigger/value", K::scalar},
@@ -136,6 +200,12 @@ std::string capitalize(std::string s) {
 const std::vector<InteractionProfile>& interaction_profiles() {
   static const std::vector<InteractionProfile> profiles = make_profiles();
   return profiles;
+}
+
+bool profile_extension(const char* extension) {
+  for (const auto& p : interaction_profiles())
+    if (!p.extension.empty() && p.extension == extension) return true;
+  return false;
 }
 
 const InteractionProfile* find_profile(const std::string& path) {

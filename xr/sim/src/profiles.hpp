@@ -19,11 +19,16 @@ struct InteractionProfile {
   std::string localized_name;  // e.g. "Khronos Simple Controller"
   std::vector<std::string> user_paths;
   std::vector<ProfileComponent> components;
+  // The instance extension that brings the profile ("" for OpenXR 1.0's): without it enabled the profile
+  // path is unsupported (xrSuggestInteractionProfileBindings: XR_ERROR_PATH_UNSUPPORTED).
+  std::string extension;
 };
 
 // All supported profiles, in the order the runtime prefers them when several have bindings.
 const std::vector<InteractionProfile>& interaction_profiles();
 const InteractionProfile* find_profile(const std::string& path);
+// Whether `extension` is one that brings a profile (offered unless the no-controller-extensions quirk).
+bool profile_extension(const char* extension);
 
 // The component a suggested binding path names in `profile`: the path itself, or for an identifier
 // without component ("/user/hand/left/input/trigger") the component matching `preferred` (the action

@@ -68,6 +68,7 @@ Config Config::from_env() {
   c.ignores_exit = quirk("ignores-exit");
   c.vulkan1_only = quirk("vulkan1-only");
   c.no_vulkan = quirk("no-vulkan");
+  c.no_controller_extensions = quirk("no-controller-extensions");
   c.unknown_vk_extension = quirk("unknown-vk-extension");
   c.unknown_vk_device_extension = quirk("unknown-vk-device-extension");
   return c;

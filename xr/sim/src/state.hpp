@@ -86,7 +86,10 @@ constexpr XrSystemId kSystemId = 1;
 //                                     instance extension no Vulkan driver has, with
 //                                     unknown-vk-device-extension a device extension), no-vulkan (neither
 //                                     XR_KHR_vulkan_enable2 nor XR_KHR_vulkan_enable: a runtime for other
-//                                     graphics APIs)
+//                                     graphics APIs), no-controller-extensions (none of the extensions that
+//                                     bring interaction profiles: XR_EXT_hp_mixed_reality_controller,
+//                                     XR_HTC_vive_cosmos_controller_interaction,
+//                                     XR_EXT_samsung_odyssey_controller)
 struct Config {
   uint32_t width = 1440;
   uint32_t height = 1600;
@@ -121,6 +124,7 @@ struct Config {
   bool ignores_exit = false;
   bool vulkan1_only = false;
   bool no_vulkan = false;
+  bool no_controller_extensions = false;     // offers none of the controller-profile extensions
   bool unknown_vk_extension = false;         // an instance extension no driver has (XR_KHR_vulkan_enable)
   bool unknown_vk_device_extension = false;  // a device extension no driver has (XR_KHR_vulkan_enable)
   static Config from_env();

@@ -98,6 +98,53 @@ TEST_F(ActionsTest, BindingsForAnUnknownProfileOrInputAreUnsupported) {
       XR_SUCCESS);
 }
 
+// The profiles three extensions bring (HP Reverb G2, Vive Cosmos, Samsung Odyssey controllers) exist for an
+// instance only with their extension enabled; with it they bind and are chosen like the core ones.
+TEST_F(ActionsTest, ExtensionProfilesNeedTheirExtension) {
+  const std::vector<std::pair<const char*, const char*>> profiles = {
+      {"/interaction_profiles/hp/mixed_reality_controller",
+       XR_EXT_HP_MIXED_REALITY_CONTROLLER_EXTENSION_NAME},
+      {"/interaction_profiles/htc/vive_cosmos_controller",
+       XR_HTC_VIVE_COSMOS_CONTROLLER_INTERACTION_EXTENSION_NAME},
+      {"/interaction_profiles/samsung/odyssey_controller", XR_EXT_SAMSUNG_ODYSSEY_CONTROLLER_EXTENSION_NAME}};
+  {
+    Sim sim;
+    XrActionSet set = make_set(sim, "s", "S");
+    XrAction trigger = make_action(set, "trigger", XR_ACTION_TYPE_FLOAT_INPUT, {});
+    for (const auto& [profile, extension] : profiles)
+      EXPECT_EQ(suggest(sim, profile, {{trigger, "/user/hand/right/input/trigger/value"}}),
+                XR_ERROR_PATH_UNSUPPORTED)
+          << profile << " without " << extension;
+  }
+  for (const auto& [profile, extension] : profiles) {
+    Sim sim({XR_KHR_VULKAN_ENABLE2_EXTENSION_NAME, XR_KHR_CONVERT_TIMESPEC_TIME_EXTENSION_NAME,
+             XR_EXT_CONFORMANCE_AUTOMATION_EXTENSION_NAME, extension});
+    sim.create_session();
+    XrActionSet set = make_set(sim, "s", "S");
+    const XrPath right = sim.path("/user/hand/right");
+    XrAction trigger = make_action(set, "trigger", XR_ACTION_TYPE_FLOAT_INPUT, {right});
+    XrAction menu = make_action(set, "menu", XR_ACTION_TYPE_BOOLEAN_INPUT, {right});
+    // Each has a trigger value and a thumbstick click on both hands; the HP's X button is the left hand's.
+    ASSERT_EQ(suggest(sim, profile,
+                      {{trigger, "/user/hand/right/input/trigger/value"},
+                       {menu, "/user/hand/right/input/thumbstick/click"}}),
+              XR_SUCCESS)
+        << profile;
+    if (std::strcmp(extension, XR_EXT_HP_MIXED_REALITY_CONTROLLER_EXTENSION_NAME) == 0) {
+      EXPECT_EQ(suggest(sim, profile, {{menu, "/user/hand/left/input/x/click"}}), XR_SUCCESS);
+      EXPECT_EQ(suggest(sim, profile, {{menu, "/user/hand/right/input/x/click"}}), XR_ERROR_PATH_UNSUPPORTED);
+      ASSERT_EQ(suggest(sim, profile,
+                        {{trigger, "/user/hand/right/input/trigger/value"},
+                         {menu, "/user/hand/right/input/thumbstick/click"}}),
+                XR_SUCCESS);
+    }
+    ASSERT_EQ(attach(sim, set), XR_SUCCESS);
+    XrInteractionProfileState ps{XR_TYPE_INTERACTION_PROFILE_STATE};
+    ASSERT_EQ(xrGetCurrentInteractionProfile(sim.session, right, &ps), XR_SUCCESS);
+    EXPECT_EQ(ps.interactionProfile, sim.path(profile));
+  }
+}
+
 TEST_F(ActionsTest, AttachChoosesAProfileAndLocksTheSets) {
   Sim sim;
   sim.create_session();

@@ -28,8 +28,32 @@ TEST_F(InstanceTest, AdvertisesTheExtensionsOfTheIssue) {
   std::vector<std::string> names;
   for (const auto& p : props) names.push_back(p.extensionName);
   for (const char* e : {"XR_KHR_vulkan_enable", "XR_KHR_vulkan_enable2", "XR_KHR_convert_timespec_time",
-                        "XR_EXT_conformance_automation"})
+                        "XR_EXT_conformance_automation", "XR_EXT_hp_mixed_reality_controller",
+                        "XR_HTC_vive_cosmos_controller_interaction", "XR_EXT_samsung_odyssey_controller"})
     EXPECT_NE(std::find(names.begin(), names.end(), e), names.end()) << e;
+}
+
+// The no-controller-extensions quirk: a runtime with the core interaction profiles only lists none of the
+// extensions that bring others, and refuses an instance that asks for one.
+TEST_F(InstanceTest, WithoutControllerExtensionsTheyAreNeitherListedNorAccepted) {
+  setenv("PUSHPULL_XR_SIM_QUIRKS", "no-controller-extensions", 1);
+  struct Unset {
+    ~Unset() { unsetenv("PUSHPULL_XR_SIM_QUIRKS"); }
+  } unset;
+  uint32_t n = 0;
+  ASSERT_EQ(xrEnumerateInstanceExtensionProperties(nullptr, 0, &n, nullptr), XR_SUCCESS);
+  std::vector<XrExtensionProperties> props(n, {XR_TYPE_EXTENSION_PROPERTIES});
+  ASSERT_EQ(xrEnumerateInstanceExtensionProperties(nullptr, n, &n, props.data()), XR_SUCCESS);
+  for (const auto& p : props) EXPECT_EQ(std::string(p.extensionName).find("controller"), std::string::npos);
+  const char* asked[] = {XR_KHR_VULKAN_ENABLE2_EXTENSION_NAME,
+                         XR_EXT_HP_MIXED_REALITY_CONTROLLER_EXTENSION_NAME};
+  XrInstanceCreateInfo ci{XR_TYPE_INSTANCE_CREATE_INFO};
+  std::strcpy(ci.applicationInfo.applicationName, "quirk");
+  ci.applicationInfo.apiVersion = XR_MAKE_VERSION(1, 0, 0);
+  ci.enabledExtensionCount = 2;
+  ci.enabledExtensionNames = asked;
+  XrInstance instance = XR_NULL_HANDLE;
+  EXPECT_EQ(xrCreateInstance(&ci, &instance), XR_ERROR_EXTENSION_NOT_PRESENT);
 }
 
 TEST_F(InstanceTest, PropertiesNameTheRuntime) {

@@ -133,6 +133,9 @@ class Session {
   [[nodiscard]] bool stage_is_local() const;  // no STAGE space: LOCAL (floor unknown, head height guessed)
   [[nodiscard]] const std::string& runtime_name() const;
   [[nodiscard]] const std::string& system_name() const;
+  // The instance's enabled extensions: the Vulkan binding, SessionOptions::extensions, and those of
+  // controller_profile_extensions() (input.hpp) the runtime offers. For Input's constructor.
+  [[nodiscard]] const std::vector<std::string>& enabled_extensions() const;
 
  private:
   struct Impl;
