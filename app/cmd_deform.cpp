@@ -4,6 +4,7 @@
 #include "drag_notes.hpp"
 #include "life_size.hpp"
 #include "metrics_json.hpp"
+#include "model_output.hpp"
 #include "number_checks.hpp"
 #include "region_notes.hpp"
 #include "vertex_selection.hpp"
@@ -116,35 +117,6 @@ void check_output_model_path(const fs::path& path) {
 }
 
 // V: #V by 3 deformed positions of model.mesh.
-// Writes the deformed model; returns what the output cannot carry (warnings for the run's list).
-std::vector<std::string> save_model(const fs::path& path, const LoadedModel& model,
-                                    const Eigen::MatrixXd& V) {
-  if (is_glb_path(path)) {
-    try {
-      const assets::Model plain =
-          model.scene ? assets::Model{} : assets::model_from_mesh(*model.mesh, path.stem().string());
-      return assets::write_glb(model.scene ? *model.scene : plain, V, path);
-    } catch (const assets::AssetError& error) {
-      throw CommandError(error.what());
-    }
-  }
-  try {
-    deform::write_mesh(path, deform::Mesh{V, model.mesh->F});
-  } catch (const deform::MeshIoError& error) {
-    throw CommandError(error.what());
-  }
-  if (!model.scene) return {};
-  // A glTF scene written as a bare mesh keeps the welded surface only: said, not silently dropped.
-  char text[320];
-  std::snprintf(
-      text, sizeof text,
-      "%s holds the welded surface only (%ld vertices, %ld triangles): the glTF's %zu primitive(s), "
-      "%zu material(s) and texture coordinates are not in it (an --out ending in .glb keeps them)",
-      path.string().c_str(), static_cast<long>(V.rows()), static_cast<long>(model.mesh->F.rows()),
-      model.scene->primitives.size(), model.scene->materials.size());
-  return {text};
-}
-
 // ------------------------------------------------------------------------------------------------------
 
 // The lengths typed on the command line (life-size metres, see life_size.hpp) in the model's file units.
@@ -415,7 +387,8 @@ void run_deform(DeformCommandOptions o) {
   metrics_options.section_offsets = section_offsets(*mesh, omega, d, o.sections);
   record.metrics = deform::evaluate_deformation(*mesh, record.result.V, d, omega, metrics_options);
 
-  for (std::string& warning : save_model(o.out, model, record.result.V))
+  for (std::string& warning : write_deformed_model(o.out, o.mesh, *model.mesh,
+                                                   model.scene ? &*model.scene : nullptr, record.result.V))
     record.result.warnings.push_back(std::move(warning));
 
   record.input = o.mesh;

@@ -4,6 +4,7 @@
 #include "commands.hpp"
 #include "commit_watch.hpp"
 #include "metrics_json.hpp"
+#include "model_output.hpp"
 #include "progress_bar.hpp"
 #include "render_inputs.hpp"
 #include "render_model.hpp"
@@ -52,15 +53,10 @@ std::string model_extension(const std::string& model) {
   return (ext == ".gltf" || ext == ".glb" || ext == ".drc") ? ".glb" : ext;
 }
 
+// The replay's models: copies of the reviewed model's file where it is OFF/OBJ/PLY (model_output.hpp); the
+// notes that come with them (normals kept as they were) are the model's, said by the review already.
 void write_model(const fs::path& path, const assets::Model& model, const Eigen::MatrixXd& V) {
-  try {
-    if (path.extension() == ".glb")
-      (void)assets::write_glb(model, V, path.string());
-    else
-      deform::write_mesh(path.string(), deform::Mesh{V, model.deform_mesh.F});
-  } catch (const std::exception& e) {
-    throw CommandError(path.string() + ": " + e.what());
-  }
+  (void)write_deformed_model(path, model.source_path, model.deform_mesh, &model, V);
 }
 
 std::string two_digits(std::size_t i) {

@@ -1,6 +1,7 @@
 #include "review_setup.hpp"
 
 #include "commands.hpp"
+#include "model_output.hpp"
 
 #include "pushpull/assets/write.hpp"
 #include "pushpull/deform/file_output.hpp"
@@ -109,16 +110,8 @@ ReviewSetup prepare_review(const ReviewCommandOptions& o) {
 }
 
 void write_review_model(const std::string& path, const assets::Model& model, const Eigen::MatrixXd& V) {
-  try {
-    if (lower_extension(path) == ".glb") {
-      for (const std::string& w : assets::write_glb(model, V, path)) std::printf("  warning: %s\n", w.c_str());
-    } else {
-      deform::write_mesh(path, deform::Mesh{V, model.deform_mesh.F});
-    }
-  } catch (const std::exception& e) {
-    const std::string what = e.what();
-    throw CommandError(what.rfind(path, 0) == 0 ? what : path + ": " + what);  // the path once
-  }
+  for (const std::string& w : write_deformed_model(path, model.source_path, model.deform_mesh, &model, V))
+    std::printf("  warning: %s\n", w.c_str());
 }
 
 EventLog::EventLog(const std::string& path, bool print) : print_(print) {

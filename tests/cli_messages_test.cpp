@@ -335,4 +335,54 @@ TEST_F(CliMessages, AGltfWrittenAsABareMeshSaysWhatItLeavesOut) {
   EXPECT_EQ(glb.output.find("welded surface only"), std::string::npos) << glb.output;
 }
 
+// A model in OFF/OBJ/PLY written in its own format is its file with the positions moved: an OBJ's quads,
+// texture coordinates, normals, groups and material lines stay; the normals are said to be stale.
+TEST_F(CliMessages, AnObjWrittenAsObjKeepsItsQuadsAndAttributes) {
+  std::ofstream obj(path("grid.obj"));
+  obj << "# a 1 m grid of quads\nmtllib grid.mtl\ng sheet\nusemtl paint\n";
+  constexpr int kSide = 7;
+  for (int j = 0; j < kSide; ++j)
+    for (int i = 0; i < kSide; ++i)
+      obj << "v " << i / double(kSide - 1) << " " << j / double(kSide - 1) << " 0\n";
+  for (int j = 0; j < kSide; ++j)
+    for (int i = 0; i < kSide; ++i)
+      obj << "vt " << i / double(kSide - 1) << " " << j / double(kSide - 1) << "\n";
+  obj << "vn 0 0 1\n";
+  for (int j = 0; j + 1 < kSide; ++j)
+    for (int i = 0; i + 1 < kSide; ++i) {
+      const int a = j * kSide + i + 1, b = a + 1, c = a + kSide + 1, d = a + kSide;
+      obj << "f " << a << "/" << a << "/1 " << b << "/" << b << "/1 " << c << "/" << c << "/1 " << d << "/"
+          << d << "/1\n";
+    }
+  obj.close();
+  const CommandResult run = run_pushpull("deform " + path("grid.obj") +
+                                         " --handle-at 0.5 0.5 0 --handle-radius 0.1 --roi-radius 0.45 "
+                                         "--displacement 0 0 0.05 --out " +
+                                         path("out.obj") + " --metrics " + path("m.json"));
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(
+      run.output.find("warning: " + path("out.obj") +
+                      ": the input's normals (vn) are kept as they were: they do not follow the deformed "
+                      "surface"),
+      std::string::npos)
+      << run.output;
+  EXPECT_EQ(warnings_with(path("m.json"), "normals (vn)").first, 1u);
+  std::ifstream in(path("out.obj")), original(path("grid.obj"));
+  std::string line, before;
+  int quads = 0, lines = 0, moved = 0;
+  while (std::getline(in, line) && std::getline(original, before)) {
+    ++lines;
+    if (line.rfind("v ", 0) == 0) {
+      moved += line != before;
+    } else {
+      EXPECT_EQ(line, before);  // everything but positions as written
+      quads += line.rfind("f ", 0) == 0;
+    }
+  }
+  EXPECT_EQ(lines, 4 + 2 * kSide * kSide + 1 + (kSide - 1) * (kSide - 1));
+  EXPECT_EQ(quads, (kSide - 1) * (kSide - 1));
+  EXPECT_GT(moved, 0);
+  EXPECT_FALSE(std::getline(in, line)) << "more lines than the source";
+}
+
 }  // namespace

@@ -13,6 +13,7 @@
 #include <system_error>
 
 #include <fcntl.h>
+#include <pthread.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -182,9 +183,20 @@ std::string write_to(const fs::path& requested, std::string_view bytes) {
   temp_leaf += path.filename().string();
   temp_leaf += ".tmp-XXXXXX";
   std::string temp_name = (folder / temp_leaf).string();
+  // SIGINT and SIGTERM wait while the temporary is created and registered: one in between would end the
+  // process with the temporary unknown to the handler, left behind.
+  sigset_t held, previous_mask;
+  sigemptyset(&held);
+  sigaddset(&held, SIGINT);
+  sigaddset(&held, SIGTERM);
+  const bool masked = ::pthread_sigmask(SIG_BLOCK, &held, &previous_mask) == 0;
   const int fd = ::mkstemp(temp_name.data());
-  if (fd < 0) return "cannot create a temporary file in " + folder.string() + ": " + std::strerror(errno);
-  const TemporaryGuard guard(temp_name);
+  const int create_error = errno;
+  std::optional<TemporaryGuard> guard;
+  if (fd >= 0) guard.emplace(temp_name);
+  if (masked) ::pthread_sigmask(SIG_SETMASK, &previous_mask, nullptr);
+  if (fd < 0)
+    return "cannot create a temporary file in " + folder.string() + ": " + std::strerror(create_error);
   auto give_up = [&](const char* what, int error) {
     ::close(fd);
     ::unlink(temp_name.c_str());

@@ -166,6 +166,23 @@ std::string format_ply(const Mesh& mesh, PlyEncoding encoding) {
   return out;
 }
 
+namespace {
+
+// Atomically, errors as MeshIoError naming the path once.
+void write_bytes(const std::filesystem::path& path, std::string_view bytes) {
+  try {
+    write_file_atomically(path, bytes);
+  } catch (const std::runtime_error& e) {
+    // write_file_atomically's message starts with the path; MeshIoError adds it again.
+    std::string problem = e.what();
+    const std::string prefix = path.string() + ": ";
+    if (problem.rfind(prefix, 0) == 0) problem.erase(0, prefix.size());
+    throw MeshIoError(path.string(), 0, problem);
+  }
+}
+
+}  // namespace
+
 void write_mesh(const std::filesystem::path& path, const Mesh& mesh, const MeshWriteOptions& options) {
   const std::optional<MeshFormat> format = mesh_format_from_path(path);
   if (!format) detail::fail(path.string(), 0, "unknown mesh format (expected .off, .obj or .ply)");
@@ -181,15 +198,34 @@ void write_mesh(const std::filesystem::path& path, const Mesh& mesh, const MeshW
       bytes = format_ply(mesh, options.ply_encoding);
       break;
   }
-  try {
-    write_file_atomically(path, bytes);
-  } catch (const std::runtime_error& e) {
-    // write_file_atomically's message starts with the path; MeshIoError adds it again.
-    std::string problem = e.what();
-    const std::string prefix = path.string() + ": ";
-    if (problem.rfind(prefix, 0) == 0) problem.erase(0, prefix.size());
-    throw MeshIoError(path.string(), 0, problem);
+  write_bytes(path, bytes);
+}
+
+std::vector<std::string> write_deformed_mesh(const std::filesystem::path& path,
+                                             const std::filesystem::path& source,
+                                             const Eigen::MatrixXd& source_positions, const Mesh& mesh) {
+  const std::optional<MeshFormat> format = mesh_format_from_path(path);
+  if (!format || mesh_format_from_path(source) != format) {
+    write_mesh(path, mesh);
+    return {};
   }
+  std::optional<PositionRewrite> rewrite;
+  std::string refused;
+  try {
+    rewrite = rewrite_positions(read_whole_file(source), *format, source_positions, source.string());
+  } catch (const MeshIoError& e) {  // a layout it cannot rewrite in place (or a source changed since)
+    refused = e.what();
+  }
+  if (!rewrite) {
+    write_mesh(path, mesh);
+    return {"written as triangles with positions only, not as a copy of the input (" + refused + ")"};
+  }
+  write_bytes(path, rewrite->contents);
+  std::vector<std::string> notes;
+  for (const std::string& kept : rewrite->stale)
+    notes.push_back("the input's " + kept +
+                    " are kept as they were: they do not follow the deformed surface");
+  return notes;
 }
 
 }  // namespace pushpull::deform

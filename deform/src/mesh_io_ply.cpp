@@ -1,5 +1,6 @@
 // PLY reader: ASCII, binary little-endian and binary big-endian.
 #include "mesh_io_detail.hpp"
+#include "mesh_io_ply_header.hpp"
 #include "text_scan.hpp"
 
 #include <bit>
@@ -13,61 +14,11 @@ using detail::fail;
 
 namespace {
 
-enum class Encoding { ascii, binary_le, binary_be };
-enum class ScalarType { int8, uint8, int16, uint16, int32, uint32, float32, float64 };
-
-bool scalar_type_from_name(std::string_view name, ScalarType& type) {
-  struct Entry {
-    std::string_view name;
-    ScalarType type;
-  };
-  static constexpr Entry entries[] = {
-      {"char", ScalarType::int8},      {"int8", ScalarType::int8},       {"uchar", ScalarType::uint8},
-      {"uint8", ScalarType::uint8},    {"short", ScalarType::int16},     {"int16", ScalarType::int16},
-      {"ushort", ScalarType::uint16},  {"uint16", ScalarType::uint16},   {"int", ScalarType::int32},
-      {"int32", ScalarType::int32},    {"uint", ScalarType::uint32},     {"uint32", ScalarType::uint32},
-      {"float", ScalarType::float32},  {"float32", ScalarType::float32}, {"double", ScalarType::float64},
-      {"float64", ScalarType::float64}};
-  for (const Entry& entry : entries) {
-    if (entry.name == name) {
-      type = entry.type;
-      return true;
-    }
-  }
-  return false;
-}
-
-std::size_t scalar_size(ScalarType type) {
-  switch (type) {
-    case ScalarType::int8:
-    case ScalarType::uint8:
-      return 1;
-    case ScalarType::int16:
-    case ScalarType::uint16:
-      return 2;
-    case ScalarType::int32:
-    case ScalarType::uint32:
-    case ScalarType::float32:
-      return 4;
-    case ScalarType::float64:
-      return 8;
-  }
-  return 8;
-}
-
-struct Property {
-  std::string name;
-  ScalarType type = ScalarType::float32;
-  bool is_list = false;
-  ScalarType count_type = ScalarType::uint8;
-};
-
-struct Element {
-  std::string name;
-  std::int64_t count = 0;
-  std::size_t header_line = 0;
-  std::vector<Property> properties;
-};
+using detail::Element;
+using detail::Encoding;
+using detail::Property;
+using detail::scalar_size;
+using detail::ScalarType;
 
 // Reads the values of the body, in ASCII (whitespace-separated, across lines) or binary.
 class BodyReader {
@@ -148,72 +99,11 @@ class BodyReader {
 }  // namespace
 
 Mesh parse_ply(std::string_view contents, const std::string& name) {
-  detail::LineCursor cursor(contents);
-  std::string_view line;
-  if (!cursor.next(line) || detail::strip_comment(line, '\0') != "ply")
-    fail(name, 1, "not a PLY file (no 'ply' magic)");
-
-  Encoding encoding = Encoding::ascii;
-  bool have_format = false;
-  std::vector<Element> elements;
-  bool ended = false;
-  while (cursor.next(line)) {
-    detail::Tokens tokens(line);
-    std::string_view keyword;
-    if (!tokens.next(keyword) || keyword == "comment" || keyword == "obj_info") continue;
-    std::string_view a, b, c, d;
-    if (keyword == "end_header") {
-      ended = true;
-      break;
-    }
-    if (keyword == "format") {
-      tokens.next(a);
-      if (a == "ascii")
-        encoding = Encoding::ascii;
-      else if (a == "binary_little_endian")
-        encoding = Encoding::binary_le;
-      else if (a == "binary_big_endian")
-        encoding = Encoding::binary_be;
-      else
-        fail(name, cursor.line_number(), "unknown PLY format '" + std::string(a) + "'");
-      have_format = true;
-    } else if (keyword == "element") {
-      Element element;
-      std::int64_t count = -1;
-      if (!tokens.next(a) || !tokens.next(b) || !detail::parse_int64(b, count) || count < 0) {
-        fail(name, cursor.line_number(), "malformed element line");
-      }
-      element.name = std::string(a);
-      element.count = count;
-      element.header_line = cursor.line_number();
-      elements.push_back(std::move(element));
-    } else if (keyword == "property") {
-      if (elements.empty()) fail(name, cursor.line_number(), "property before any element");
-      Property property;
-      tokens.next(a);
-      if (a == "list") {
-        property.is_list = true;
-        if (!tokens.next(b) || !tokens.next(c) || !tokens.next(d) ||
-            !scalar_type_from_name(b, property.count_type) || !scalar_type_from_name(c, property.type)) {
-          fail(name, cursor.line_number(), "malformed list property");
-        }
-        property.name = std::string(d);
-      } else {
-        if (!scalar_type_from_name(a, property.type) || !tokens.next(b)) {
-          fail(name, cursor.line_number(), "malformed property '" + std::string(line) + "'");
-        }
-        property.name = std::string(b);
-      }
-      elements.back().properties.push_back(std::move(property));
-    } else {
-      fail(name, cursor.line_number(), "unexpected header line '" + std::string(line) + "'");
-    }
-  }
-  if (!ended) fail(name, cursor.line_number(), "truncated: no end_header");
-  if (!have_format) fail(name, cursor.line_number(), "no format line in the header");
-
+  const detail::PlyHeader header = detail::read_ply_header(contents, name);
+  const Encoding encoding = header.encoding;
+  const std::vector<Element>& elements = header.elements;
   // Refuse counts the body cannot hold before allocating anything.
-  std::size_t bytes_left = cursor.remaining_bytes();
+  std::size_t bytes_left = contents.size() - header.body_offset;
   for (const Element& element : elements) {
     std::size_t min_bytes = 0;
     for (const Property& property : element.properties) {
@@ -236,7 +126,7 @@ Mesh parse_ply(std::string_view contents, const std::string& name) {
   for (const Element& element : elements) {
     if (element.name == "vertex") vertex_element = &element;
   }
-  if (vertex_element == nullptr) fail(name, cursor.line_number(), "no 'vertex' element");
+  if (vertex_element == nullptr) fail(name, header.body_line - 1, "no 'vertex' element");
   int xyz_slot[3] = {-1, -1, -1};
   for (std::size_t p = 0; p < vertex_element->properties.size(); ++p) {
     const Property& property = vertex_element->properties[p];
@@ -264,7 +154,7 @@ Mesh parse_ply(std::string_view contents, const std::string& name) {
   }
   builder.reserve(static_cast<std::size_t>(vertex_element->count), static_cast<std::size_t>(face_total));
 
-  BodyReader reader(contents.substr(cursor.offset()), encoding, cursor.line_number() + 1, name);
+  BodyReader reader(contents.substr(header.body_offset), encoding, header.body_line, name);
   std::vector<std::int64_t> polygon;
   for (const Element& element : elements) {
     const bool is_vertex = &element == vertex_element;

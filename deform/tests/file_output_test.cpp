@@ -186,7 +186,14 @@ TEST(FileOutput, AnInterruptedWriteLeavesNoTemporary) {
   if (WIFEXITED(status)) GTEST_SKIP() << "the write finished before the signal came";
   ASSERT_TRUE(WIFSIGNALED(status));
   EXPECT_EQ(WTERMSIG(status), SIGINT);
-  EXPECT_EQ(entries(dir.path), 0) << "a temporary or the target was left";
+  // No temporary is left. The target is either absent (interrupted before the rename) or whole (the signal
+  // came between the rename and the child's exit, on a slow run: 1 of 299 under the sanitizers once).
+  for (const auto& e : fs::directory_iterator(dir.path)) {
+    EXPECT_EQ(e.path(), target) << "a temporary was left";
+    if (e.path() == target) {
+      EXPECT_EQ(fs::file_size(target), std::uintmax_t{1} << 28) << "a partial target";
+    }
+  }
 }
 
 }  // namespace

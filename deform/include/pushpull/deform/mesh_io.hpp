@@ -11,10 +11,11 @@
 // message names the file, the line where there is one, and the problem. Counts in a header are
 // checked against the file size before anything is allocated.
 //
-// Writing: the format follows the extension (.off, .obj, .ply); coordinates are written with 17
-// significant digits so they read back bit-exactly. The file is written atomically: the bytes go to a
-// temporary file in the same folder that is then renamed over the target, so a reader never sees
-// a half-written mesh.
+// Writing: the format follows the extension (.off, .obj, .ply); coordinates are written as their shortest
+// text that reads back bit-exactly. write_mesh writes triangles and positions; write_deformed_mesh keeps
+// everything else a source file of the same format held (its polygons, attributes and comments). The file is
+// written atomically: the bytes go to a temporary file in the same folder that is then renamed over the
+// target, so a reader never sees a half-written mesh.
 //
 // Units and frame: whatever the file uses; nothing is scaled or transformed.
 // Thread-safety: the functions share no state; concurrent calls on different files are safe.
@@ -29,6 +30,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace pushpull::deform {
 
@@ -67,6 +69,35 @@ struct MeshWriteOptions {
 // Writes a mesh atomically; the format follows the extension. Throws MeshIoError (unknown extension,
 // F indices out of range, I/O failure).
 void write_mesh(const std::filesystem::path& path, const Mesh& mesh, const MeshWriteOptions& options = {});
+
+// What rewrite_positions made: the file's new contents, and the attributes it kept as written that follow
+// the positions (normals, no longer normal to the moved surface), named for a warning ("normals (vn)").
+struct PositionRewrite {
+  std::string contents;
+  std::vector<std::string> stale;
+};
+
+// The contents of a mesh file of `format` with its vertex positions replaced by V's rows (#V by 3, one row
+// per vertex as read_mesh reads them; a row of NaN keeps that vertex as written) and everything else as
+// written: polygons stay polygons, and comments, colours, texture coordinates, normals, groups and materials
+// stay (OFF, OBJ and ASCII PLY: each vertex line with its first three numbers (PLY: its x, y, z) replaced by
+// their shortest round-trip text, the rest of the line verbatim; binary PLY: every other byte, the
+// coordinates in the file's own float type and byte order). Throws MeshIoError (naming `name`) where V does
+// not fit the file, or its layout cannot be rewritten in place: a PLY vertex element with a list property or
+// integer coordinates, a binary PLY whose vertices follow an element with a list, an ASCII PLY vertex not on
+// one line of its own.
+[[nodiscard]] PositionRewrite rewrite_positions(std::string_view contents, MeshFormat format,
+                                                const Eigen::MatrixXd& V, const std::string& name);
+
+// Writes a deformed mesh to `path`: where `source` is a mesh file of path's format, as a copy of it with the
+// positions replaced by source_positions (rewrite_positions: its polygons, attributes and comments kept),
+// else, or where rewrite_positions refuses its layout, `mesh` as write_mesh writes it. source_positions: one
+// row per vertex of the source (read_mesh's vertices); a row of NaN keeps that vertex as written (one the
+// mesh does not use). Returns notes for the user: attributes kept that no longer match the surface (normals),
+// or why it was written as triangles. Throws MeshIoError (reading the source, writing `path`).
+std::vector<std::string> write_deformed_mesh(const std::filesystem::path& path,
+                                             const std::filesystem::path& source,
+                                             const Eigen::MatrixXd& source_positions, const Mesh& mesh);
 
 // The bytes write_mesh would write.
 [[nodiscard]] std::string format_off(const Mesh& mesh);

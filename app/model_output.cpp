@@ -1,0 +1,72 @@
+#include "model_output.hpp"
+
+#include "commands.hpp"
+
+#include "pushpull/assets/write.hpp"
+#include "pushpull/deform/mesh_io.hpp"
+
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+
+namespace pushpull::app {
+namespace {
+
+bool is_glb(const std::filesystem::path& path) {
+  std::string extension = path.extension().string();
+  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return extension == ".glb";
+}
+
+// The message once with the path in front (the libraries' messages may start with it already).
+std::string naming(const std::filesystem::path& path, const std::string& what) {
+  return what.rfind(path.string(), 0) == 0 ? what : path.string() + ": " + what;
+}
+
+}  // namespace
+
+std::vector<std::string> write_deformed_model(const std::filesystem::path& path,
+                                              const std::filesystem::path& source,
+                                              const deform::Mesh& rest_mesh, const assets::Model* scene,
+                                              const Eigen::MatrixXd& V) {
+  if (is_glb(path)) {
+    try {
+      if (scene) return assets::write_glb(*scene, V, path);
+      return assets::write_glb(assets::model_from_mesh(rest_mesh, path.stem().string()), V, path);
+    } catch (const std::exception& e) {
+      throw CommandError(naming(path, e.what()));
+    }
+  }
+  // The source file's vertices: the model's own (read as they are), or where assets welded them (review,
+  // replay) each render vertex of its one primitive at its weld's deformed position.
+  Eigen::MatrixXd source_positions = V;
+  if (scene && scene->primitives.size() == 1 && deform::mesh_format_from_path(source)) {
+    const std::vector<int>& weld = scene->primitives.front().deform_vertex;
+    source_positions.setConstant(static_cast<Eigen::Index>(weld.size()), 3, std::nan(""));
+    for (std::size_t v = 0; v < weld.size(); ++v)
+      if (weld[v] >= 0 && weld[v] < V.rows())
+        source_positions.row(static_cast<Eigen::Index>(v)) = V.row(weld[v]);
+  }
+  std::vector<std::string> warnings;
+  try {
+    for (const std::string& note :
+         deform::write_deformed_mesh(path, source, source_positions, deform::Mesh{V, rest_mesh.F}))
+      warnings.push_back(path.string() + ": " + note);
+  } catch (const std::exception& e) {
+    throw CommandError(naming(path, e.what()));
+  }
+  // A glTF scene written as a bare mesh keeps the welded surface only: said, not silently dropped.
+  if (scene && !deform::mesh_format_from_path(source)) {
+    char text[320];
+    std::snprintf(text, sizeof text,
+                  "%s holds the welded surface only (%ld vertices, %ld triangles): the glTF's %zu "
+                  "primitive(s), %zu material(s) and texture coordinates are not in it (an output ending in "
+                  ".glb keeps them)",
+                  path.string().c_str(), static_cast<long>(V.rows()), static_cast<long>(rest_mesh.F.rows()),
+                  scene->primitives.size(), scene->materials.size());
+    warnings.emplace_back(text);
+  }
+  return warnings;
+}
+
+}  // namespace pushpull::app
