@@ -528,17 +528,17 @@ void add_deform_command(CLI::App& root) {
          "biharmonically (the same minimiser in fewer iterations on large regions); -1 = always from rest "
          "(default: " +
              std::to_string(deform::DeformOptions{}.smooth_start_min_free) + ")")
-      ->check(CLI::Range(-1, std::numeric_limits<int>::max()));
+      ->check(whole_number_in(-1, std::numeric_limits<int>::max()));
   cmd->add_option(
          "--coarse-start-min-free", o->coarse_start_min_free,
          "asan: regions with at least this many free vertices are solved first on a coarser tessellation of "
          "the region, and the iterations start from that shape (the same minimiser in fewer iterations on "
          "large regions); -1 = never (default: " +
              std::to_string(deform::DeformOptions{}.coarse_start_min_free) + ")")
-      ->check(CLI::Range(-1, std::numeric_limits<int>::max()));
+      ->check(whole_number_in(-1, std::numeric_limits<int>::max()));
   cmd->add_option("--sections", o->sections, "Number of section planes (perpendicular to d) in the metrics")
       ->capture_default_str()
-      ->check(CLI::Range(0, 1000));
+      ->check(whole_number_in(0, 1000));
   cmd->add_flag("!--no-attached-parts", o->attached_parts,
                "Leave separate parts (lamps, plates, trims) where they are instead of letting the ones near the "
                "region follow the deformed surface");

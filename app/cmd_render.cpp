@@ -101,7 +101,7 @@ void add_render_command(CLI::App& root) {
   cmd->add_option("--out", options->out, "Output PNG")->required();
   cmd->add_option("--size", options->size, "Image width and height in pixels (per eye with --stereo)")
       ->expected(2)
-      ->check(CLI::Range(1, 16384));
+      ->check(whole_number_in(1, 16384));
   cmd->add_option("--color", options->color, "What the colours show")
       ->check(CLI::IsMember({"material", "displacement", "curvature-sign"}));
   cmd->add_option(
@@ -122,8 +122,7 @@ void add_render_command(CLI::App& root) {
   cmd->add_option("--up", options->up, "World up X Y Z (default 0 1 0, glTF)")
       ->expected(3)
       ->check(finite_number());
-  cmd->add_option("--fov", options->fov_deg, "Vertical field of view, degrees")
-      ->check(CLI::Range(1.0, 170.0));
+  cmd->add_option("--fov", options->fov_deg, "Vertical field of view, degrees")->check(finite_in(1.0, 170.0));
   cmd->add_option(
          "--scalar-max", options->scalar_max,
          "Displacement shown as the top of the colour map (metres at life size; default: the largest)")
@@ -150,7 +149,7 @@ void add_render_command(CLI::App& root) {
   cmd->add_option(
          "--sections", options->sections,
          "Draw N section curves of the (deformed) surface, planes orthogonal to the --arrow direction")
-      ->check(CLI::Range(0, 1000));
+      ->check(whole_number_in(0, 1000));
   add_life_size_options(*cmd, options->life_size);
   cmd->add_flag("--no-legend", options->no_legend, "Leave out the colour-map legend");
   cmd->add_flag("--flat", options->flat, "Colour maps without lighting (exact colours)");

@@ -48,11 +48,11 @@ void add_replay_command(CLI::App& root) {
       cmd->add_option("--mu", *mu, "Replay with another ASAN stiffness ratio")->check(finite_above(1.0));
   cmd->add_option("--eye-size", o->eye_size, "Per-eye image size W H of the simulated headset")
       ->expected(2)
-      ->check(CLI::Range(16, 16384))
+      ->check(whole_number_in(16, 16384))
       ->capture_default_str();
   cmd->add_option("--picture-size", o->picture_size, "Size W H of the report's pictures")
       ->expected(2)
-      ->check(CLI::Range(16, 16384))
+      ->check(whole_number_in(16, 16384))
       ->capture_default_str();
   cmd->add_option(
          "--compare", *compare,

@@ -25,9 +25,9 @@ void add_review_command(CLI::App& root) {
       "runs "
       "off the frame loop.\n"
       "Controls: trigger = push/pull; "
-      "undo = X/A (touch), A (index), left menu (simple, vive, motion); redo =\n"
-      "Y/B (touch), B (index), right menu (simple, vive, motion); "
-      "menu (touch) / thumbstick or trackpad-centre click = the method and colour-map panel;\n"
+      "undo = X/A (touch, hp reverb g2, vive cosmos), A (index), left menu (simple, vive, motion, odyssey);\n"
+      "redo = Y/B (touch, g2, cosmos), B (index), right menu (simple, vive, motion, odyssey); "
+      "menu (touch, g2, cosmos) / thumbstick or trackpad-centre click = the method and colour-map panel;\n"
       "grip = grab and move the model "
       "(both grips: scale, on the floor; undo while gripping: back to the session's first placement);\n"
       "right thumbstick between drags: handle radius (up/down) and region (left/right); vive: a click on "
@@ -64,7 +64,7 @@ void add_review_command(CLI::App& root) {
       ->check(finite_above(0.0, false));
   cmd->add_option("--eye-size", o->eye_size, "Per-eye image size W H (default: the runtime's recommendation)")
       ->expected(2)
-      ->check(CLI::Range(16, 16384));
+      ->check(whole_number_in(16, 16384));
   CLI::Option* samples =
       cmd->add_option("--samples", o->samples,
                       "MSAA samples (desktop mode on a CPU renderer such as lavapipe: 1 unless given)")
@@ -90,7 +90,7 @@ void add_review_command(CLI::App& root) {
       "iterations and the solver's state)");
   cmd->add_option("--mirror-size", o->mirror_size, "Mirror (or desktop) window size W H")
       ->expected(2)
-      ->check(CLI::Range(16, 16384));
+      ->check(whole_number_in(16, 16384));
   cmd->add_flag(
       "--validation", o->validation,
       "Enable VK_LAYER_KHRONOS_validation on the runtime's Vulkan instance; fail on any message (the "
@@ -106,11 +106,11 @@ void add_review_command(CLI::App& root) {
          "--reconnect", o->reconnect_s,
          "After the OpenXR session is lost, wait this many seconds for the headset to come back and go on "
          "(0: end the review)")
-      ->check(CLI::Range(0.0, 86400.0));
+      ->check(finite_in(0.0, 86400.0));
   cmd->add_option("--headset-wait", o->headset_wait_s,
                   "At the start, wait this many seconds for a runtime's headset that has not connected yet "
                   "(streaming runtimes: WiVRn, ALVR) before opening the desktop window instead")
-      ->check(CLI::Range(0.0, 86400.0))
+      ->check(finite_in(0.0, 86400.0))
       ->capture_default_str();
   cmd->add_option_function<std::string>(
          "--solver-priority",

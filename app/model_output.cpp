@@ -37,18 +37,27 @@ std::vector<std::string> write_deformed_model(const std::filesystem::path& path,
       throw CommandError(naming(path, e.what()));
     }
   }
-  // The source file's vertices: the model's own (read as they are), or where assets welded them (review,
-  // replay) each render vertex of its one primitive at its weld's deformed position.
-  Eigen::MatrixXd source_positions = V;
-  if (scene && scene->primitives.size() == 1 && deform::mesh_format_from_path(source)) {
-    const std::vector<int>& weld = scene->primitives.front().deform_vertex;
-    source_positions.setConstant(static_cast<Eigen::Index>(weld.size()), 3, std::nan(""));
-    for (std::size_t v = 0; v < weld.size(); ++v)
-      if (weld[v] >= 0 && weld[v] < V.rows())
-        source_positions.row(static_cast<Eigen::Index>(v)) = V.row(weld[v]);
-  }
   std::vector<std::string> warnings;
   try {
+    // The source file's vertices: the model's own (deform reads them as they are), or, where assets welded
+    // them (review, replay), each vertex of the file moved by its weld's displacement: vertices the weld
+    // merged keep their own positions (they were near, not equal), and one whose weld did not move, or that
+    // no triangle uses, keeps its text (a row of NaN).
+    Eigen::MatrixXd source_positions = V;
+    if (scene && scene->primitives.size() == 1 && deform::mesh_format_from_path(source) &&
+        deform::mesh_format_from_path(source) == deform::mesh_format_from_path(path)) {
+      const std::vector<int>& weld = scene->primitives.front().deform_vertex;
+      const deform::Mesh file = deform::read_mesh(source);
+      if (file.V.rows() == static_cast<Eigen::Index>(weld.size())) {
+        source_positions.setConstant(file.V.rows(), 3, std::nan(""));
+        for (std::size_t v = 0; v < weld.size(); ++v) {
+          const int w = weld[v];
+          if (w < 0 || w >= V.rows() || V.row(w) == rest_mesh.V.row(w)) continue;
+          source_positions.row(static_cast<Eigen::Index>(v)) =
+              file.V.row(static_cast<Eigen::Index>(v)) + (V.row(w) - rest_mesh.V.row(w));
+        }
+      }
+    }
     for (const std::string& note :
          deform::write_deformed_mesh(path, source, source_positions, deform::Mesh{V, rest_mesh.F}))
       warnings.push_back(path.string() + ": " + note);

@@ -17,10 +17,10 @@ namespace pushpull::app {
 // Writes V (#V by 3, the deformed positions of rest_mesh, file units) to `path`, atomically:
 // - .glb: `scene` (the model as loaded, nodes and materials kept; assets::write_glb), or rest_mesh as one
 //   plain mesh where there is no scene;
-// - .off, .obj, .ply: where `source` (the file the model was read from) has that format, a copy of it with
-// the
-//   positions replaced (deform::write_deformed_mesh: polygons, attributes and comments kept); else
-//   rest_mesh's triangles with V.
+// - .off, .obj, .ply: where `source` (the file the model was read from) has that format, a copy of it
+//   with the positions replaced (deform::write_deformed_mesh: polygons, attributes and comments kept; each
+//   file vertex moved by its weld's displacement where assets welded them); else rest_mesh's triangles
+//   with V.
 // Returns warnings for the user, each naming `path`: what the output cannot carry (a glTF scene written as a
 // bare mesh), input attributes kept that no longer match the surface (normals), a layout written as triangles
 // instead. Throws CommandError naming the file and the problem.

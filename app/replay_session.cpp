@@ -53,10 +53,11 @@ std::string model_extension(const std::string& model) {
   return (ext == ".gltf" || ext == ".glb" || ext == ".drc") ? ".glb" : ext;
 }
 
-// The replay's models: copies of the reviewed model's file where it is OFF/OBJ/PLY (model_output.hpp); the
-// notes that come with them (normals kept as they were) are the model's, said by the review already.
-void write_model(const fs::path& path, const assets::Model& model, const Eigen::MatrixXd& V) {
-  (void)write_deformed_model(path, model.source_path, model.deform_mesh, &model, V);
+// The replay's models: copies of the reviewed model's file where it is OFF/OBJ/PLY (model_output.hpp).
+// Returns the notes that come with them (normals kept as they were, a layout written as triangles).
+std::vector<std::string> write_model(const fs::path& path, const assets::Model& model,
+                                     const Eigen::MatrixXd& V) {
+  return write_deformed_model(path, model.source_path, model.deform_mesh, &model, V);
 }
 
 std::string two_digits(std::size_t i) {
@@ -258,7 +259,9 @@ void run_replay(const ReplayOptions& o) {
   review.on_commit = [&](const CommitRecord& c) {
     commits.push_back(c);
     const fs::path file = out / ("commit-" + two_digits(c.index) + ext);
-    write_model(file, model, *c.snapshot->positions);
+    // The notes are the model file's, the same for every commit: said with the first.
+    for (const std::string& note : write_model(file, model, *c.snapshot->positions))
+      if (c.index == 1) bar.print("pushpull replay: warning: " + note);
     std::string check;
     const std::size_t slot = outcomes++;
     const std::optional<std::size_t> pair =
@@ -475,7 +478,7 @@ void run_replay(const ReplayOptions& o) {
     rc.metrics_file = stem + ".metrics.json";
     if (pictures) {
       const std::string before = stem + "-before" + ext;
-      write_model(out / before, model, before_mesh.V);
+      (void)write_model(out / before, model, before_mesh.V);  // (its notes said with commit 1's)
       const Eigen::Vector3d p0 = s.region && !s.region->handle.empty()
                                      ? Eigen::Vector3d(before_mesh.V.row(s.region->handle.front()).transpose())
                                      : Eigen::Vector3d::Zero();

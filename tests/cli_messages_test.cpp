@@ -256,6 +256,15 @@ TEST_F(CliMessages, UnusableCommandLinesNameTheCommandAndExitTwo) {
       {"render " + model + " --out " + path("r.png") + " --size 0 16", "pushpull render: error: --size"},
       {"deform --bogus", "pushpull deform: error: unknown argument '--bogus'"},
       {"deform " + model + " --out " + path("o.off"), "pushpull deform: error: --displacement is required"},
+      {"deform " + model + " --sections 1.5 --displacement 0 0 1 --out " + path("o.off"),
+       "pushpull deform: error: --sections: '1.5' is not a whole number (expected a whole number from 0 to "
+       "1000)"},
+      {"render " + model + " --out " + path("r.png") + " --fov nan",
+       "pushpull render: error: --fov: nan must be a finite number from 1 to 170"},
+      {"review " + model + " --reconnect nan",
+       "pushpull review: error: --reconnect: nan must be a finite number"},
+      {"replay x.jsonl --out " + path("r") + " --eye-size 8 8",
+       "pushpull replay: error: --eye-size: 8 must be a whole number from 16 to 16384"},
       {"bogus", "pushpull: error: unknown command 'bogus'"},
       {"", "pushpull: error: A subcommand is required"},
   };

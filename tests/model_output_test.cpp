@@ -45,9 +45,10 @@ TEST(ModelOutput, AWeldedObjIsWrittenBackAsItsOwnFile) {
   const fs::path dir = fresh_dir();
   const fs::path source = dir / "seam.obj";
   const std::string faces = "vt 0 0\nvt 1 1\nf 1/1 2/2 3/1 4/2\nf 5/1 7/1 8/2 6/2\n";
-  std::ofstream(source) << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 1 0 0\nv 1 1 0\nv 2 0 0\nv 2 1 0\n"
-                           "v 9.5 9.5 9.5\n"
-                        << faces;
+  std::ofstream(source)
+      << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 1.000000001 0 0\nv 1 1 0\nv 2 0 0\nv 2 1 0\n"
+         "v 9.5 9.5 9.5\n"
+      << faces;
   const pushpull::assets::Model model = pushpull::assets::load_model(source);
   ASSERT_EQ(model.deform_mesh.V.rows(), 6);  // the seam welded, the unused vertex gone
   Eigen::MatrixXd V = model.deform_mesh.V;

@@ -4,7 +4,9 @@
 #include <atomic>
 #include <cerrno>
 #include <charconv>
+#include <chrono>
 #include <csignal>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <mutex>
@@ -13,7 +15,6 @@
 #include <system_error>
 
 #include <fcntl.h>
-#include <pthread.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -76,26 +77,34 @@ void ensure_handler(int signal, struct sigaction& previous) {
   (void)::sigaction(signal, &mine, nullptr);
 }
 
-// Registers a temporary for the signal handler for its lifetime (none when every slot is taken).
+// Registers a temporary for the signal handler for its lifetime: the handlers are installed and a slot
+// claimed first, the temporary's name published before the file is created (so a signal on any thread, at any
+// moment, finds every temporary that exists: unlinking a name not created yet fails harmlessly). No
+// protection when every slot is taken.
 class TemporaryGuard {
  public:
-  explicit TemporaryGuard(const std::string& path) {
+  TemporaryGuard() {
     static std::mutex handlers;  // two first writes at once install the handlers once
     {
       const std::lock_guard lock(handlers);
       ensure_handler(SIGINT, g_previous_int);
       ensure_handler(SIGTERM, g_previous_term);
     }
-    if (path.size() >= std::tuple_size_v<decltype(TemporarySlot::path)>) return;
     for (TemporarySlot& s : g_temporaries) {
       int free = 0;
       if (s.state.compare_exchange_strong(free, 1)) {
-        std::memcpy(s.path.data(), path.c_str(), path.size() + 1);
-        s.state.store(2);
         slot_ = &s;
         return;
       }
     }
+  }
+  // The name the next create will use (too long a name goes unprotected).
+  void publish(const std::string& path) {
+    if (!slot_) return;
+    slot_->state.store(1);
+    if (path.size() >= std::tuple_size_v<decltype(TemporarySlot::path)>) return;
+    std::memcpy(slot_->path.data(), path.c_str(), path.size() + 1);
+    slot_->state.store(2);
   }
   ~TemporaryGuard() {
     if (slot_) slot_->state.store(0);
@@ -106,6 +115,25 @@ class TemporaryGuard {
  private:
   TemporarySlot* slot_ = nullptr;
 };
+
+// Six characters for a temporary's name, different on every call and in every process.
+std::string random_suffix() {
+  static std::atomic<std::uint64_t> counter{0};
+  std::uint64_t x = (static_cast<std::uint64_t>(::getpid()) << 32) ^ counter.fetch_add(1) ^
+                    static_cast<std::uint64_t>(std::chrono::steady_clock::now().time_since_epoch().count());
+  x ^= x >> 33;  // splitmix64's finaliser: neighbouring inputs give unrelated names
+  x *= 0xff51afd7ed558ccdULL;
+  x ^= x >> 33;
+  x *= 0xc4ceb9fe1a85ec53ULL;
+  x ^= x >> 33;
+  static constexpr char kLetters[] = "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789";
+  std::string suffix(6, 'a');
+  for (char& c : suffix) {
+    c = kLetters[x % 62];
+    x /= 62;
+  }
+  return suffix;
+}
 
 // The file a path names: a symbolic link's target, its chain followed (up to 40 links, a relative target
 // taken from the link's folder); a dangling link gives the file it would create; otherwise the path itself.
@@ -181,20 +209,22 @@ std::string write_to(const fs::path& requested, std::string_view bytes) {
   const fs::path folder = path.parent_path().empty() ? fs::path(".") : path.parent_path();
   std::string temp_leaf = ".";  // (built in steps: GCC 12 warns falsely on a + b + c here)
   temp_leaf += path.filename().string();
-  temp_leaf += ".tmp-XXXXXX";
-  std::string temp_name = (folder / temp_leaf).string();
-  // SIGINT and SIGTERM wait while the temporary is created and registered: one in between would end the
-  // process with the temporary unknown to the handler, left behind.
-  sigset_t held, previous_mask;
-  sigemptyset(&held);
-  sigaddset(&held, SIGINT);
-  sigaddset(&held, SIGTERM);
-  const bool masked = ::pthread_sigmask(SIG_BLOCK, &held, &previous_mask) == 0;
-  const int fd = ::mkstemp(temp_name.data());
-  const int create_error = errno;
-  std::optional<TemporaryGuard> guard;
-  if (fd >= 0) guard.emplace(temp_name);
-  if (masked) ::pthread_sigmask(SIG_SETMASK, &previous_mask, nullptr);
+  temp_leaf += ".tmp-";
+  const std::string temp_prefix = (folder / temp_leaf).string();
+  // The name is published for the signal handler before the file exists (TemporaryGuard), then created
+  // exclusively: mkstemp would create first and leave a moment in which a signal on another thread (a review
+  // has several) ends the process with the temporary unknown to the handler.
+  TemporaryGuard guard;
+  std::string temp_name;
+  int fd = -1;
+  int create_error = 0;
+  for (int attempt = 0; attempt < 100 && fd < 0; ++attempt) {
+    temp_name = temp_prefix + random_suffix();
+    guard.publish(temp_name);
+    fd = ::open(temp_name.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
+    create_error = errno;
+    if (fd < 0 && create_error != EEXIST) break;
+  }
   if (fd < 0)
     return "cannot create a temporary file in " + folder.string() + ": " + std::strerror(create_error);
   auto give_up = [&](const char* what, int error) {
@@ -203,7 +233,7 @@ std::string write_to(const fs::path& requested, std::string_view bytes) {
     return std::string(what) + ": " + std::strerror(error);
   };
   if (const int failed = write_all(fd, bytes)) return give_up("write failed", failed);
-  // mkstemp creates the file 0600: a new result is an ordinary file others may read (umask is not
+  // The temporary is created 0600: a new result is an ordinary file others may read (umask is not
   // consulted: reading it means changing it, which races with other threads); a replaced one keeps its mode.
   if (::fchmod(fd, exists ? (existing.st_mode & 07777) : 0644) != 0) return give_up("chmod failed", errno);
   if (::fsync(fd) != 0) return give_up("fsync failed", errno);

@@ -4,6 +4,7 @@
 #include "mesh_io_ply_header.hpp"
 #include "text_scan.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <charconv>
 #include <cmath>
@@ -24,42 +25,22 @@ void append_number(std::string& out, double value) {
   out.append(buffer, ec == std::errc{} ? end : buffer);
 }
 
-// Builds the rewritten contents: the source's bytes, some of its lines replaced.
-class LineEditor {
+// Builds the rewritten contents: the source's bytes with some number tokens replaced, in file order.
+class SpanEditor {
  public:
-  explicit LineEditor(std::string_view contents) : contents_(contents) { out_.reserve(contents.size() + 64); }
+  explicit SpanEditor(std::string_view contents) : contents_(contents) { out_.reserve(contents.size() + 64); }
 
-  // Replaces, in `line` (a view into the contents, after the last one edited), the whitespace-separated
-  // tokens numbered slots[i] (0-based, ascending; counted before any '#' comment) by values[i]; the rest of
-  // the line, its spacing and comment included, stays. Returns false (nothing changed) when the line has too
-  // few tokens.
-  bool replace(std::string_view line, const int (&slots)[3], const double (&values)[3]) {
-    const std::string_view content = line.substr(0, line.find('#'));
-    std::size_t spans[3][2] = {};
-    std::size_t pos = 0;
-    int found = 0;
-    for (int token = 0; found < 3; ++token) {
-      while (pos < content.size() && detail::is_space(content[pos])) ++pos;
-      if (pos >= content.size()) return false;
-      const std::size_t start = pos;
-      while (pos < content.size() && !detail::is_space(content[pos])) ++pos;
-      if (token == slots[found]) {
-        spans[found][0] = start;
-        spans[found][1] = pos;
-        ++found;
-      }
-    }
-    const std::size_t line_start = static_cast<std::size_t>(line.data() - contents_.data());
-    out_.append(contents_.substr(copied_, line_start - copied_));
-    std::size_t last = 0;
-    for (int i = 0; i < 3; ++i) {
-      out_.append(line.substr(last, spans[i][0] - last));
-      append_number(out_, values[i]);
-      last = spans[i][1];
-    }
-    out_.append(line.substr(last));
-    copied_ = line_start + line.size();
-    return true;
+  // Replaces the token `token` (a view into the contents, after the last one replaced) by `value`'s shortest
+  // text, unless the token already reads as exactly that number: a vertex that did not move keeps its text.
+  void replace(std::string_view token, double value) {
+    double written = 0.0;
+    if (detail::parse_double(token, written) && written == value &&
+        std::signbit(written) == std::signbit(value))
+      return;
+    const std::size_t start = static_cast<std::size_t>(token.data() - contents_.data());
+    out_.append(contents_.substr(copied_, start - copied_));
+    append_number(out_, value);
+    copied_ = start + token.size();
   }
 
   std::string finish() {
@@ -72,6 +53,18 @@ class LineEditor {
   std::string out_;
   std::size_t copied_ = 0;
 };
+
+// The first three whitespace-separated tokens of `line` from token number `first` on (before any '#'), into
+// `tokens`; false when the line has too few.
+bool three_tokens(std::string_view line, int first, std::string_view (&tokens)[3]) {
+  detail::Tokens scan(line.substr(0, line.find('#')));
+  std::string_view token;
+  for (int k = 0; k < first; ++k)
+    if (!scan.next(token)) return false;
+  for (std::string_view& t : tokens)
+    if (!scan.next(t)) return false;
+  return true;
+}
 
 void check_rows(const Eigen::MatrixXd& V, std::int64_t file_vertices, const std::string& name) {
   if (V.rows() != file_vertices || V.cols() != 3)
@@ -121,15 +114,15 @@ PositionRewrite rewrite_off(std::string_view contents, const Eigen::MatrixXd& V,
   // NOFF, CNOFF, ...: per-vertex normals, kept as written.
   if (keyword.substr(0, keyword.size() - 3).find('N') != std::string_view::npos)
     result.stale.emplace_back("per-vertex normals");
-  LineEditor editor(contents);
-  const int slots[3] = {0, 1, 2};
+  SpanEditor editor(contents);
   for (std::int64_t i = 0; i < vertex_count; ++i) {
     if (!next_content_line(cursor, raw))
       fail(name, cursor.line_number(), "truncated: " + std::to_string(i) + " vertices");
-    if (keep(V, i)) continue;
-    const double values[3] = {V(i, 0), V(i, 1), V(i, 2)};
-    if (!editor.replace(raw, slots, values))
+    std::string_view xyz[3];
+    if (!three_tokens(raw, 0, xyz))
       fail(name, cursor.line_number(), "vertex " + std::to_string(i) + " has fewer than 3 coordinates");
+    if (keep(V, i)) continue;
+    for (int axis = 0; axis < 3; ++axis) editor.replace(xyz[axis], V(i, axis));
   }
   result.contents = editor.finish();
   return result;
@@ -150,14 +143,14 @@ PositionRewrite rewrite_obj(std::string_view contents, const Eigen::MatrixXd& V,
   check_rows(V, static_cast<std::int64_t>(vertex_lines.size()), name);
   PositionRewrite result;
   if (normals) result.stale.emplace_back("normals (vn)");
-  LineEditor editor(contents);
-  const int slots[3] = {1, 2, 3};  // after the keyword
+  SpanEditor editor(contents);
   for (std::size_t i = 0; i < vertex_lines.size(); ++i) {
     const auto row = static_cast<Eigen::Index>(i);
-    if (keep(V, row)) continue;
-    const double values[3] = {V(row, 0), V(row, 1), V(row, 2)};
-    if (!editor.replace(vertex_lines[i], slots, values))
+    std::string_view xyz[3];
+    if (!three_tokens(vertex_lines[i], 1, xyz))  // after the keyword
       fail(name, 0, "vertex " + std::to_string(i) + " has fewer than 3 coordinates");
+    if (keep(V, row)) continue;
+    for (int axis = 0; axis < 3; ++axis) editor.replace(xyz[axis], V(row, axis));
   }
   result.contents = editor.finish();
   return result;
@@ -202,38 +195,53 @@ PositionRewrite rewrite_ply(std::string_view contents, const Eigen::MatrixXd& V,
   for (int axis = 0; axis < 3; ++axis) {
     if (slots[axis] < 0) fail(name, vertex.header_line, "the vertex element lacks an x, y or z property");
     const ScalarType type = vertex.properties[static_cast<std::size_t>(slots[axis])].type;
-    if (header.encoding != Encoding::ascii && type != ScalarType::float32 && type != ScalarType::float64)
+    if (type != ScalarType::float32 && type != ScalarType::float64)
       fail(name, vertex.header_line, "integer coordinates: cannot rewrite them in place");
   }
   PositionRewrite result;
   if (normals) result.stale.emplace_back("normals (nx, ny, nz)");
 
   if (header.encoding == Encoding::ascii) {
-    // One item per line (as PLY writers write them): the lines of the elements before the vertex element are
-    // skipped. (The line editor takes the tokens in order.)
-    if (!(slots[0] < slots[1] && slots[1] < slots[2]))
-      fail(name, vertex.header_line, "x, y and z not in that order: cannot rewrite them in place");
-    detail::LineCursor cursor(contents.substr(header.body_offset));
-    std::string_view raw;
-    std::int64_t skip = 0;
-    for (std::size_t e = 0; e < vertex_index; ++e) skip += header.elements[e].count;
-    for (std::int64_t i = 0; i < skip; ++i)
-      if (!cursor.next(raw)) fail(name, 0, "truncated before the vertices");
-    // LineEditor wants views into the whole contents: the cursor's are (a substring of it).
-    LineEditor editor(contents);
-    for (std::int64_t i = 0; i < vertex.count; ++i) {
-      if (!cursor.next(raw)) fail(name, 0, "truncated: " + std::to_string(i) + " vertices");
-      detail::Tokens tokens(raw);
-      std::string_view token;
-      std::size_t n = 0;
-      while (tokens.next(token)) ++n;
-      if (n != vertex.properties.size())
-        fail(name, header.body_line + static_cast<std::size_t>(skip + i),
-             "vertex " + std::to_string(i) + " is not one line of its " +
-                 std::to_string(vertex.properties.size()) + " properties: cannot rewrite it in place");
-      if (keep(V, i)) continue;
-      const double values[3] = {V(i, 0), V(i, 1), V(i, 2)};
-      (void)editor.replace(raw, slots, values);
+    // The body as parse_ply reads it: one stream of whitespace-separated tokens (line breaks mean nothing),
+    // each scalar one token, each list its length and then its items; the vertices' x, y and z tokens are
+    // replaced where they are.
+    const std::string_view body = contents.substr(header.body_offset);
+    std::size_t pos = 0;
+    auto next_token = [&](std::string_view& token) {
+      while (pos < body.size() && (detail::is_space(body[pos]) || body[pos] == '\n')) ++pos;
+      if (pos >= body.size()) return false;
+      const std::size_t start = pos;
+      while (pos < body.size() && !detail::is_space(body[pos]) && body[pos] != '\n') ++pos;
+      token = body.substr(start, pos - start);
+      return true;
+    };
+    SpanEditor editor(contents);
+    std::string_view token;
+    for (std::size_t e = 0; e <= vertex_index; ++e) {
+      const detail::Element& element = header.elements[e];
+      for (std::int64_t item = 0; item < element.count; ++item) {
+        std::string_view xyz[3];
+        for (std::size_t p = 0; p < element.properties.size(); ++p) {
+          if (!next_token(token)) fail(name, 0, "truncated: the data ends before the vertices were read");
+          if (!element.properties[p].is_list) {
+            for (int axis = 0; axis < 3 && e == vertex_index; ++axis)
+              if (slots[axis] == static_cast<int>(p)) xyz[axis] = token;
+            continue;
+          }
+          std::int64_t length = 0;
+          if (!detail::parse_int64(token, length) || length < 0)
+            fail(
+                name, 0,
+                element.name + " " + std::to_string(item) + ": bad list length '" + std::string(token) + "'");
+          for (std::int64_t k = 0; k < length; ++k)
+            if (!next_token(token)) fail(name, 0, "truncated: the data ends before the vertices were read");
+        }
+        if (e != vertex_index || keep(V, item)) continue;
+        // In file order, whatever the order of x, y and z among the properties.
+        int order[3] = {0, 1, 2};
+        std::sort(order, order + 3, [&](int a, int b) { return slots[a] < slots[b]; });
+        for (const int axis : order) editor.replace(xyz[axis], V(item, axis));
+      }
     }
     result.contents = editor.finish();
     return result;

@@ -173,15 +173,42 @@ TEST(MeshIoRewrite, WriteDeformedMeshCopiesTheSourceOrFallsBackToTriangles) {
   EXPECT_TRUE(pd::write_deformed_mesh(dir.path / "out.obj", source, deformed.V, deformed).empty());
   EXPECT_EQ(pd::read_mesh(dir.path / "out.obj").F.rows(), 2);  // triangles
 
-  const fs::path split = dir.path / "split.ply";
-  std::ofstream(split) << "ply\nformat ascii 1.0\nelement vertex 3\nproperty double x\nproperty double y\n"
-                          "property double z\nelement face 1\nproperty list uchar int vertex_indices\n"
-                          "end_header\n0 0\n0\n1 0 0\n0 1 0\n3 0 1 2\n";
-  const pd::Mesh triangle = pd::read_mesh(split);
+  const fs::path integers = dir.path / "integers.ply";
+  std::ofstream(integers) << "ply\nformat ascii 1.0\nelement vertex 3\nproperty int x\nproperty int y\n"
+                             "property int z\nelement face 1\nproperty list uchar int vertex_indices\n"
+                             "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  pd::Mesh triangle = pd::read_mesh(integers);
+  triangle.V(1, 2) = 0.5;  // not a whole number: integer coordinates cannot hold it
   const std::vector<std::string> notes =
-      pd::write_deformed_mesh(dir.path / "out.ply", split, triangle.V, triangle);
+      pd::write_deformed_mesh(dir.path / "out.ply", integers, triangle.V, triangle);
   ASSERT_EQ(notes.size(), 1u);
   EXPECT_NE(notes[0].find("written as triangles with positions only"), std::string::npos) << notes[0];
-  EXPECT_NE(notes[0].find("is not one line of its 3 properties"), std::string::npos) << notes[0];
+  EXPECT_NE(notes[0].find("integer coordinates"), std::string::npos) << notes[0];
   EXPECT_EQ(pd::read_mesh(dir.path / "out.ply").V, triangle.V);
+}
+
+// ASCII PLY is a stream of tokens (line breaks mean nothing to the reader): the rewrite finds each vertex's
+// x, y and z where the reader does, across an element before the vertices written on one line, vertices split
+// over lines, lists, and x, y, z not in that order; unmoved vertices keep their text.
+TEST(MeshIoRewrite, AsciiPlyTokensAreFoundWhereTheReaderReadsThem) {
+  const std::string source =
+      "ply\nformat ascii 1.0\nelement camera 2\nproperty float focal\nelement vertex 4\nproperty float conf\n"
+      "property float z\nproperty float x\nproperty float y\nelement face 2\n"
+      "property list uchar int vertex_indices\nend_header\n"
+      "0.5 0.7\n"
+      "0.9 0.000 0.000\n0.000\n0.9 0.000 1.000 0.000\n0.9 0.000 1.000 1.000 0.9 0.000 0.000 1.000\n"
+      "3 0 1 2 3 0 2 3\n";
+  const pd::Mesh read = pd::parse_ply(source, "s.ply");
+  ASSERT_EQ(read.V.rows(), 4);
+  Eigen::MatrixXd V = read.V;
+  V(2, 2) = 0.25;  // vertex 2 (x 1, y 1) lifted
+  const std::string text = pd::rewrite_positions(source, pd::MeshFormat::ply, V, "s.ply").contents;
+  EXPECT_EQ(pd::parse_ply(text, "back.ply").V, V);
+  EXPECT_EQ(pd::parse_ply(text, "back.ply").F, read.F);
+  // Only vertex 2's z token changed; every other byte (the camera line, the split lines, the other
+  // vertices' "0.000" texts, the faces) as it was.
+  std::string expected = source;
+  const std::string before = "0.9 0.000 1.000 1.000 0.9";
+  expected.replace(expected.find(before), before.size(), "0.9 0.25 1.000 1.000 0.9");
+  EXPECT_EQ(text, expected);
 }

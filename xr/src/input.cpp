@@ -36,7 +36,7 @@ struct Profile {
   const char* extension = nullptr;  // the instance extension that brings the profile (none: OpenXR 1.0 core)
 };
 
-// Both hands get the same component unless a binding names a hand ("L:" / "R:" prefix).
+// A binding's first character says which hands get its component: '*' both, 'L' the left, 'R' the right.
 std::vector<Profile> profiles() {
   return {
       {"/interaction_profiles/khr/simple_controller",

@@ -80,12 +80,12 @@ struct PositionRewrite {
 // The contents of a mesh file of `format` with its vertex positions replaced by V's rows (#V by 3, one row
 // per vertex as read_mesh reads them; a row of NaN keeps that vertex as written) and everything else as
 // written: polygons stay polygons, and comments, colours, texture coordinates, normals, groups and materials
-// stay (OFF, OBJ and ASCII PLY: each vertex line with its first three numbers (PLY: its x, y, z) replaced by
-// their shortest round-trip text, the rest of the line verbatim; binary PLY: every other byte, the
-// coordinates in the file's own float type and byte order). Throws MeshIoError (naming `name`) where V does
-// not fit the file, or its layout cannot be rewritten in place: a PLY vertex element with a list property or
-// integer coordinates, a binary PLY whose vertices follow an element with a list, an ASCII PLY vertex not on
-// one line of its own.
+// stay. Text formats (OFF, OBJ, ASCII PLY): the tokens read_mesh reads as a vertex's x, y and z are replaced
+// by their shortest round-trip text, unless they already read as exactly the new value (an unmoved vertex
+// keeps its text); every other byte stays. Binary PLY: the coordinates in the file's own float type and byte
+// order, every other byte as it was. Throws MeshIoError (naming `name`) where V does not fit the file, or its
+// layout cannot be rewritten in place: a PLY vertex element with a list property or integer coordinates, a
+// binary PLY whose vertices follow an element with a list.
 [[nodiscard]] PositionRewrite rewrite_positions(std::string_view contents, MeshFormat format,
                                                 const Eigen::MatrixXd& V, const std::string& name);
 
