@@ -211,13 +211,18 @@ std::vector<std::string> write_deformed_mesh(const std::filesystem::path& path,
   }
   std::optional<PositionRewrite> rewrite;
   std::string refused;
+  MeshWriteOptions fallback;  // an ASCII PLY falls back to ASCII
   try {
-    rewrite = rewrite_positions(read_whole_file(source), *format, source_positions, source.string());
+    const std::string contents = read_whole_file(source);
+    if (*format == MeshFormat::ply && contents.find("\nformat ascii") != std::string::npos &&
+        contents.find("\nformat ascii") < contents.find("end_header"))
+      fallback.ply_encoding = PlyEncoding::ascii;
+    rewrite = rewrite_positions(contents, *format, source_positions, source.string());
   } catch (const MeshIoError& e) {  // a layout it cannot rewrite in place (or a source changed since)
     refused = e.what();
   }
   if (!rewrite) {
-    write_mesh(path, mesh);
+    write_mesh(path, mesh, fallback);
     return {"written as triangles with positions only, not as a copy of the input (" + refused + ")"};
   }
   write_bytes(path, rewrite->contents);

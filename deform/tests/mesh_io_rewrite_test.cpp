@@ -184,6 +184,7 @@ TEST(MeshIoRewrite, WriteDeformedMeshCopiesTheSourceOrFallsBackToTriangles) {
   ASSERT_EQ(notes.size(), 1u);
   EXPECT_NE(notes[0].find("written as triangles with positions only"), std::string::npos) << notes[0];
   EXPECT_NE(notes[0].find("integer coordinates"), std::string::npos) << notes[0];
+  EXPECT_NE(file_text(dir.path / "out.ply").find("format ascii"), std::string::npos);  // as the source
   EXPECT_EQ(pd::read_mesh(dir.path / "out.ply").V, triangle.V);
 }
 
