@@ -231,8 +231,9 @@ struct DeformResult {
   // rate_hint: of its last 10 estimates), at least the hint and the probe's floor
   // (deform/src/error_estimate.hpp says why it may exceed contraction_rate).
   std::optional<double> estimate_rate;
-  // A solve that reaches its tolerance within its first 32 iterations (asan: 80) without a rate_hint (a cold
-  // solve, or a warm start that brings no rate) first checks the rate its estimate rests on: 40 Arnoldi steps
+  // A solve that reaches its tolerance within its first 32 iterations (asan: 80; on a region of at most 8,000
+  // free vertices at any iteration) without a rate_hint (a cold solve, or a warm start that brings no rate)
+  // first checks the rate its estimate rests on: 40 Lanczos or Arnoldi steps
   // on the local-global map's Jacobian from a fixed random start, each one extra local and global step. A
   // slower rate found there (its distance to 1 halved, taken up to 0.999) raises the estimate, and the solve
   // goes on. probe_rate: the largest rate the probe found (empty: no probe); probe_evaluations: its
