@@ -82,12 +82,6 @@ struct LoadedModel {
   std::optional<assets::Model> scene;        // glTF/GLB/Draco input only
 };
 
-bool is_glb_path(const fs::path& path) {
-  std::string extension = path.extension().string();
-  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return extension == ".glb";
-}
-
 LoadedModel load_model(const fs::path& path) {
   if (!fs::exists(path)) throw CommandError(path.string() + ": model file does not exist");
   if (deform::mesh_format_from_path(path)) {

@@ -12,12 +12,6 @@
 namespace pushpull::app {
 namespace {
 
-bool is_glb(const std::filesystem::path& path) {
-  std::string extension = path.extension().string();
-  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return extension == ".glb";
-}
-
 // The message once with the path in front (the libraries' messages may start with it already).
 std::string naming(const std::filesystem::path& path, const std::string& what) {
   return what.rfind(path.string(), 0) == 0 ? what : path.string() + ": " + what;
@@ -25,11 +19,17 @@ std::string naming(const std::filesystem::path& path, const std::string& what) {
 
 }  // namespace
 
+bool is_glb_path(const std::filesystem::path& path) {
+  std::string extension = path.extension().string();
+  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return extension == ".glb";
+}
+
 std::vector<std::string> write_deformed_model(const std::filesystem::path& path,
                                               const std::filesystem::path& source,
                                               const deform::Mesh& rest_mesh, const assets::Model* scene,
                                               const Eigen::MatrixXd& V) {
-  if (is_glb(path)) {
+  if (is_glb_path(path)) {
     try {
       if (scene) return assets::write_glb(*scene, V, path);
       return assets::write_glb(assets::model_from_mesh(rest_mesh, path.stem().string()), V, path);

@@ -14,6 +14,9 @@
 
 namespace pushpull::app {
 
+// Whether `path` names a GLB (extension .glb, any case).
+[[nodiscard]] bool is_glb_path(const std::filesystem::path& path);
+
 // Writes V (#V by 3, the deformed positions of rest_mesh, file units) to `path`, atomically:
 // - .glb: `scene` (the model as loaded, nodes and materials kept; assets::write_glb), or rest_mesh as one
 //   plain mesh where there is no scene;

@@ -166,6 +166,8 @@ int main(int argc, char** argv) {
     const pb::HeightFieldProblem problem = pb::make_height_field(n);
     const long vertices = static_cast<long>(problem.mesh.V.rows());
     const pd::RegionOfInterest roi = pd::build_roi(problem.mesh, problem.handle, problem.fixed);
+    std::printf("%8ld region: %zu free, %zu handle, %zu fixed vertices\n", vertices, roi.free.size(),
+                roi.handle.size(), roi.fixed.size());
     for (const pd::Method method : methods) {
       const std::string name(pd::method_name(method));
       const Eigen::MatrixXd reference =

@@ -257,16 +257,17 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
   const int probe_before = (options.method == Method::Asan ? 10 : 4) * kRateWindow;
   constexpr int kProbeSteps = 40;
   // - Regions of at most kProbeAnyStopFree free vertices probe their first candidate stop wherever it comes:
-  //   there the probe's 41 evaluations cost little (each one local-global step, well under a millisecond at
-  //   a few thousand vertices here), and a late stop can be optimistic too: ten new seeds of random pulls
+  //   there the probe's 41 evaluations cost little (each one local-global step: 0.1 ms on a 560-vertex region
+  //   of the car, 1.2 ms on the 9,400 free vertices of deform_bench's 10K field), and a late stop can be
+  //   optimistic too: ten new seeds of random pulls
   //   drawn on 2026-12-07 (31-40) had one real-car asan pull (seed 40, 1,462 region vertices) stop after 102
   //   iterations, past the window, 2.49x optimistic. Probing every stop of those regions made it honest and
   //   kept the other solves honest (none over 2x), for 0.9% more iterations and 20% more probe steps on the
   //   ten seeds (33,944 and 30,463 against 33,650 and 25,297: 9% more local-global steps in all); seeds
   //   20261202, 2027 and 7071: none over 2x either way, 0.3-0.5% more iterations, 22-35% more probe steps.
   //   Larger regions keep the window: there the probe costs tens of evaluations of over a millisecond (the
-  //   10K height field, about 9,400 free vertices, stops at 85 iterations without one; one would add 41
-  //   steps, about 50 ms), and no late stop of theirs has been seen optimistic.
+  //   10K height field, 9,400 free vertices, stops at 85 iterations without one; one would add 41 steps,
+  //   about 50 ms), and no late stop of theirs has been seen optimistic.
   constexpr int kProbeAnyStopFree = 8000;
   constexpr double kFixedPointMove = 1e-14;  // a plain step's move / reference that counts as none
   const double probe_max_rate = options.method == Method::SrArap || triangle_rotations ? 0.999 : 0.9999;

@@ -1,5 +1,6 @@
 // Mesh file dispatch by extension, the writers, and atomic file replacement.
 #include "mesh_io_detail.hpp"
+#include "mesh_io_ply_header.hpp"
 
 #include <algorithm>
 #include <bit>
@@ -18,6 +19,8 @@
 #include <unistd.h>
 
 namespace pushpull::deform {
+
+using detail::append_number;
 
 namespace {
 
@@ -39,13 +42,6 @@ void check_faces(const Mesh& mesh, const std::string& name) {
   if (mesh.F.size() > 0 && (mesh.F.minCoeff() < 0 || mesh.F.maxCoeff() >= mesh.V.rows())) {
     detail::fail(name, 0, "mesh to write has a face index out of range");
   }
-}
-
-// Shortest text that reads back to the same double.
-void append_number(std::string& out, double value) {
-  char buffer[32];
-  const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, value);
-  out.append(buffer, ec == std::errc{} ? end : buffer);
 }
 
 void append_vertex_row(std::string& out, const Mesh& mesh, Eigen::Index i) {
@@ -209,19 +205,23 @@ std::vector<std::string> write_deformed_mesh(const std::filesystem::path& path,
     write_mesh(path, mesh);
     return {};
   }
+  const std::string contents = read_whole_file(source);
   std::optional<PositionRewrite> rewrite;
   std::string refused;
-  MeshWriteOptions fallback;  // an ASCII PLY falls back to ASCII
   try {
-    const std::string contents = read_whole_file(source);
-    if (*format == MeshFormat::ply && contents.find("\nformat ascii") != std::string::npos &&
-        contents.find("\nformat ascii") < contents.find("end_header"))
-      fallback.ply_encoding = PlyEncoding::ascii;
     rewrite = rewrite_positions(contents, *format, source_positions, source.string());
   } catch (const MeshIoError& e) {  // a layout it cannot rewrite in place (or a source changed since)
     refused = e.what();
   }
   if (!rewrite) {
+    MeshWriteOptions fallback;  // an ASCII PLY falls back to ASCII
+    if (*format == MeshFormat::ply) {
+      try {
+        if (detail::read_ply_header(contents, source.string()).encoding == detail::Encoding::ascii)
+          fallback.ply_encoding = PlyEncoding::ascii;
+      } catch (const MeshIoError&) {  // no header to go by: the default encoding
+      }
+    }
     write_mesh(path, mesh, fallback);
     return {"written as triangles with positions only, not as a copy of the input (" + refused + ")"};
   }

@@ -10,6 +10,7 @@
 #include "pushpull/deform/mesh.hpp"
 #include "pushpull/deform/mesh_io.hpp"
 
+#include <charconv>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -17,6 +18,13 @@
 #include <vector>
 
 namespace pushpull::deform::detail {
+
+// Shortest text that reads back to the same double (the writers' and the rewrite's numbers).
+inline void append_number(std::string& out, double value) {
+  char buffer[32];
+  const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, value);
+  out.append(buffer, ec == std::errc{} ? end : buffer);
+}
 
 [[noreturn]] inline void fail(const std::string& file, std::size_t line, const std::string& problem) {
   throw MeshIoError(file, line, problem);

@@ -14,16 +14,10 @@
 
 namespace pushpull::deform {
 
+using detail::append_number;
 using detail::fail;
 
 namespace {
-
-// Shortest text that reads back to the same double.
-void append_number(std::string& out, double value) {
-  char buffer[32];
-  const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, value);
-  out.append(buffer, ec == std::errc{} ? end : buffer);
-}
 
 // Builds the rewritten contents: the source's bytes with some number tokens replaced, in file order.
 class SpanEditor {

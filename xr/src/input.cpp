@@ -38,6 +38,10 @@ struct Profile {
 
 // A binding's first character says which hands get its component: '*' both, 'L' the left, 'R' the right.
 std::vector<Profile> profiles() {
+  const std::vector<Binding> motion = {{Trigger, "*/input/trigger/value"}, {Grip, "*/input/squeeze/click"},
+                                       {Aim, "*/input/aim/pose"},          {Thumbstick, "*/input/thumbstick"},
+                                       {Undo, "L/input/menu/click"},       {Redo, "R/input/menu/click"},
+                                       {Menu, "*/input/thumbstick/click"}, {Haptic, "*/output/haptic"}};
   return {
       {"/interaction_profiles/khr/simple_controller",
        {{Trigger, "*/input/select/click"},
@@ -74,15 +78,7 @@ std::vector<Profile> profiles() {
         {Redo, "R/input/menu/click"},
         {Menu, "*/input/trackpad/click"},
         {Haptic, "*/output/haptic"}}},
-      {"/interaction_profiles/microsoft/motion_controller",
-       {{Trigger, "*/input/trigger/value"},
-        {Grip, "*/input/squeeze/click"},
-        {Aim, "*/input/aim/pose"},
-        {Thumbstick, "*/input/thumbstick"},
-        {Undo, "L/input/menu/click"},
-        {Redo, "R/input/menu/click"},
-        {Menu, "*/input/thumbstick/click"},
-        {Haptic, "*/output/haptic"}}},
+      {"/interaction_profiles/microsoft/motion_controller", motion},
       // HP Reverb G2: Touch's layout (X/Y left, A/B right), a menu button on each hand.
       {"/interaction_profiles/hp/mixed_reality_controller",
        {{Trigger, "*/input/trigger/value"},
@@ -109,15 +105,7 @@ std::vector<Profile> profiles() {
         {Haptic, "*/output/haptic"}},
        XR_HTC_VIVE_COSMOS_CONTROLLER_INTERACTION_EXTENSION_NAME},
       // Samsung Odyssey: the Windows Mixed Reality motion controller's components.
-      {"/interaction_profiles/samsung/odyssey_controller",
-       {{Trigger, "*/input/trigger/value"},
-        {Grip, "*/input/squeeze/click"},
-        {Aim, "*/input/aim/pose"},
-        {Thumbstick, "*/input/thumbstick"},
-        {Undo, "L/input/menu/click"},
-        {Redo, "R/input/menu/click"},
-        {Menu, "*/input/thumbstick/click"},
-        {Haptic, "*/output/haptic"}},
+      {"/interaction_profiles/samsung/odyssey_controller", motion,
        XR_EXT_SAMSUNG_ODYSSEY_CONTROLLER_EXTENSION_NAME},
   };
 }

@@ -23,6 +23,14 @@ std::vector<InteractionProfile> make_profiles() {
   const char* R = "/user/hand/right";
   const Spec poses[] = {
       {"/input/grip/pose", K::pose}, {"/input/aim/pose", K::pose}, {"/output/haptic", K::haptic}};
+  // Windows Mixed Reality motion controllers (Microsoft's, Samsung's Odyssey): their components on each hand.
+  const std::initializer_list<Spec> kMotion = {
+      {"/input/menu/click", K::boolean},       {"/input/squeeze/click", K::boolean},
+      {"/input/trigger/value", K::scalar},     {"/input/thumbstick", K::vector2},
+      {"/input/thumbstick/x", K::scalar},      {"/input/thumbstick/y", K::scalar},
+      {"/input/thumbstick/click", K::boolean}, {"/input/trackpad", K::vector2},
+      {"/input/trackpad/x", K::scalar},        {"/input/trackpad/y", K::scalar},
+      {"/input/trackpad/click", K::boolean},   {"/input/trackpad/touch", K::boolean}};
   const auto both = [&](InteractionProfile& p, std::initializer_list<Spec> specs) {
     for (const char* u : {L, R}) {
       add(p, u, specs);
@@ -97,18 +105,7 @@ std::vector<InteractionProfile> make_profiles() {
                          {L, R},
                          {},
                          {}};
-    both(p, {{"/input/menu/click", K::boolean},
-             {"/input/squeeze/click", K::boolean},
-             {"/input/trigger/value", K::scalar},
-             {"/input/thumbstick", K::vector2},
-             {"/input/thumbstick/x", K::scalar},
-             {"/input/thumbstick/y", K::scalar},
-             {"/input/thumbstick/click", K::boolean},
-             {"/input/trackpad", K::vector2},
-             {"/input/trackpad/x", K::scalar},
-             {"/input/trackpad/y", K::scalar},
-             {"/input/trackpad/click", K::boolean},
-             {"/input/trackpad/touch", K::boolean}});
+    both(p, kMotion);
     all.push_back(p);
   }
   // The extensions' profiles, after the core ones (the default choice stays the core profile).
@@ -158,18 +155,7 @@ std::vector<InteractionProfile> make_profiles() {
                          {L, R},
                          {},
                          XR_EXT_SAMSUNG_ODYSSEY_CONTROLLER_EXTENSION_NAME};
-    both(p, {{"/input/menu/click", K::boolean},
-             {"/input/squeeze/click", K::boolean},
-             {"/input/trigger/value", K::scalar},
-             {"/input/thumbstick", K::vector2},
-             {"/input/thumbstick/x", K::scalar},
-             {"/input/thumbstick/y", K::scalar},
-             {"/input/thumbstick/click", K::boolean},
-             {"/input/trackpad", K::vector2},
-             {"/input/trackpad/x", K::scalar},
-             {"/input/trackpad/y", K::scalar},
-             {"/input/trackpad/click", K::boolean},
-             {"/input/trackpad/touch", K::boolean}});
+    both(p, kMotion);  // the motion controller's components
     all.push_back(p);
   }
   return all;
