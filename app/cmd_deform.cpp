@@ -72,25 +72,19 @@ struct DeformCommandOptions {
 };
 
 // --- model loading and saving: the two places that know file formats ---------------------------------
-// OFF/OBJ/PLY go through deform's reader (vertex indices stay as in the file, for --handle/--fixed
-// files); glTF/GLB/Draco through pushpull::assets, which welds the patches into one surface (the mesh
-// the solver sees, in model/world coordinates: --handle-at points are in that frame) and keeps the
-// scene so a .glb output carries nodes, materials and textures with the deformed positions.
+// Every format goes through pushpull::assets, which welds the file's patches into one surface (the mesh the
+// solver sees, in model/world coordinates: --handle-at points are in that frame), as the headset review
+// does: a tessellated CAD model's patches, their seam vertices written once per patch, deform as one surface
+// instead of tearing apart. --handle/--fixed files of an OFF/OBJ/PLY name the file's own vertices
+// (read_model_index_file). The model is kept so that the output carries what the file held (model_output).
 
 struct LoadedModel {
-  std::shared_ptr<const deform::Mesh> mesh;  // what the solver deforms
-  std::optional<assets::Model> scene;        // glTF/GLB/Draco input only
+  std::shared_ptr<const deform::Mesh> mesh;  // what the solver deforms: the welded surface
+  assets::Model scene;                       // the model as loaded (the weld's map, a glTF's scene)
 };
 
 LoadedModel load_model(const fs::path& path) {
   if (!fs::exists(path)) throw CommandError(path.string() + ": model file does not exist");
-  if (deform::mesh_format_from_path(path)) {
-    try {
-      return {std::make_shared<const deform::Mesh>(deform::read_mesh(path)), std::nullopt};
-    } catch (const deform::MeshIoError& error) {
-      throw CommandError(error.what());
-    }
-  }
   if (!assets::is_supported_model_path(path)) {
     throw CommandError(path.string() +
                        ": unsupported model format (expected .gltf, .glb, .drc, .off, .obj or .ply)");
@@ -141,9 +135,17 @@ deform::Method parse_method_or_throw(const std::string& name, const char* option
 // o is in file units (convert_to_file_units); `scale` (metres per file unit) puts the message back in the
 // life-size metres the user typed.
 // `notes`, when given, receives warnings about the handle (a handle far from the point asked for).
-std::vector<int> pick_handle(const DeformCommandOptions& o, const deform::Mesh& mesh, double scale,
+std::vector<int> pick_handle(const DeformCommandOptions& o, const LoadedModel& model, double scale,
                              std::vector<std::string>* notes = nullptr) {
-  if (!o.handle_file.empty()) return read_index_file(o.handle_file, mesh.vertex_count());
+  const deform::Mesh& mesh = *model.mesh;
+  if (!o.handle_file.empty()) {
+    std::size_t unused = 0;
+    std::vector<int> handle = read_model_index_file(o.handle_file, model.scene, &unused);
+    if (unused > 0 && notes != nullptr)
+      notes->push_back(o.handle_file + ": " + std::to_string(unused) +
+                       " of its vertices are used by no triangle of the model: left out of the handle");
+    return handle;
+  }
   const Eigen::Vector3d point = vector3(o.handle_at, "--handle-at");
   deform::SurfacePoint hit;
   try {
@@ -250,6 +252,9 @@ std::vector<double> section_offsets(const deform::Mesh& mesh, const std::vector<
   return offsets;
 }
 
+// The smallest pull solved, relative to the model's bounding-box diagonal.
+constexpr double kSmallestPull = 1e-10;
+
 void run_deform(DeformCommandOptions o) {
   const auto start = std::chrono::steady_clock::now();
   if (o.handle_file.empty() == o.handle_at.empty()) {
@@ -288,11 +293,27 @@ void run_deform(DeformCommandOptions o) {
                     d.norm() * life.scale(), across * life.scale());
       throw CommandError(text);
     }
+    // So is one below what the model's coordinates resolve: on a 2 m model a pull of 1e-11 m came out 7% of
+    // |d| off with an estimate of 0 (rounding, not the solver's iterations, sets the error there).
+    if (across > 0.0 && d.norm() < kSmallestPull * across) {
+      char text[224];
+      std::snprintf(
+          text, sizeof text,
+          "--displacement: |d| = %.3g m is below %.0e of the model's size (%.6g m across): too small "
+          "for its coordinates' precision",
+          d.norm() * life.scale(), kSmallestPull, across * life.scale());
+      throw CommandError(text);
+    }
   }
   std::vector<std::string> handle_notes;
-  const std::vector<int> handle = pick_handle(o, *mesh, life.scale(), &handle_notes);
-  const std::vector<int> fixed =
-      o.fixed_file.empty() ? std::vector<int>{} : read_index_file(o.fixed_file, mesh->vertex_count());
+  const std::vector<int> handle = pick_handle(o, model, life.scale(), &handle_notes);
+  std::size_t unused_fixed = 0;
+  const std::vector<int> fixed = o.fixed_file.empty()
+                                     ? std::vector<int>{}
+                                     : read_model_index_file(o.fixed_file, model.scene, &unused_fixed);
+  if (unused_fixed > 0)
+    handle_notes.push_back(o.fixed_file + ": " + std::to_string(unused_fixed) +
+                           " of its vertices are used by no triangle of the model: left out");
 
   deform::RegionOfInterest roi;
   try {
@@ -381,8 +402,7 @@ void run_deform(DeformCommandOptions o) {
   metrics_options.section_offsets = section_offsets(*mesh, omega, d, o.sections);
   record.metrics = deform::evaluate_deformation(*mesh, record.result.V, d, omega, metrics_options);
 
-  for (std::string& warning : write_deformed_model(o.out, o.mesh, *model.mesh,
-                                                   model.scene ? &*model.scene : nullptr, record.result.V))
+  for (std::string& warning : write_deformed_model(o.out, o.mesh, *model.mesh, &model.scene, record.result.V))
     record.result.warnings.push_back(std::move(warning));
 
   record.input = o.mesh;
@@ -412,6 +432,14 @@ void run_deform(DeformCommandOptions o) {
     std::printf(
         "  life size: %g m per file unit (lengths typed and printed at life size; files keep file units)\n",
         life.scale());
+  // The weld joined the file's patches (their seams' vertices, written once per patch, are one vertex each):
+  // counts above and in the metrics are of the welded surface.
+  if (const assets::WeldStats& weld = model.scene.report.weld; weld.deform_vertices < weld.render_vertices)
+    std::printf(
+        "  welded: %zu vertices of the file's triangles -> %zu (%zu pieces -> %zu component%s), as "
+        "`pushpull info` reports\n",
+        weld.render_vertices, weld.deform_vertices, weld.pieces_before, weld.topology.components,
+        weld.topology.components == 1 ? "" : "s");
   std::printf("  %d iterations, %s (%s); estimated error %s; %.1f ms per iteration, %.1f ms factorize, %.1f ms "
               "total\n",
               r.iterations, r.converged ? "converged" : "not converged",
@@ -467,15 +495,18 @@ void add_deform_command(CLI::App& root) {
       "One push/pull on a model: move the handle by --displacement, deform the region with --method,\n"
       "write the deformed model (--out) and the evaluation numbers (--metrics).");
   cmd->add_option("MESH", o->mesh, "Model to deform (.gltf, .glb, .drc, .off, .obj, .ply)")->required();
-  cmd->add_option("--handle", o->handle_file,
-                  "File of 0-based handle vertex indices (white-space separated)");
+  cmd->add_option(
+      "--handle", o->handle_file,
+      "File of 0-based handle vertex indices (white-space separated): an OFF/OBJ/PLY's own vertex "
+      "numbers, a glTF's welded surface's (as `pushpull info` counts them)");
   cmd->add_option("--handle-at", o->handle_at,
                   "Handle = vertices within --handle-radius, measured along the surface, of the surface point "
                   "closest to this one (model frame, metres at life size)")
       ->expected(3);
   cmd->add_option("--handle-radius", o->handle_radius, "Radius for --handle-at (metres at life size)")
       ->check(finite_above(0.0));
-  cmd->add_option("--fixed", o->fixed_file, "File of 0-based fixed vertex indices (the region stops there)");
+  cmd->add_option("--fixed", o->fixed_file,
+                  "File of 0-based fixed vertex indices, numbered as --handle's (the region stops there)");
   cmd->add_option("--roi-radius", o->roi_radius,
                   "Region = vertices within this geodesic (edge-path) distance of the handle (metres at life "
                   "size); its border is fixed")
@@ -487,35 +518,54 @@ void add_deform_command(CLI::App& root) {
   cmd->add_option("--method", o->method,
                   "arap-s, arap-sr, arap-m, arap-n, sr-arap, arap-h, arap-sr-h or asan")
       ->capture_default_str();
-  cmd->add_option("--mu", o->mu, "asan: stretch factor of the region along d_o (> 1)")->capture_default_str();
+  cmd->add_option("--mu", o->mu, "asan: stretch factor of the region along d_o (> 1)")
+      ->capture_default_str()
+      ->check(finite_above(1.0));
   cmd->add_option("--stretch-direction", o->stretch_direction, "asan: direction d_o (default: d)")
       ->expected(3);
   cmd->add_option("--asan-base", o->asan_base, "asan: membrane energy, arap-sr or arap-m")
       ->capture_default_str();
-  cmd->add_option("--alpha", o->alpha, "sr-arap: rotation smoothness weight")->capture_default_str();
+  cmd->add_option("--alpha", o->alpha, "sr-arap: rotation smoothness weight")
+      ->capture_default_str()
+      ->check(finite_above(0.0, false));
   cmd->add_option("--lambda", o->lambda,
                   "arap-h, arap-sr-h: bending weight (relative to the mean vertex area)")
-      ->capture_default_str();
-  cmd->add_option("--rings", o->rings, "arap-n: neighbourhood size n")->capture_default_str();
-  cmd->add_option("--iterations", o->iterations, "Maximum local-global iterations")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--tolerance", o->tolerance,
-                  "Accuracy: stop when the estimated largest vertex distance to the exact minimiser is below "
-                  "T |d| (1e-2: 1 mm on a 100 mm pull); 0 = run exactly --iterations")
+      ->check(finite_above(0.0, false));
+  cmd->add_option("--rings", o->rings, "arap-n: neighbourhood size n")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--energy-tolerance", o->energy_tolerance,
-                  "Also stop when the relative energy change |E_k - E_k-1| / E_k-1 is below this (default: " +
-                      tolerance_text(deform::DeformOptions{}.energy_tolerance) + "; 0 = off)")
-      ->check(CLI::NonNegativeNumber);
-  cmd->add_flag("--paper-iterations", o->paper_iterations,
-                "The paper's setting: 50 plain local-global iterations, no acceleration, no stopping rule "
-                "(as in the paper, not converged; the error estimate is still reported)");
-  cmd->add_option("--anderson", o->anderson,
-                  "Anderson acceleration window, 0 = plain local-global iterations (default: " +
-                      std::to_string(deform::DeformOptions{}.anderson_window) + ")")
-      ->check(CLI::NonNegativeNumber);
+      ->check(whole_number_in(1, 1000));
+  CLI::Option* iterations = cmd->add_option("--iterations", o->iterations, "Maximum local-global iterations")
+                                ->capture_default_str()
+                                ->check(whole_number_in(0, std::numeric_limits<int>::max()));
+  CLI::Option* tolerance =
+      cmd->add_option(
+             "--tolerance", o->tolerance,
+             "Accuracy: stop when the estimated largest vertex distance to the exact minimiser is below "
+             "T |d| (1e-2: 1 mm on a 100 mm pull); 0 = run exactly --iterations")
+          ->capture_default_str()
+          ->check(finite_above(0.0, false));
+  CLI::Option* energy_tolerance =
+      cmd->add_option(
+             "--energy-tolerance", o->energy_tolerance,
+             "Also stop when the relative energy change |E_k - E_k-1| / E_k-1 is below this (default: " +
+                 tolerance_text(deform::DeformOptions{}.energy_tolerance) + "; 0 = off)")
+          ->check(finite_above(0.0, false));
+  CLI::Option* anderson = cmd->add_option("--anderson", o->anderson,
+                                          "Anderson acceleration window, 0 = plain local-global iterations "
+                                          "(default: " +
+                                              std::to_string(deform::DeformOptions{}.anderson_window) + ")")
+                              ->check(whole_number_in(0, 100));
+  // The paper's setting is its own count and rule: an option that would change them is refused with it.
+  cmd->add_flag(
+         "--paper-iterations", o->paper_iterations,
+         "The paper's setting: 50 plain local-global iterations, no acceleration, no stopping rule "
+         "(as in the paper, not converged; the error estimate is still reported; not with --iterations, "
+         "--tolerance, --energy-tolerance or --anderson)")
+      ->excludes(iterations)
+      ->excludes(tolerance)
+      ->excludes(energy_tolerance)
+      ->excludes(anderson);
   cmd->add_option(
          "--smooth-start-min-free", o->smooth_start_min_free,
          "asan: regions with at least this many free vertices start from the handle's move spread "
@@ -536,15 +586,16 @@ void add_deform_command(CLI::App& root) {
   cmd->add_flag("!--no-attached-parts", o->attached_parts,
                "Leave separate parts (lamps, plates, trims) where they are instead of letting the ones near the "
                "region follow the deformed surface");
-  cmd->add_option("--attach-reach", o->attach_reach,
-                  "Parts within this distance of the region follow the surface (metres at life size; default: "
-                  "3% of the region's bounding-box diagonal)")
-      ->check(CLI::NonNegativeNumber);
+  cmd->add_option(
+         "--attach-reach", o->attach_reach,
+         "Parts within this distance of the region follow the surface (metres at life size; default: "
+         "3% of the region's bounding-box diagonal)")
+      ->check(finite_above(0.0, false));
   cmd->add_option("--dead-band", o->dead_band,
                   "Curvature sign: |K| L^2 <= this counts as flat (zero) in sign statistics, L = the model's "
                   "bounding-box diagonal (the rule `render --color curvature-sign` draws)")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(finite_above(0.0, false));
   add_life_size_options(*cmd, o->life_size);
   cmd->add_option("--out", o->out,
                   "Deformed model to write (.glb, .off, .obj, .ply; in the input's file units)")

@@ -1,6 +1,7 @@
 // pushpull info MODEL: what is in a model (size, counts, components, materials, extensions, weld).
 #include "commands.hpp"
 #include "life_size.hpp"
+#include "number_checks.hpp"
 
 #include <pushpull/assets/info.hpp>
 #include <pushpull/assets/model.hpp>
@@ -45,7 +46,7 @@ void add_info_command(CLI::App& root) {
   add_life_size_options(*info, arguments->life_size);
   info->add_option("--weld-tolerance", arguments->weld_tolerance,
                    "Weld tolerance relative to the bounding-box diagonal")
-      ->check(CLI::NonNegativeNumber)
+      ->check(finite_above(0.0, false))
       ->capture_default_str();
   info->callback([arguments] { run_info(*arguments); });
 }

@@ -79,7 +79,7 @@ void run_render(RenderCommandOptions options) {
   }
   const Eigen::MatrixXd& V = result ? result->deform_mesh.V : V0;
   render_to_png(prepare_render_inputs(std::move(render), model.deform_mesh, V, result.has_value(), options,
-                                      life.scale()),
+                                      life.scale(), &model),
                 options);
 }
 
@@ -133,7 +133,7 @@ void add_render_command(CLI::App& root) {
       ->capture_default_str()
       ->check(finite_above(0.0, false));
   cmd->add_option("--handle", options->handle_file,
-                  "Handle vertices (index file of deform vertices), drawn red");
+                  "Handle vertices (index file, numbered as `pushpull deform --handle` reads it), drawn red");
   cmd->add_option("--fixed", options->fixed_file, "Fixed vertices (index file), drawn blue");
   cmd->add_option("--roi", options->roi_file, "Region-of-interest vertices (index file), tinted");
   cmd->add_option("--handle-at", options->handle_at,

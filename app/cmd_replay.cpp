@@ -7,6 +7,7 @@
 #include "pushpull/deform/method.hpp"
 
 #include <CLI/CLI.hpp>
+#include <limits>
 
 #include <cstddef>
 #include <memory>
@@ -59,9 +60,10 @@ void add_replay_command(CLI::App& root) {
          "Replay once per method (e.g. asan,arap-sr) into OUT/METHOD and write OUT/compare.html side by side")
       ->delimiter(',')
       ->check(method_name);
-  cmd->add_option("--capture-every", o->capture_every,
-                  "Also write both eyes every N frames into OUT/eyes (default: at each release and at the end)")
-      ->check(CLI::NonNegativeNumber);
+  cmd->add_option(
+         "--capture-every", o->capture_every,
+         "Also write both eyes every N frames into OUT/eyes (default: at each release and at the end)")
+      ->check(whole_number_in(0, std::numeric_limits<int>::max()));
   cmd->add_flag("--no-pictures", [o](std::int64_t) { o->pictures = false; }, "Leave the pictures out of the report");
   cmd->callback([o, mu, mu_option, compare] {
     if (mu_option->count() > 0) o->mu = *mu;

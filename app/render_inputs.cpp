@@ -18,7 +18,8 @@ Eigen::Vector3d vec3(const std::vector<double>& v, size_t offset = 0) {
 
 RenderInputs prepare_render_inputs(std::shared_ptr<const RenderModel> render, const deform::Mesh& rest,
                                    const Eigen::MatrixXd& V, bool deformed,
-                                   const RenderCommandOptions& options, double life_size_scale) {
+                                   const RenderCommandOptions& options, double life_size_scale,
+                                   const assets::Model* model_file) {
   const Eigen::MatrixXd& V0 = rest.V;
   const Eigen::MatrixXi& F = rest.F;
   RenderInputs inputs;
@@ -54,11 +55,12 @@ RenderInputs prepare_render_inputs(std::shared_ptr<const RenderModel> render, co
     for (int v : vertices) deform_overlays[size_t(v)].*field = 1.0f;
     any_overlay = any_overlay || !vertices.empty();
   };
-  if (!options.roi_file.empty()) mark(read_index_file(options.roi_file, nv), &renderer::OverlayWeights::roi);
-  if (!options.fixed_file.empty())
-    mark(read_index_file(options.fixed_file, nv), &renderer::OverlayWeights::fixed);
-  if (!options.handle_file.empty())
-    mark(read_index_file(options.handle_file, nv), &renderer::OverlayWeights::handle);
+  auto read = [&](const std::string& file) {
+    return model_file ? read_model_index_file(file, *model_file) : read_index_file(file, nv);
+  };
+  if (!options.roi_file.empty()) mark(read(options.roi_file), &renderer::OverlayWeights::roi);
+  if (!options.fixed_file.empty()) mark(read(options.fixed_file), &renderer::OverlayWeights::fixed);
+  if (!options.handle_file.empty()) mark(read(options.handle_file), &renderer::OverlayWeights::handle);
   if (!options.handle_at.empty()) {
     if (options.handle_radius <= 0.0)
       throw CommandError("--handle-at needs --handle-radius > 0 (metres at life size)");

@@ -67,10 +67,12 @@ struct RenderInputs {
 // has the faces of `rest`); `deformed`: V differs from the positions `render` was built from (its normals are
 // then turned with the surface). The colours are measured from rest.V: displacement |V - rest.V|, the
 // curvature sign by deform's rule with L = rest.V's bounding-box diagonal; index files and --handle-at select
-// vertices of rest. options' lengths in file units (arrow, handle_at, handle_radius). Throws CommandError
-// naming the file or option at fault.
+// vertices of rest (index files numbered as `pushpull deform` reads them for `model_file`, the model rest was
+// welded from: read_model_index_file; without it, rest's own rows). options' lengths in file units (arrow,
+// handle_at, handle_radius). Throws CommandError naming the file or option at fault.
 RenderInputs prepare_render_inputs(std::shared_ptr<const RenderModel> render, const deform::Mesh& rest,
                                    const Eigen::MatrixXd& V, bool deformed,
-                                   const RenderCommandOptions& options, double life_size_scale);
+                                   const RenderCommandOptions& options, double life_size_scale,
+                                   const assets::Model* model_file = nullptr);
 
 }  // namespace pushpull::app

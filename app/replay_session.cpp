@@ -30,6 +30,7 @@
 #include <memory>
 #include <optional>
 #include <set>
+#include <variant>
 
 namespace pushpull::app {
 namespace {
@@ -392,6 +393,16 @@ void run_replay(const ReplayOptions& o) {
     if (review.smooth_start_min_free) record.options.smooth_start_min_free = *review.smooth_start_min_free;
     if (review.coarse_start_min_free) record.options.coarse_start_min_free = *review.coarse_start_min_free;
     record.d = s.d;
+    // How the region was asked for: the press's surface point and radii (model units), as `pushpull deform
+    // --handle-at P --handle-radius R --roi-radius M` would repeat it.
+    if (s.committed_request) {
+      if (const auto* handle = std::get_if<deform::SurfaceHandle>(&s.committed_request->handle)) {
+        record.handle_at = handle->point.point;
+        record.handle_radius = handle->radius;
+      }
+      if (std::isfinite(s.committed_request->region.max_distance))
+        record.roi_radius = s.committed_request->region.max_distance;
+    }
     record.vertices = long(s.positions->rows());
     if (s.region) {
       record.handle_count = long(s.region->handle.size());

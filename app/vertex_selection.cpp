@@ -43,4 +43,27 @@ std::vector<int> read_index_file(const std::filesystem::path& path, Eigen::Index
   return indices;
 }
 
+std::vector<int> read_model_index_file(const std::filesystem::path& path, const assets::Model& model,
+                                       std::size_t* unused) {
+  const std::string& format = model.report.format;
+  if (model.primitives.size() != 1 || (format != "OFF" && format != "OBJ" && format != "PLY"))
+    return read_index_file(path, model.deform_mesh.V.rows());
+  const std::vector<int>& weld = model.primitives.front().deform_vertex;
+  std::vector<int> welded;
+  std::size_t left_out = 0;
+  for (const int v : read_index_file(path, static_cast<Eigen::Index>(weld.size()))) {
+    const int w = weld[static_cast<std::size_t>(v)];
+    if (w < 0)
+      ++left_out;
+    else
+      welded.push_back(w);
+  }
+  if (welded.empty())
+    throw CommandError(path.string() + ": every vertex it names is used by no triangle of the model");
+  std::sort(welded.begin(), welded.end());
+  welded.erase(std::unique(welded.begin(), welded.end()), welded.end());
+  if (unused) *unused = left_out;
+  return welded;
+}
+
 }  // namespace pushpull::app

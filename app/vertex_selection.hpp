@@ -3,8 +3,11 @@
 // Thread-safety: free functions without state.
 #pragma once
 
+#include "pushpull/assets/model.hpp"
+
 #include <Eigen/Core>
 
+#include <cstddef>
 #include <filesystem>
 #include <vector>
 
@@ -13,5 +16,14 @@ namespace pushpull::app {
 // 0-based vertex indices separated by white space (text after '#' on a line is a comment). Each index must
 // lie in [0, vertex_count); duplicates are dropped; the result is sorted. An empty file is an error.
 [[nodiscard]] std::vector<int> read_index_file(const std::filesystem::path& path, Eigen::Index vertex_count);
+
+// An index file for `model`, as the commands read one: an OFF/OBJ/PLY model's files name the vertices of the
+// file itself (its own numbering, whatever the weld merged), a glTF/GLB/Draco model's the vertices of its
+// welded surface (model.deform_mesh, as `pushpull info` counts them). Returns the welded surface's vertices
+// named (sorted, unique). File vertices that no triangle uses are not on the surface: left out, counted in
+// *unused (an error when nothing else is left).
+[[nodiscard]] std::vector<int> read_model_index_file(const std::filesystem::path& path,
+                                                     const assets::Model& model,
+                                                     std::size_t* unused = nullptr);
 
 }  // namespace pushpull::app

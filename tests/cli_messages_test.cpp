@@ -265,6 +265,18 @@ TEST_F(CliMessages, UnusableCommandLinesNameTheCommandAndExitTwo) {
        "pushpull review: error: --reconnect: nan must be a finite number"},
       {"replay x.jsonl --out " + path("r") + " --eye-size 8 8",
        "pushpull replay: error: --eye-size: 8 must be a whole number from 16 to 16384"},
+      {"deform " + model + " --anderson 100000 --displacement 0 0 1 --out " + path("o.off"),
+       "pushpull deform: error: --anderson: 100000 must be a whole number from 0 to 100"},
+      {"deform " + model + " --dead-band nan --displacement 0 0 1 --out " + path("o.off"),
+       "pushpull deform: error: --dead-band: nan must be a finite number >= 0"},
+      {"deform " + model + " --attach-reach nan --displacement 0 0 1 --out " + path("o.off"),
+       "pushpull deform: error: --attach-reach: nan must be a finite number >= 0"},
+      {"deform " + model + " --tolerance inf --displacement 0 0 1 --out " + path("o.off"),
+       "pushpull deform: error: --tolerance: inf must be a finite number >= 0"},
+      {"deform " + model + " --mu 1 --displacement 0 0 1 --out " + path("o.off"),
+       "pushpull deform: error: --mu: 1 must be a finite number > 1"},
+      {"deform " + model + " --paper-iterations --iterations 5 --displacement 0 0 1 --out " + path("o.off"),
+       "pushpull deform: error: --iterations excludes --paper-iterations"},
       {"bogus", "pushpull: error: unknown command 'bogus'"},
       {"", "pushpull: error: A subcommand is required"},
   };
@@ -295,6 +307,16 @@ TEST_F(CliMessages, DeformWarnsOfPullsThatAreNotAPushPull) {
                        "across)"),
       std::string::npos)
       << huge.output;
+  // So is one below what the coordinates resolve (on a 2 m model 1e-11 m came out 7% off, "estimate 0").
+  const CommandResult tiny = run_pushpull("deform " + model +
+                                          " --handle-at 0 0 1 --handle-radius 0.2 --roi-radius 0.8 "
+                                          "--displacement 0 0 1e-11" +
+                                          outputs);
+  EXPECT_EQ(tiny.status, 1) << tiny.output;
+  EXPECT_NE(tiny.output.find("--displacement: |d| = 1e-11 m is below 1e-10 of the model's size (2.95579 m "
+                             "across): too small for its coordinates' precision"),
+            std::string::npos)
+      << tiny.output;
   EXPECT_FALSE(fs::exists(path("o.off")));
   EXPECT_FALSE(fs::exists(path("m.json")));
 

@@ -178,3 +178,60 @@ TEST_F(DeformCli, BadInputsExitNonZeroNamingTheFileAndProblem) {
   EXPECT_FALSE(fs::exists(path("o.off")));  // nothing half-done was written
   EXPECT_FALSE(fs::exists(path("m.json")));
 }
+
+// Tessellated CAD: two patches written separately, the seam's vertices once per patch (as `pushpull info`
+// counts them). deform welds them as the headset review does: a pull on one patch bends the other along with
+// it instead of tearing the seam open by |d|; the file comes back with its own vertices, each seam copy
+// moved alike. Index files name the file's own vertices.
+TEST_F(DeformCli, PatchesWithSeamVerticesTwiceDeformAsOneSurface) {
+  // Patch A: x in [0, 1]; patch B: x in [1, 2]; 11 x 11 vertices each, y in [0, 1]; the column x = 1 twice.
+  std::string off = "OFF\n242 400 0\n";
+  for (int patch = 0; patch < 2; ++patch)
+    for (int j = 0; j <= 10; ++j)
+      for (int i = 0; i <= 10; ++i)
+        off += std::to_string(patch + 0.1 * i) + " " + std::to_string(0.1 * j) + " 0\n";
+  for (int patch = 0; patch < 2; ++patch)
+    for (int j = 0; j < 10; ++j)
+      for (int i = 0; i < 10; ++i) {
+        const int a = patch * 121 + j * 11 + i, b = a + 1, c = a + 11, d = a + 12;
+        off += "3 " + std::to_string(a) + " " + std::to_string(b) + " " + std::to_string(d) + "\n";
+        off += "3 " + std::to_string(a) + " " + std::to_string(d) + " " + std::to_string(c) + "\n";
+      }
+  write("patches.off", off);
+  // The handle: patch A's vertex (0.9, 0.5); fixed: the outer ends x = 0 (patch A) and x = 2 (patch B).
+  write("patch_handle.txt", std::to_string(5 * 11 + 9) + "\n");
+  std::string fixed;
+  for (int j = 0; j <= 10; ++j)
+    fixed += std::to_string(j * 11) + " " + std::to_string(121 + j * 11 + 10) + "\n";
+  write("patch_fixed.txt", fixed);
+  const RunResult run =
+      run_pushpull("deform " + path("patches.off") + " --handle " + path("patch_handle.txt") + " --fixed " +
+                   path("patch_fixed.txt") + " --roi-radius 5" + " --displacement 0 0 0.05 --out " +
+                   path("o.off") + " --metrics " + path("m.json"));
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("welded: 242 vertices of the file's triangles -> 231 (2 pieces -> 1 component)"),
+            std::string::npos)
+      << run.output;
+  const pd::Mesh out = pd::read_mesh(path("o.off"));
+  ASSERT_EQ(out.V.rows(), 242);
+  for (int j = 0; j <= 10; ++j) {
+    const int a = j * 11 + 10, b = 121 + j * 11;  // the seam's two copies
+    EXPECT_EQ(out.V.row(a), out.V.row(b)) << "seam row " << j;
+  }
+  EXPECT_NEAR(out.V(5 * 11 + 9, 2), 0.05, 1e-12);  // the handle moved by d
+  EXPECT_GT(out.V(121 + 5 * 11 + 1, 2), 0.01);     // patch B, beside the seam, bent along
+  EXPECT_EQ(read_json(path("m.json")).at("vertices").get<int>(), 231);
+}
+
+TEST_F(DeformCli, AModelWithoutTrianglesIsRefusedNamingTheFile) {
+  write("zero.off", "OFF\n0 0 0\n");
+  write("nothing.obj", "# no vertices\n");
+  for (const std::string& file : {path("zero.off"), path("nothing.obj")}) {
+    const RunResult run = run_pushpull("deform " + file +
+                                       " --handle-at 0 0 0 --handle-radius 0.1 --roi-radius 1 --displacement "
+                                       "0 0 0.05 --out " +
+                                       path("o.off") + " --metrics " + path("m.json"));
+    EXPECT_EQ(run.status, 1) << run.output;
+    EXPECT_NE(run.output.find(file + ": the model has no triangles"), std::string::npos) << run.output;
+  }
+}

@@ -171,6 +171,14 @@ TEST(ReplayXr, ReplayReproducesEveryCommitHashAndTheSameMeshesTwice) {
   const auto metrics = nlohmann::json::parse(file_bytes(dir / "replay1" / "commit-01.metrics.json"));
   EXPECT_NEAR(double(metrics.at("d").at(1)), -0.1, 1e-6);
   EXPECT_GT(int(metrics.at("iterations")), 0);
+  // How the region was asked for, as the press recorded it (the hood is in metres: model units = metres).
+  const auto press = records(read_lines(session), "press").at(0);
+  const nlohmann::json& region = metrics.at("region");
+  for (int k = 0; k < 3; ++k)
+    EXPECT_NEAR(double(region.at("handle_at").at(k)), double(press.at("p0").at(k)), 1e-9) << region.dump();
+  EXPECT_DOUBLE_EQ(double(region.at("handle_radius")), double(press.at("handle").at("radius")));
+  EXPECT_DOUBLE_EQ(double(region.at("roi_radius")), double(press.at("roi_radius")));
+  EXPECT_TRUE(region.at("handle_file").is_null());
   // Measured against the state before the commit (for commit 2: after commit 1), not the original model.
   EXPECT_NEAR(double(metrics.at("max_displacement")), 0.1, 1e-3);
   const auto metrics2 = nlohmann::json::parse(file_bytes(dir / "replay1" / "commit-02.metrics.json"));

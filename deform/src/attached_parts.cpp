@@ -1,9 +1,11 @@
 // AttachedParts: components near the region bound to the solved surface (see attached_parts.hpp).
 #include "pushpull/deform/attached_parts.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <Eigen/SVD>
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 #include <stdexcept>
 #include <string>
@@ -128,7 +130,7 @@ AttachedParts::AttachedParts(const Mesh& rest, const RegionOfInterest& roi, cons
   const detail::VertexGraph graph = detail::build_vertex_graph(nv, rest.F, carrier_faces);
   std::vector<int> slot_of_face(static_cast<std::size_t>(rest.F.rows()), -1);
   std::vector<long> near(parts_.size(), 0);  // vertices within reach of the carrier, per part
-  patch_start_.push_back(0);
+  std::vector<int> slot_face;                // the carrier face of each patch
   for (int v = 0; v < nv; ++v) {
     const int part = part_index[static_cast<std::size_t>(label[static_cast<std::size_t>(v)])];
     if (part < 0) continue;
@@ -140,17 +142,9 @@ AttachedParts::AttachedParts(const Mesh& rest, const RegionOfInterest& roi, cons
     const Eigen::Vector3d a = rest.V.row(rest.F(f, 0)), b = rest.V.row(rest.F(f, 1)),
                           c = rest.V.row(rest.F(f, 2));
     int& slot = slot_of_face[static_cast<std::size_t>(f)];
-    if (slot < 0) {  // the face's patch: its corners and their neighbours on the carrier
-      slot = static_cast<int>(patch_start_.size()) - 1;
-      std::vector<int> patch;
-      for (int k = 0; k < 3; ++k) {
-        patch.push_back(rest.F(f, k));
-        patch.insert(patch.end(), graph.begin(rest.F(f, k)), graph.end(rest.F(f, k)));
-      }
-      std::sort(patch.begin(), patch.end());
-      patch.erase(std::unique(patch.begin(), patch.end()), patch.end());
-      patch_index_.insert(patch_index_.end(), patch.begin(), patch.end());
-      patch_start_.push_back(static_cast<int>(patch_index_.size()));
+    if (slot < 0) {  // the face's patch, built below once every offset bound to it is known
+      slot = static_cast<int>(slot_face.size());
+      slot_face.push_back(f);
     }
     bound_vertex_.push_back(v);
     bound_part_.push_back(part);
@@ -191,6 +185,66 @@ AttachedParts::AttachedParts(const Mesh& rest, const RegionOfInterest& roi, cons
     carrier_slot_.resize(out), bary_.resize(out), offset_.resize(out);
   }
   parts_ = std::move(kept);
+  build_patches(graph, slot_face);
+}
+
+void AttachedParts::build_patches(const detail::VertexGraph& graph, const std::vector<int>& slot_face) {
+  // The largest offset each patch carries.
+  std::vector<double> carried(slot_face.size(), 0.0);
+  for (std::size_t k = 0; k < bound_vertex_.size(); ++k) {
+    double& c = carried[static_cast<std::size_t>(carrier_slot_[k])];
+    c = std::max(c, offset_[k].norm());
+  }
+  patch_start_.assign(1, 0);
+  patch_index_.clear();
+  std::vector<int> seen_at(static_cast<std::size_t>(rest_V_.rows()), -1);  // slot that last took the vertex
+  std::vector<int> patch, ring, next_ring;
+  for (std::size_t slot = 0; slot < slot_face.size(); ++slot) {
+    const int f = slot_face[slot];
+    patch.clear(), ring.clear();
+    auto take = [&](int v, std::vector<int>& into) {
+      if (seen_at[static_cast<std::size_t>(v)] == static_cast<int>(slot)) return;
+      seen_at[static_cast<std::size_t>(v)] = static_cast<int>(slot);
+      patch.push_back(v);
+      into.push_back(v);
+    };
+    for (int k = 0; k < 3; ++k) take(F_(f, k), ring);
+    const std::size_t corners = patch.size();
+    for (int rings = 0; rings < kMaxPatchRings && !ring.empty(); ++rings) {
+      next_ring.clear();
+      for (const int v : ring)
+        for (const int* w = graph.begin(v); w != graph.end(v); ++w) take(*w, next_ring);
+      ring.swap(next_ring);
+      if (rings + 1 >= kMinPatchRings &&
+          (static_cast<int>(patch.size()) >= kMaxPatchVertices || in_plane_spread(patch) >= carried[slot]))
+        break;
+    }
+    // The rotation is as well defined by a few points spread over the patch as by all of them (its
+    // conditioning is the spread's), and apply() fits one per patch for every snapshot: the corners and an
+    // even sample of the rings in the order they were grown.
+    if (patch.size() > static_cast<std::size_t>(kPatchPoints)) {
+      const std::size_t others = patch.size() - corners, wanted = std::size_t(kPatchPoints) - corners;
+      for (std::size_t k = 0; k < wanted; ++k) patch[corners + k] = patch[corners + k * others / wanted];
+      patch.resize(std::size_t(kPatchPoints));
+    }
+    std::sort(patch.begin(), patch.end());
+    patch_index_.insert(patch_index_.end(), patch.begin(), patch.end());
+    patch_start_.push_back(static_cast<int>(patch_index_.size()));
+  }
+}
+
+double AttachedParts::in_plane_spread(const std::vector<int>& patch) const {
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  for (const int v : patch) c += rest_V_.row(v).transpose();
+  c /= static_cast<double>(patch.size());
+  Eigen::Matrix3d C = Eigen::Matrix3d::Zero();
+  for (const int v : patch) {
+    const Eigen::Vector3d p = rest_V_.row(v).transpose() - c;
+    C += p * p.transpose();
+  }
+  C /= static_cast<double>(patch.size());
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(C, Eigen::EigenvaluesOnly);
+  return std::sqrt(std::max(eigen.eigenvalues()(1), 0.0));  // ascending: (1) is the middle one
 }
 
 void AttachedParts::apply(Eigen::MatrixXd& V) const {

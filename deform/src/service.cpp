@@ -383,6 +383,7 @@ struct Service::Impl {
     state.entry.state = std::move(next);
     state.entry.request = p.request;
     state.entry.request->options.progress = nullptr;
+    s.committed_request = std::make_shared<const Request>(*state.entry.request);
 
     {
       std::lock_guard lock(history_mutex);

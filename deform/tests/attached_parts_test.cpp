@@ -220,5 +220,41 @@ TEST(AttachedParts, NothingToBindLeavesPositionsAlone) {
   EXPECT_THROW(empty.apply(V), std::invalid_argument);  // made for no mesh
 }
 
+// A part high above a finely tessellated panel (1 cm cells, the part 10 cm up) does not amplify the solve's
+// error: a ripple on the panel (what an unconverged solve leaves: 1e-4 m high, 10 cm long) tilts a patch of a
+// triangle's corners and their neighbours, which swung the part by 3.8e-4 m; the patch grown as wide as the
+// part is high averages the ripple (6.8e-5 m).
+TEST(AttachedParts, APartFarAboveFineTrianglesMovesNoMoreThanTheSurfaceErrs) {
+  const Mesh body = testing::grid(100, 100, -0.5, 0.5, -0.5, 0.5);
+  const Mesh part = testing::grid(2, 2, -0.0363, 0.0637, -0.0429, 0.0571, [](double, double) { return 0.1; });
+  const int body_vertices = static_cast<int>(body.V.rows());
+  const Mesh mesh = testing::append(body, part);
+  std::vector<int> handle;
+  for (int v = 0; v < body_vertices; ++v)
+    if (std::hypot(mesh.V(v, 0), mesh.V(v, 1)) < 0.1) handle.push_back(v);
+  const RegionOfInterest roi = build_roi(mesh, handle, {}, 0.35);
+  const AttachedParts parts(mesh, roi, {.reach = 0.15});
+  ASSERT_EQ(parts.parts().size(), 1u);
+  ASSERT_TRUE(parts.parts()[0].on_surface);
+
+  // The surface moved smoothly (a bump 5 cm high), and the same with the ripple on top.
+  const double ripple = 1e-4;
+  Eigen::MatrixXd smooth = mesh.V, rippled = mesh.V;
+  for (int v = 0; v < body_vertices; ++v) {
+    if (roi.role[static_cast<std::size_t>(v)] == VertexRole::Outside) continue;
+    const double x = mesh.V(v, 0), y = mesh.V(v, 1);
+    const double bump = 0.05 * std::exp(-(x * x + y * y) / (2.0 * 0.15 * 0.15));
+    smooth(v, 2) += bump;
+    rippled(v, 2) +=
+        bump + ripple * std::sin(2.0 * M_PI * x / 0.1 + 0.7) * std::sin(2.0 * M_PI * y / 0.1 + 0.3);
+  }
+  parts.apply(smooth);
+  parts.apply(rippled);
+  for (int v = body_vertices; v < mesh.V.rows(); ++v) {
+    EXPECT_GT(smooth(v, 2), 0.14) << "part vertex " << v << " did not follow the bump";
+    EXPECT_LT((rippled.row(v) - smooth.row(v)).norm(), 1.5 * ripple) << "part vertex " << v;
+  }
+}
+
 }  // namespace
 }  // namespace pushpull::deform

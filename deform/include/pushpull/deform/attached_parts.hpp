@@ -18,7 +18,8 @@
 //   (all triangles of the solved components, moving or not) as that triangle, its barycentric coordinates
 //   and its offset from that point, as Blender's Surface Deform modifier binds a mesh to a target. After the
 //   solve the bound point moves with the triangle and the offset turns with the surface around it: the
-//   best rotation (Kabsch) of the patch made of the triangle's corners and their neighbours, which stays
+//   best rotation (Kabsch) of the patch made of the triangle's corners and rings of their neighbours, grown
+//   until the patch spreads as far across the surface as the offsets it carries reach above it, which stays
 //   well defined on the sliver triangles of tessellated CAD where a triangle's own normal flips on a tiny
 //   move. So the part keeps its height above the panel under it everywhere (it never sinks in, which one
 //   rigid motion per part cannot promise on a panel that bends under a long trim) and bends only as much as
@@ -41,6 +42,9 @@
 #include "pushpull/deform/roi.hpp"
 
 namespace pushpull::deform {
+namespace detail {
+struct VertexGraph;
+}
 
 struct AttachOptions {
   // A part within this distance of a region triangle at rest follows the surface. <= 0: automatic,
@@ -71,15 +75,31 @@ class AttachedParts {
   void apply(Eigen::MatrixXd& V) const;
 
  private:
+  // The patches of the carrier faces slot_face[slot] (each bound vertex's carrier_slot_): the face's corners
+  // and rings of their neighbours, grown ring by ring until the patch's in-plane spread (in_plane_spread)
+  // reaches the largest offset the patch carries, so that the rotation's error, about the solve's error over
+  // the patch's spread, turns an offset by no more than the solve's error (on the needle fans of tessellated
+  // CAD a corner's neighbours alone can lie nearly on a line, and a part 6 cm above them moved 4 mm where the
+  // surface under it moved 0.4 mm off the minimiser).
+  void build_patches(const detail::VertexGraph& graph, const std::vector<int>& slot_face);
+  // The RMS spread of the rest positions of `patch` along their second principal direction (model units).
+  [[nodiscard]] double in_plane_spread(const std::vector<int>& patch) const;
+
   static constexpr double kOnSurfaceShare = 0.9;   // share of vertices within reach for "on the surface"
   static constexpr double kCoherentMotion = 0.25;  // rigid fit residual / motion (RMS) accepted
+  static constexpr int kMinPatchRings = 1;         // a patch: the corners and at least their neighbours
+  static constexpr int kMaxPatchRings = 16;        // ... grown by at most this many rings
+  static constexpr int kMaxPatchVertices = 512;    // ... or until it holds this many vertices
+  static constexpr int kPatchPoints = 32;          // of which it keeps at most this many (see build_patches)
   std::vector<int> bound_vertex_;                  // mesh vertex
   std::vector<int> bound_part_;                    // index into parts_
   std::vector<int> carrier_face_;                  // row of F it is bound to
   std::vector<int> carrier_slot_;                  // its patch (index into patch_start_)
   std::vector<Eigen::Vector3d> bary_;              // barycentric coordinates of the bound point
   std::vector<Eigen::Vector3d> offset_;            // vertex - bound point at rest (model space)
-  std::vector<int> patch_start_, patch_index_;     // per carrier face used: corners and their neighbours
+  // Per carrier face used, its patch: the corners and the rings of neighbours around them, grown until the
+  // patch's in-plane spread reaches the largest offset it carries (see build_patches).
+  std::vector<int> patch_start_, patch_index_;
   Eigen::MatrixXi F_;                              // the mesh's faces
   Eigen::MatrixXd rest_V_;                         // rest corners, to tell moved triangles from unmoved ones
   std::vector<AttachedPart> parts_;

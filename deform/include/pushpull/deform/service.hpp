@@ -142,6 +142,9 @@ struct Snapshot {
   double initial_energy = 0.0;
   std::vector<AttachedPart> attached;
   double attach_reach = 0.0;
+  // Kind::Committed only (null otherwise): the request the commit solved (its handle, region, d and options,
+  // options.progress empty), so that a record of the commit can say how its region was asked for.
+  std::shared_ptr<const Request> committed_request;
 };
 
 // One entry of the history that commit/undo/redo walk.
