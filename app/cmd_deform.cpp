@@ -227,13 +227,23 @@ std::string stop_text(deform::StopReason reason, const DeformCommandOptions& o,
   return text;
 }
 
+// A length in mm with `decimals` decimals, or three significant digits below what they show (a 5 um pull is
+// "0.005 mm", not "0.0 mm").
+std::string mm_text(double mm, int decimals) {
+  char text[48];
+  if (mm != 0.0 && std::abs(mm) < std::pow(10.0, -decimals) * 10.0)
+    std::snprintf(text, sizeof text, "%.3g mm", mm);
+  else
+    std::snprintf(text, sizeof text, "%.*f mm", decimals, mm);
+  return text;
+}
+
 // The solver's estimate of its distance to the exact minimiser, in mm at life size and relative to |d|.
 std::string error_text(const deform::DeformResult& r, const Eigen::Vector3d& d, const LifeSize& life) {
   if (!r.error_estimate) return "not yet available";
-  char text[64];
-  std::snprintf(text, sizeof(text), "%.2f mm (%.1e |d|)", life.to_mm(*r.error_estimate * d.norm()),
-                *r.error_estimate);
-  return text;
+  char text[32];
+  std::snprintf(text, sizeof(text), " (%.1e |d|)", *r.error_estimate);
+  return mm_text(life.to_mm(*r.error_estimate * d.norm()), 2) + text;
 }
 
 // Section planes spread evenly across the ROI's extent along d.
@@ -425,9 +435,9 @@ void run_deform(DeformCommandOptions o) {
 
   const deform::DeformResult& r = record.result;
   const deform::DeformationMetrics& m = record.metrics;
-  std::printf("pushpull deform: %s, %s, |d| = %.1f mm, ROI %zu of %ld vertices (%zu handle, %zu fixed)\n",
-              o.mesh.c_str(), o.method.c_str(), life.to_mm(d.norm()), omega.size(), record.vertices,
-              roi.handle.size(), roi.fixed.size());
+  std::printf("pushpull deform: %s, %s, |d| = %s, ROI %zu of %ld vertices (%zu handle, %zu fixed)\n",
+              o.mesh.c_str(), o.method.c_str(), mm_text(life.to_mm(d.norm()), 1).c_str(), omega.size(),
+              record.vertices, roi.handle.size(), roi.fixed.size());
   if (life.scale() != 1.0)
     std::printf(
         "  life size: %g m per file unit (lengths typed and printed at life size; files keep file units)\n",

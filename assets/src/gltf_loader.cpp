@@ -389,6 +389,21 @@ void split_lines(const std::string& text, const std::string& prefix, std::vector
   }
 }
 
+// tinygltf's messages quote a data: URI whole (megabytes of base64): each payload is cut to its first
+// characters and its length.
+std::string shorten_data_uris(std::string text) {
+  constexpr std::size_t kKept = 16;
+  for (std::size_t at = text.find("data:"); at != std::string::npos; at = text.find("data:", at + 5)) {
+    const std::size_t comma = text.find(',', at);
+    if (comma == std::string::npos) break;
+    const std::size_t end = text.find_first_of(" \t\n'\"", comma + 1);
+    const std::size_t payload = (end == std::string::npos ? text.size() : end) - (comma + 1);
+    if (payload <= 2 * kKept) continue;
+    text.replace(comma + 1 + kKept, payload - kKept, "... (" + std::to_string(payload) + " characters)");
+  }
+  return text;
+}
+
 }  // namespace
 
 void load_gltf(std::span<const std::uint8_t> bytes, const std::string& name, const fs::path& base_dir,
@@ -475,12 +490,12 @@ void load_gltf(std::span<const std::uint8_t> bytes, const std::string& name, con
   }
   if (!context.refusal.empty() && !ok) throw AssetError(name + ": refused: " + context.refusal);
   if (!ok) {
-    std::string message = err.empty() ? "tinygltf could not parse it" : err;
+    std::string message = err.empty() ? "tinygltf could not parse it" : shorten_data_uris(err);
     while (!message.empty() && message.back() == '\n') message.pop_back();
     if (message.size() > 400) message = message.substr(0, 400) + "...";  // data: URIs can be huge
     throw AssetError(name + ": " + message);
   }
-  split_lines(warn, name + ": ", model.report.warnings);
+  split_lines(shorten_data_uris(warn), name + ": ", model.report.warnings);
   if (!gltf.skins.empty() || !gltf.animations.empty())
     model.report.warnings.push_back(name + ": skins and animations are ignored (rest pose used)");
 

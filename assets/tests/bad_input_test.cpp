@@ -83,6 +83,21 @@ TEST(AssetsBadInput, UriPolicy) {
   EXPECT_NE(uri_problem("tri%zz.bin"), "");
 }
 
+// A data: URI that is not base64 is refused; the message quotes its start and length, not megabytes of it.
+TEST(AssetsBadInput, AnUndecodableDataUriIsQuotedShort) {
+  const ScratchDir dir;
+  const std::string payload(100000, '!');
+  try {
+    (void)load_document(dir, triangle_gltf("data:application/octet-stream;base64," + payload));
+    ADD_FAILURE() << "accepted";
+  } catch (const AssetError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("model.gltf"), std::string::npos) << message;
+    EXPECT_NE(message.find("(100000 characters)"), std::string::npos) << message;
+    EXPECT_LT(message.size(), 300u) << message;
+  }
+}
+
 TEST(AssetsBadInput, BufferUriOutsideTheFolderIsRefused) {
   ScratchDir dir;
   expect_refused(dir, triangle_gltf("../tri.bin"), "outside the model's folder");

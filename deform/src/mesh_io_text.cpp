@@ -153,6 +153,9 @@ Mesh parse_obj(std::string_view contents, const std::string& name) {
         // "a", "a/b", "a//c", "a/b/c": the position index is the part before the first slash.
         const std::string_view position = token.substr(0, token.find('/'));
         std::int64_t index = 0;
+        if (token == "\\")
+          fail(name, cursor.line_number(),
+               "a face line continued with '\\' is not supported (join it with the next line)");
         if (!detail::parse_int64(position, index) || index == 0) {
           fail(name, cursor.line_number(), "bad face vertex '" + std::string(token) + "'");
         }

@@ -102,6 +102,10 @@ TEST(MeshIoRead, ObjSlashesNegativeIndicesAndIgnoredRecords) {
             std::string::npos);
   EXPECT_NE(error_of([] { (void)pd::parse_obj("v 0 0 0\nf 0 1 1\n", "z.obj"); }).find("bad face vertex"),
             std::string::npos);
+  const std::string continued =
+      error_of([] { (void)pd::parse_obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 \\\n 3\n", "c.obj"); });
+  EXPECT_NE(continued.find("c.obj:4: a face line continued with '\\' is not supported"), std::string::npos)
+      << continued;
 }
 
 TEST(MeshIoRead, PlyAsciiWithExtraPropertiesAndElements) {
