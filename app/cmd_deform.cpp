@@ -27,6 +27,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <iterator>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -309,8 +310,8 @@ void run_deform(DeformCommandOptions o) {
       char text[224];
       std::snprintf(
           text, sizeof text,
-          "--displacement: |d| = %.3g m is below %.0e of the model's size (%.6g m across): too small "
-          "for its coordinates' precision",
+          "--displacement: |d| = %.3g m is less than %.0e times the model's size (%.6g m across): too "
+          "small for its coordinates' precision",
           d.norm() * life.scale(), kSmallestPull, across * life.scale());
       throw CommandError(text);
     }
@@ -324,6 +325,13 @@ void run_deform(DeformCommandOptions o) {
   if (unused_fixed > 0)
     handle_notes.push_back(o.fixed_file + ": " + std::to_string(unused_fixed) +
                            " of its vertices are used by no triangle of the model: left out");
+
+  // A vertex both held and pulled, named as the user numbered it (the file's vertices, which the weld may
+  // have made one point) rather than by the welded surface's number.
+  std::vector<int> both;
+  std::set_intersection(handle.begin(), handle.end(), fixed.begin(), fixed.end(), std::back_inserter(both));
+  if (!both.empty())
+    throw CommandError(shared_vertex_message(model.scene, both, o.handle_file, o.fixed_file));
 
   deform::RegionOfInterest roi;
   try {
@@ -447,7 +455,9 @@ void run_deform(DeformCommandOptions o) {
   if (const assets::WeldStats& weld = model.scene.report.weld; weld.deform_vertices < weld.render_vertices)
     std::printf(
         "  welded: %zu vertices of the file's triangles -> %zu (%zu pieces -> %zu component%s), as "
-        "`pushpull info` reports\n",
+        "`pushpull info` reports; counts and vertex numbers here and in the metrics are the welded "
+        "surface's, "
+        "index files and the output keep the file's numbering\n",
         weld.render_vertices, weld.deform_vertices, weld.pieces_before, weld.topology.components,
         weld.topology.components == 1 ? "" : "s");
   std::printf("  %d iterations, %s (%s); estimated error %s; %.1f ms per iteration, %.1f ms factorize, %.1f ms "
@@ -508,7 +518,7 @@ void add_deform_command(CLI::App& root) {
   cmd->add_option(
       "--handle", o->handle_file,
       "File of 0-based handle vertex indices (white-space separated): an OFF/OBJ/PLY's own vertex "
-      "numbers, a glTF's welded surface's (as `pushpull info` counts them)");
+      "numbers, a glTF's, GLB's or Draco file's welded surface's (as `pushpull info` counts them)");
   cmd->add_option("--handle-at", o->handle_at,
                   "Handle = vertices within --handle-radius, measured along the surface, of the surface point "
                   "closest to this one (model frame, metres at life size)")
@@ -567,29 +577,36 @@ void add_deform_command(CLI::App& root) {
                                               std::to_string(deform::DeformOptions{}.anderson_window) + ")")
                               ->check(whole_number_in(0, 100));
   // The paper's setting is its own count and rule: an option that would change them is refused with it.
-  cmd->add_flag(
-         "--paper-iterations", o->paper_iterations,
-         "The paper's setting: 50 plain local-global iterations, no acceleration, no stopping rule "
-         "(as in the paper, not converged; the error estimate is still reported; not with --iterations, "
-         "--tolerance, --energy-tolerance or --anderson)")
-      ->excludes(iterations)
-      ->excludes(tolerance)
-      ->excludes(energy_tolerance)
-      ->excludes(anderson);
-  cmd->add_option(
-         "--smooth-start-min-free", o->smooth_start_min_free,
-         "asan: regions with at least this many free vertices start from the handle's move spread "
-         "biharmonically (the same minimiser in fewer iterations on large regions); -1 = always from rest "
-         "(default: " +
-             std::to_string(deform::DeformOptions{}.smooth_start_min_free) + ")")
-      ->check(whole_number_in(-1, std::numeric_limits<int>::max()));
-  cmd->add_option(
-         "--coarse-start-min-free", o->coarse_start_min_free,
-         "asan: regions with at least this many free vertices are solved first on a coarser tessellation of "
-         "the region, and the iterations start from that shape (the same minimiser in fewer iterations on "
-         "large regions); -1 = never (default: " +
-             std::to_string(deform::DeformOptions{}.coarse_start_min_free) + ")")
-      ->check(whole_number_in(-1, std::numeric_limits<int>::max()));
+  CLI::Option* paper =
+      cmd->add_flag(
+             "--paper-iterations", o->paper_iterations,
+             "The paper's setting: 50 plain local-global iterations, no acceleration, no stopping rule "
+             "(as in the paper, not converged; the error estimate is still reported; not with --iterations, "
+             "--tolerance, --energy-tolerance, --anderson or the starts' --smooth-start-min-free and "
+             "--coarse-start-min-free: it starts from rest)")
+          ->excludes(iterations)
+          ->excludes(tolerance)
+          ->excludes(energy_tolerance)
+          ->excludes(anderson);
+  CLI::Option* smooth_start =
+      cmd->add_option(
+             "--smooth-start-min-free", o->smooth_start_min_free,
+             "asan: regions with at least this many free vertices start from the handle's move spread "
+             "biharmonically (the same minimiser in fewer iterations on large regions); -1 = always from "
+             "rest "
+             "(default: " +
+                 std::to_string(deform::DeformOptions{}.smooth_start_min_free) + ")")
+          ->check(whole_number_in(-1, std::numeric_limits<int>::max()));
+  CLI::Option* coarse_start =
+      cmd->add_option("--coarse-start-min-free", o->coarse_start_min_free,
+                      "asan: regions with at least this many free vertices are solved first on a coarser "
+                      "tessellation of "
+                      "the region, and the iterations start from that shape (the same minimiser in fewer "
+                      "iterations on "
+                      "large regions); -1 = never (default: " +
+                          std::to_string(deform::DeformOptions{}.coarse_start_min_free) + ")")
+          ->check(whole_number_in(-1, std::numeric_limits<int>::max()));
+  paper->excludes(smooth_start)->excludes(coarse_start);
   cmd->add_option("--sections", o->sections, "Number of section planes (perpendicular to d) in the metrics")
       ->capture_default_str()
       ->check(whole_number_in(0, 1000));

@@ -39,27 +39,31 @@ std::vector<std::string> write_deformed_model(const std::filesystem::path& path,
   }
   std::vector<std::string> warnings;
   try {
-    // The source file's vertices: the model's own (deform reads them as they are), or, where assets welded
-    // them (review, replay), each vertex of the file moved by its weld's displacement: vertices the weld
-    // merged keep their own positions (they were near, not equal), and one whose weld did not move, or that
-    // no triangle uses, keeps its text (a row of NaN).
+    // The source file's vertices: the model's own where it was read as it is, or, where assets welded
+    // them, each vertex of the file moved by its weld's displacement: vertices the weld merged keep their own
+    // positions (they were near, not equal). For a copy of the file (same format), one whose weld did not
+    // move, or that no triangle uses, keeps its text (a row of NaN); written as triangles (another format,
+    // or a layout the copy refuses), the file's own vertices and triangles in its numbering, so that the
+    // vertex numbers of an index file still name the same points in the output.
     Eigen::MatrixXd source_positions = V;
+    deform::Mesh triangles{V, rest_mesh.F};
     if (scene && scene->primitives.size() == 1 && deform::mesh_format_from_path(source) &&
-        deform::mesh_format_from_path(source) == deform::mesh_format_from_path(path)) {
+        deform::mesh_format_from_path(path)) {
       const std::vector<int>& weld = scene->primitives.front().deform_vertex;
       const deform::Mesh file = deform::read_mesh(source);
       if (file.V.rows() == static_cast<Eigen::Index>(weld.size())) {
         source_positions.setConstant(file.V.rows(), 3, std::nan(""));
+        triangles = file;
         for (std::size_t v = 0; v < weld.size(); ++v) {
           const int w = weld[v];
           if (w < 0 || w >= V.rows() || V.row(w) == rest_mesh.V.row(w)) continue;
-          source_positions.row(static_cast<Eigen::Index>(v)) =
-              file.V.row(static_cast<Eigen::Index>(v)) + (V.row(w) - rest_mesh.V.row(w));
+          const auto row = static_cast<Eigen::Index>(v);
+          triangles.V.row(row) = file.V.row(row) + (V.row(w) - rest_mesh.V.row(w));
+          source_positions.row(row) = triangles.V.row(row);
         }
       }
     }
-    for (const std::string& note :
-         deform::write_deformed_mesh(path, source, source_positions, deform::Mesh{V, rest_mesh.F}))
+    for (const std::string& note : deform::write_deformed_mesh(path, source, source_positions, triangles))
       warnings.push_back(path.string() + ": " + note);
   } catch (const std::exception& e) {
     throw CommandError(naming(path, e.what()));

@@ -22,8 +22,9 @@ namespace pushpull::app {
 //   plain mesh where there is no scene;
 // - .off, .obj, .ply: where `source` (the file the model was read from) has that format, a copy of it
 //   with the positions replaced (deform::write_deformed_mesh: polygons, attributes and comments kept; each
-//   file vertex moved by its weld's displacement where assets welded them); else rest_mesh's triangles
-//   with V.
+//   file vertex moved by its weld's displacement where assets welded them); else, for a model read from an
+//   OFF/OBJ/PLY, that file's own vertices (moved the same way) and triangles in its numbering, so that
+//   vertex numbers (index files) keep naming the same points; else rest_mesh's triangles with V.
 // Returns warnings for the user, each naming `path`: what the output cannot carry (a glTF scene written as a
 // bare mesh), input attributes kept that no longer match the surface (normals), a layout written as triangles
 // instead. Throws CommandError naming the file and the problem.

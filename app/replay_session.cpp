@@ -393,8 +393,9 @@ void run_replay(const ReplayOptions& o) {
     if (review.smooth_start_min_free) record.options.smooth_start_min_free = *review.smooth_start_min_free;
     if (review.coarse_start_min_free) record.options.coarse_start_min_free = *review.coarse_start_min_free;
     record.d = s.d;
-    // How the region was asked for: the press's surface point and radii (model units), as `pushpull deform
-    // --handle-at P --handle-radius R --roi-radius M` would repeat it.
+    // How the region was asked for: the press's surface point and radii, in model units (`pushpull deform
+    // --handle-at P --handle-radius R --roi-radius M` repeats it with these times life_size_scale: its
+    // command line takes metres at life size).
     if (s.committed_request) {
       if (const auto* handle = std::get_if<deform::SurfaceHandle>(&s.committed_request->handle)) {
         record.handle_at = handle->point.point;

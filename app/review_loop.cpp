@@ -640,9 +640,12 @@ void run_review(const ReviewCommandOptions& o) {
           else
             menu_label.hide();
         }
+        // The eyes draw both labels where they stand; the mirror's own views draw the hand's clear of its
+        // HUD.
         std::vector<renderer::Draw> draws = scene.draws();
-        for (const WorldLabel* label : {&hand_label, &menu_label})
-          if (const auto d = label->draw()) draws.push_back(*d);
+        if (const auto d = menu_label.draw()) draws.push_back(*d);
+        std::vector<renderer::Draw> eye_draws = draws;
+        if (const auto d = hand_label.draw()) eye_draws.push_back(*d);
         if (frame.should_render) last_eyes = frame.eyes;
         // One loop frame, one submission: the eyes (when the runtime wants them and the frame is drawn) and
         // the mirror window share one frame in flight and one upload of the newest snapshot.
@@ -658,7 +661,7 @@ void run_review(const ReviewCommandOptions& o) {
           renderer::FrameSettings eye_settings = scene.settings();
           // See-through display: the world is the background.
           if (xr.blend_mode() != XR_ENVIRONMENT_BLEND_MODE_OPAQUE) eye_settings.clear_colour = {0, 0, 0, 0};
-          passes.push_back({eye_views, draws, eye_settings, &eye_targets, {}});
+          passes.push_back({eye_views, eye_draws, eye_settings, &eye_targets, {}});
           rendered = true;
         }
         if (mirror) {
@@ -666,8 +669,8 @@ void run_review(const ReviewCommandOptions& o) {
               last_eyes, draws,
               window_hud_lines(interaction, *snapshot, life, colour_name(scene.colour()), mirror->mode_text(),
                                {"V view  C colour  M method  Esc end"}, history_text(), notice.text(t)),
-              scene.settings(/*legend=*/true), rendered ? &eye_targets : nullptr,
-              xr.eye(0).transfer_source());
+              scene.settings(/*legend=*/true), rendered ? &eye_targets : nullptr, xr.eye(0).transfer_source(),
+              &hand_label);
           if (pass) {
             scene.set_legend_window(pass->targets->extent.width, pass->targets->extent.height);
             passes.push_back(*pass);

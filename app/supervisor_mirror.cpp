@@ -1,5 +1,7 @@
 #include "supervisor_mirror.hpp"
 
+#include "hud_clearance.hpp"
+
 namespace pushpull::app {
 
 SupervisorMirror::SupervisorMirror(const renderer::Context& context, renderer::Renderer& renderer,
@@ -22,8 +24,8 @@ std::vector<int> SupervisorMirror::poll() {
 std::optional<renderer::RenderPass> SupervisorMirror::pass(
     const std::optional<std::array<xr::EyeView, 2>>& last_eyes,
     const std::vector<renderer::Draw>& scene_draws, const std::vector<std::string>& hud_lines,
-    const renderer::FrameSettings& settings, const renderer::RenderTargets* eye_targets,
-    bool eyes_allow_copy) {
+    const renderer::FrameSettings& settings, const renderer::RenderTargets* eye_targets, bool eyes_allow_copy,
+    const WorldLabel* hand_label) {
   const auto now = std::chrono::steady_clock::now();
   const double dt = std::chrono::duration<double>(now - last_pass_).count();
   last_pass_ = now;
@@ -46,6 +48,13 @@ std::optional<renderer::RenderPass> SupervisorMirror::pass(
     draws_ = scene_draws;
   hud_.set_text(hud_lines);
   hud_.place_top_left(camera_, 0.03);
+  if (!copy && hand_label != nullptr)
+    if (auto d = hand_label->draw()) {
+      if (const auto hud = label_image_rect(hud_.transform(), hud_.width(), hud_.height(), camera_))
+        d->T_world_mesh =
+            clear_of_hud(d->T_world_mesh, hand_label->width(), hand_label->height(), *hud, camera_);
+      draws_.push_back(*d);
+    }
   if (const auto d = hud_.draw()) draws_.push_back(*d);
   renderer::RenderPass pass{std::span(&camera_, 1), draws_, settings, &target_->targets, target_->sync};
   if (view_.mode() == MirrorMode::HeadsetEye && eye_targets != nullptr) last_copied_ = copy;

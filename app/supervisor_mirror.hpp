@@ -47,13 +47,16 @@ class SupervisorMirror {
   // This frame's pass into the window, or nullopt (no eye pose seen yet, or no image: minimised, resized).
   // last_eyes: the newest eye poses; scene_draws: the frame's draws (drawn in the mirror's own views);
   // hud_lines: its HUD; settings: the scene's, with the legend; eye_targets: the eyes drawn by an earlier
-  // pass of this frame (null: none), copied in headset-eye mode when the formats and usages allow it. The
+  // pass of this frame (null: none), copied in headset-eye mode when the formats and usages allow it;
+  // hand_label: the readout by the hand (null: none), drawn in the mirror's own views moved down the image
+  // where it would lie under the HUD (hud_clearance.hpp; the eyes' copy shows it where the eyes do). The
   // pass refers to members of this object, valid until the next call.
   std::optional<renderer::RenderPass> pass(const std::optional<std::array<xr::EyeView, 2>>& last_eyes,
                                            const std::vector<renderer::Draw>& scene_draws,
                                            const std::vector<std::string>& hud_lines,
                                            const renderer::FrameSettings& settings,
-                                           const renderer::RenderTargets* eye_targets, bool eyes_allow_copy);
+                                           const renderer::RenderTargets* eye_targets, bool eyes_allow_copy,
+                                           const WorldLabel* hand_label = nullptr);
   // Presents the image pass() drew into, once the frame is submitted (nothing when there was none).
   void present();
   // The frame that acquired the image threw before presenting it (MirrorWindow::abandon).

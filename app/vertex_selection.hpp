@@ -9,6 +9,7 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <string>
 #include <vector>
 
 namespace pushpull::app {
@@ -25,5 +26,13 @@ namespace pushpull::app {
 [[nodiscard]] std::vector<int> read_model_index_file(const std::filesystem::path& path,
                                                      const assets::Model& model,
                                                      std::size_t* unused = nullptr);
+
+// The message for welded surface vertices `both` (sorted, not empty) that are both a handle and a fixed
+// vertex, naming the first as the user numbered it: for an OFF/OBJ/PLY model, the file's vertices the weld
+// made that point (and which index file lists which), else the welded surface's number. handle_file and
+// fixed_file: the index files the sets came from (empty: not from a file).
+[[nodiscard]] std::string shared_vertex_message(const assets::Model& model, const std::vector<int>& both,
+                                                const std::string& handle_file,
+                                                const std::string& fixed_file);
 
 }  // namespace pushpull::app

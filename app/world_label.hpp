@@ -36,6 +36,7 @@ class WorldLabel {
   [[nodiscard]] const std::vector<std::string>& lines() const { return lines_; }
   [[nodiscard]] float height() const { return height_; }  // of the panel with the current text (metres)
   [[nodiscard]] float width() const { return width_; }    // likewise
+  [[nodiscard]] const glm::mat4& transform() const { return T_stage_label_; }  // where place*() put it
   // The draw while visible (on top, its own unlit materials).
   [[nodiscard]] std::optional<renderer::Draw> draw() const;
 

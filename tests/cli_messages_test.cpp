@@ -277,6 +277,9 @@ TEST_F(CliMessages, UnusableCommandLinesNameTheCommandAndExitTwo) {
        "pushpull deform: error: --mu: 1 must be a finite number > 1"},
       {"deform " + model + " --paper-iterations --iterations 5 --displacement 0 0 1 --out " + path("o.off"),
        "pushpull deform: error: --iterations excludes --paper-iterations"},
+      {"deform " + model + " --paper-iterations --coarse-start-min-free 5 --displacement 0 0 1 --out " +
+           path("o.off"),
+       "pushpull deform: error: --paper-iterations excludes --coarse-start-min-free"},
       {"bogus", "pushpull: error: unknown command 'bogus'"},
       {"", "pushpull: error: A subcommand is required"},
   };
@@ -313,9 +316,10 @@ TEST_F(CliMessages, DeformWarnsOfPullsThatAreNotAPushPull) {
                                           "--displacement 0 0 1e-11" +
                                           outputs);
   EXPECT_EQ(tiny.status, 1) << tiny.output;
-  EXPECT_NE(tiny.output.find("--displacement: |d| = 1e-11 m is below 1e-10 of the model's size (2.95579 m "
-                             "across): too small for its coordinates' precision"),
-            std::string::npos)
+  EXPECT_NE(
+      tiny.output.find("--displacement: |d| = 1e-11 m is less than 1e-10 times the model's size (2.95579 m "
+                       "across): too small for its coordinates' precision"),
+      std::string::npos)
       << tiny.output;
   EXPECT_FALSE(fs::exists(path("o.off")));
   EXPECT_FALSE(fs::exists(path("m.json")));

@@ -221,6 +221,31 @@ TEST_F(DeformCli, PatchesWithSeamVerticesTwiceDeformAsOneSurface) {
   EXPECT_NEAR(out.V(5 * 11 + 9, 2), 0.05, 1e-12);  // the handle moved by d
   EXPECT_GT(out.V(121 + 5 * 11 + 1, 2), 0.01);     // patch B, beside the seam, bent along
   EXPECT_EQ(read_json(path("m.json")).at("vertices").get<int>(), 231);
+
+  // Written in another format: the file's own 242 vertices and 400 triangles in its numbering (the index
+  // files' numbers name the same points), not the welded surface's 231.
+  const RunResult as_obj =
+      run_pushpull("deform " + path("patches.off") + " --handle " + path("patch_handle.txt") + " --fixed " +
+                   path("patch_fixed.txt") + " --roi-radius 5" + " --displacement 0 0 0.05 --out " +
+                   path("o.obj") + " --metrics " + path("m2.json"));
+  ASSERT_EQ(as_obj.status, 0) << as_obj.output;
+  const pd::Mesh obj = pd::read_mesh(path("o.obj"));
+  ASSERT_EQ(obj.V.rows(), 242);
+  EXPECT_EQ(obj.F.rows(), 400);
+  EXPECT_EQ(obj.V, out.V);
+
+  // Held on one patch's copy of a seam vertex, pulled on the other's: named as the files number them.
+  write("seam_handle.txt", std::to_string(5 * 11 + 10) + "\n");
+  write("seam_fixed.txt", std::to_string(121 + 5 * 11) + "\n");
+  const RunResult both =
+      run_pushpull("deform " + path("patches.off") + " --handle " + path("seam_handle.txt") + " --fixed " +
+                   path("seam_fixed.txt") + " --displacement 0 0 0.05 --out " + path("o2.off") +
+                   " --metrics " + path("m3.json"));
+  EXPECT_EQ(both.status, 1) << both.output;
+  EXPECT_NE(both.output.find("file vertices 65 (" + path("seam_handle.txt") + ") and 176 (" +
+                             path("seam_fixed.txt") + ") are one point once the seams are welded"),
+            std::string::npos)
+      << both.output;
 }
 
 TEST_F(DeformCli, AModelWithoutTrianglesIsRefusedNamingTheFile) {

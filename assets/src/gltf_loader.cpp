@@ -394,10 +394,11 @@ void split_lines(const std::string& text, const std::string& prefix, std::vector
 std::string shorten_data_uris(std::string text) {
   constexpr std::size_t kKept = 16;
   for (std::size_t at = text.find("data:"); at != std::string::npos; at = text.find("data:", at + 5)) {
+    // The URI ends at white space or a quote; its payload follows the first comma within it.
+    const std::size_t uri_end = std::min(text.find_first_of(" \t\n'\"", at), text.size());
     const std::size_t comma = text.find(',', at);
-    if (comma == std::string::npos) break;
-    const std::size_t end = text.find_first_of(" \t\n'\"", comma + 1);
-    const std::size_t payload = (end == std::string::npos ? text.size() : end) - (comma + 1);
+    if (comma == std::string::npos || comma >= uri_end) continue;
+    const std::size_t payload = uri_end - (comma + 1);
     if (payload <= 2 * kKept) continue;
     text.replace(comma + 1 + kKept, payload - kKept, "... (" + std::to_string(payload) + " characters)");
   }

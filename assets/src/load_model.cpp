@@ -113,16 +113,9 @@ Model load_model_from_memory(const std::vector<std::uint8_t>& bytes, const std::
   else
     load_plain_mesh(data, name, extension, model, exact);
 
-  model.report.weld = weld_primitives(model.primitives, options.weld, model.deform_mesh);
-  if (exact.V.rows() > 0 && model.primitives.size() == 1) {  // keep the reader's doubles
-    const auto& map = model.primitives.front().deform_vertex;
-    std::vector<bool> set(static_cast<std::size_t>(model.deform_mesh.V.rows()), false);
-    for (std::size_t v = 0; v < map.size(); ++v)
-      if (map[v] >= 0 && !set[static_cast<std::size_t>(map[v])]) {
-        model.deform_mesh.V.row(map[v]) = exact.V.row(static_cast<Eigen::Index>(v));
-        set[static_cast<std::size_t>(map[v])] = true;
-      }
-  }
+  // A mesh file is welded on the reader's doubles (weld_primitives keeps them in the deform mesh).
+  model.report.weld = weld_primitives(model.primitives, options.weld, model.deform_mesh,
+                                      exact.V.rows() > 0 ? &exact.V : nullptr);
   if (model.deform_mesh.F.rows() == 0) {
     if (model.report.weld.collapsed_triangles > 0)  // there were some: the weld's tolerance took them all
       throw AssetError(name + ": welding collapsed every triangle (" +

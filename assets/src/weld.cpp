@@ -86,8 +86,18 @@ Topology analyze_topology(const deform::Mesh& mesh) {
   return topology;
 }
 
-WeldStats weld_primitives(std::vector<Primitive>& primitives, const WeldOptions& options, deform::Mesh& out) {
+WeldStats weld_primitives(std::vector<Primitive>& primitives, const WeldOptions& options, deform::Mesh& out,
+                          const Eigen::MatrixXd* exact_positions) {
   WeldStats stats;
+  if (exact_positions != nullptr &&
+      (primitives.size() != 1 || exact_positions->rows() != primitives.front().positions.rows()))
+    exact_positions = nullptr;
+  // A render vertex's model-frame position: the reader's doubles where given, else the stored floats.
+  auto position = [&](std::size_t p, Eigen::Index v) -> Eigen::Vector3d {
+    if (exact_positions != nullptr) return exact_positions->row(v).transpose();
+    return Eigen::Affine3d(primitives[p].T_model_node) *
+           primitives[p].positions.row(v).transpose().cast<double>();
+  };
   // Model-frame positions of every render vertex used by a triangle, and the bounding box.
   std::vector<std::vector<bool>> used(primitives.size());
   Eigen::AlignedBox3d box;
@@ -96,10 +106,9 @@ WeldStats weld_primitives(std::vector<Primitive>& primitives, const WeldOptions&
     Primitive& primitive = primitives[p];
     used[p].assign(static_cast<std::size_t>(primitive.positions.rows()), false);
     for (std::uint32_t i : primitive.indices) used[p][i] = true;
-    const Eigen::Affine3d T(primitive.T_model_node);
     for (Eigen::Index v = 0; v < primitive.positions.rows(); ++v)
       if (used[p][static_cast<std::size_t>(v)]) {
-        box.extend(T * primitive.positions.row(v).transpose().cast<double>());
+        box.extend(position(p, v));
         ++render_total;
       }
     stats.render_triangles += primitive.indices.size() / 3;
@@ -124,10 +133,9 @@ WeldStats weld_primitives(std::vector<Primitive>& primitives, const WeldOptions&
     Primitive& primitive = primitives[p];
     render_offset[p + 1] = render_offset[p] + static_cast<std::size_t>(primitive.positions.rows());
     primitive.deform_vertex.assign(static_cast<std::size_t>(primitive.positions.rows()), -1);
-    const Eigen::Affine3d T(primitive.T_model_node);
     for (Eigen::Index v = 0; v < primitive.positions.rows(); ++v) {
       if (!used[p][static_cast<std::size_t>(v)]) continue;
-      const Eigen::Vector3d x = T * primitive.positions.row(v).transpose().cast<double>();
+      const Eigen::Vector3d x = position(p, v);
       const std::array<std::int64_t, 3> c{cell_coordinate(x.x(), cell), cell_coordinate(x.y(), cell),
                                           cell_coordinate(x.z(), cell)};
       int match = -1;

@@ -5,6 +5,8 @@
 #include <pushpull/assets/model.hpp>
 
 #include <algorithm>
+#include <cstdio>
+#include <string>
 #include <unordered_map>
 
 namespace pushpull::assets {
@@ -115,6 +117,36 @@ TEST(AssetsLoad, InstancedMeshesGiveOnePrimitivePerNode) {
   std::unordered_map<int, int> uses;
   for (const Primitive& p : model.primitives) ++uses[p.mesh];
   EXPECT_TRUE(std::any_of(uses.begin(), uses.end(), [](const auto& u) { return u.second > 1; }));
+}
+
+// A mesh file in large coordinates (a 1 cm grid of 1 mm cells 5,000 km from the origin, as site coordinates
+// put it) welds on the reader's doubles: as floats (0.5 m apart there) every vertex merged into a few and
+// every triangle collapsed.
+TEST(AssetsLoad, AMeshFileFarFromTheOriginKeepsEveryVertex) {
+  const int n = 11;
+  std::string off = "OFF\n" + std::to_string(n * n) + " " + std::to_string(2 * (n - 1) * (n - 1)) + " 0\n";
+  char line[128];
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      std::snprintf(line, sizeof line, "%.4f %.4f 0.25\n", 5e5 + 1e-3 * i, 5e6 + 1e-3 * j);
+      off += line;
+    }
+  for (int j = 0; j + 1 < n; ++j)
+    for (int i = 0; i + 1 < n; ++i) {
+      const int a = j * n + i, b = a + 1, c = a + n, d = c + 1;
+      off += "3 " + std::to_string(a) + " " + std::to_string(b) + " " + std::to_string(d) + "\n";
+      off += "3 " + std::to_string(a) + " " + std::to_string(d) + " " + std::to_string(c) + "\n";
+    }
+  const Model model =
+      load_model_from_memory(std::vector<std::uint8_t>(off.begin(), off.end()), "site.off", {});
+  ASSERT_EQ(model.deform_mesh.V.rows(), n * n);
+  EXPECT_EQ(model.deform_mesh.F.rows(), 2 * (n - 1) * (n - 1));
+  EXPECT_EQ(model.report.weld.collapsed_triangles, 0u);
+  EXPECT_EQ(model.report.weld.topology.components, 1u);
+  for (int v = 0; v < n * n; ++v) {  // the reader's doubles, in the file's order
+    EXPECT_NEAR(model.deform_mesh.V(v, 0), 5e5 + 1e-3 * (v % n), 1e-9) << "vertex " << v;
+    EXPECT_NEAR(model.deform_mesh.V(v, 1), 5e6 + 1e-3 * (v / n), 1e-9) << "vertex " << v;
+  }
 }
 
 TEST(AssetsLoad, UnsupportedFormatIsRefused) {

@@ -189,60 +189,73 @@ AttachedParts::AttachedParts(const Mesh& rest, const RegionOfInterest& roi, cons
 }
 
 void AttachedParts::build_patches(const detail::VertexGraph& graph, const std::vector<int>& slot_face) {
-  // The largest offset each patch carries.
+  // The largest offset each patch carries; a slot no kept binding uses gets empty patches.
   std::vector<double> carried(slot_face.size(), 0.0);
+  std::vector<char> used(slot_face.size(), 0);
   for (std::size_t k = 0; k < bound_vertex_.size(); ++k) {
-    double& c = carried[static_cast<std::size_t>(carrier_slot_[k])];
-    c = std::max(c, offset_[k].norm());
+    const std::size_t slot = static_cast<std::size_t>(carrier_slot_[k]);
+    carried[slot] = std::max(carried[slot], offset_[k].norm());
+    used[slot] = 1;
   }
-  patch_start_.assign(1, 0);
-  patch_index_.clear();
+  patch_start_.assign(1, 0), ring_start_.assign(1, 0);
+  patch_index_.clear(), ring_index_.clear();
   std::vector<int> seen_at(static_cast<std::size_t>(rest_V_.rows()), -1);  // slot that last took the vertex
   std::vector<int> patch, ring, next_ring;
   for (std::size_t slot = 0; slot < slot_face.size(); ++slot) {
-    const int f = slot_face[slot];
     patch.clear(), ring.clear();
-    auto take = [&](int v, std::vector<int>& into) {
-      if (seen_at[static_cast<std::size_t>(v)] == static_cast<int>(slot)) return;
-      seen_at[static_cast<std::size_t>(v)] = static_cast<int>(slot);
-      patch.push_back(v);
-      into.push_back(v);
-    };
-    for (int k = 0; k < 3; ++k) take(F_(f, k), ring);
-    const std::size_t corners = patch.size();
-    for (int rings = 0; rings < kMaxPatchRings && !ring.empty(); ++rings) {
-      next_ring.clear();
-      for (const int v : ring)
-        for (const int* w = graph.begin(v); w != graph.end(v); ++w) take(*w, next_ring);
-      ring.swap(next_ring);
-      if (rings + 1 >= kMinPatchRings &&
-          (static_cast<int>(patch.size()) >= kMaxPatchVertices || in_plane_spread(patch) >= carried[slot]))
-        break;
+    if (used[slot]) {
+      const int f = slot_face[slot];
+      // Running sums of the patch's rest positions relative to its first corner (no cancellation on models
+      // far from the origin), for its in-plane spread as it grows.
+      const Eigen::Vector3d origin = rest_V_.row(F_(f, 0)).transpose();
+      Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+      Eigen::Matrix3d sum_outer = Eigen::Matrix3d::Zero();
+      auto take = [&](int v, std::vector<int>& into) {
+        if (seen_at[static_cast<std::size_t>(v)] == static_cast<int>(slot)) return;
+        seen_at[static_cast<std::size_t>(v)] = static_cast<int>(slot);
+        patch.push_back(v);
+        into.push_back(v);
+        const Eigen::Vector3d p = rest_V_.row(v).transpose() - origin;
+        sum += p, sum_outer += p * p.transpose();
+      };
+      for (int k = 0; k < 3; ++k) take(F_(f, k), ring);
+      const std::size_t corners = patch.size();
+      for (int rings = 0; rings < kMaxPatchRings && !ring.empty(); ++rings) {
+        next_ring.clear();
+        for (const int v : ring)
+          for (const int* w = graph.begin(v); w != graph.end(v); ++w) take(*w, next_ring);
+        ring.swap(next_ring);
+        if (rings == 0) {  // the corners and their neighbours: what decides whether the carrier moved
+          ring_index_.insert(ring_index_.end(), patch.begin(), patch.end());
+        }
+        if (rings + 1 >= kMinPatchRings && (static_cast<int>(patch.size()) >= kMaxPatchVertices ||
+                                            in_plane_spread(sum, sum_outer, patch.size()) >= carried[slot]))
+          break;
+      }
+      if (ring_index_.size() ==
+          static_cast<std::size_t>(ring_start_.back()))  // no ring grown (no neighbours)
+        ring_index_.insert(ring_index_.end(), patch.begin(), patch.end());
+      // The rotation is as well defined by a few points spread over the patch as by all of them (its
+      // conditioning is the spread's), and apply() fits one per patch for every snapshot: the corners and an
+      // even sample of the rings in the order they were grown.
+      if (patch.size() > static_cast<std::size_t>(kPatchPoints)) {
+        const std::size_t others = patch.size() - corners, wanted = std::size_t(kPatchPoints) - corners;
+        for (std::size_t k = 0; k < wanted; ++k) patch[corners + k] = patch[corners + k * others / wanted];
+        patch.resize(std::size_t(kPatchPoints));
+      }
+      std::sort(patch.begin(), patch.end());
     }
-    // The rotation is as well defined by a few points spread over the patch as by all of them (its
-    // conditioning is the spread's), and apply() fits one per patch for every snapshot: the corners and an
-    // even sample of the rings in the order they were grown.
-    if (patch.size() > static_cast<std::size_t>(kPatchPoints)) {
-      const std::size_t others = patch.size() - corners, wanted = std::size_t(kPatchPoints) - corners;
-      for (std::size_t k = 0; k < wanted; ++k) patch[corners + k] = patch[corners + k * others / wanted];
-      patch.resize(std::size_t(kPatchPoints));
-    }
-    std::sort(patch.begin(), patch.end());
     patch_index_.insert(patch_index_.end(), patch.begin(), patch.end());
     patch_start_.push_back(static_cast<int>(patch_index_.size()));
+    ring_start_.push_back(static_cast<int>(ring_index_.size()));
   }
 }
 
-double AttachedParts::in_plane_spread(const std::vector<int>& patch) const {
-  Eigen::Vector3d c = Eigen::Vector3d::Zero();
-  for (const int v : patch) c += rest_V_.row(v).transpose();
-  c /= static_cast<double>(patch.size());
-  Eigen::Matrix3d C = Eigen::Matrix3d::Zero();
-  for (const int v : patch) {
-    const Eigen::Vector3d p = rest_V_.row(v).transpose() - c;
-    C += p * p.transpose();
-  }
-  C /= static_cast<double>(patch.size());
+double AttachedParts::in_plane_spread(const Eigen::Vector3d& sum, const Eigen::Matrix3d& sum_outer,
+                                      std::size_t count) {
+  const double n = static_cast<double>(count);
+  const Eigen::Vector3d mean = sum / n;
+  const Eigen::Matrix3d C = sum_outer / n - mean * mean.transpose();
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(C, Eigen::EigenvaluesOnly);
   return std::sqrt(std::max(eigen.eigenvalues()(1), 0.0));  // ascending: (1) is the middle one
 }
@@ -258,9 +271,14 @@ void AttachedParts::apply(Eigen::MatrixXd& V) const {
   std::vector<Eigen::Matrix3d> rotation(slots, Eigen::Matrix3d::Identity());
   std::vector<char> moved(slots, 0);
   for (std::size_t slot = 0; slot < slots; ++slot) {
+    // Moved: a corner of the carrier face or a neighbour of one (the grown patch can reach into the region
+    // from a face the solve left byte-identical, whose parts then stay exactly put).
+    for (int k = ring_start_[slot]; k < ring_start_[slot + 1] && !moved[slot]; ++k) {
+      const int v = ring_index_[static_cast<std::size_t>(k)];
+      moved[slot] = V.row(v) != rest_V_.row(v);
+    }
     const int* begin = patch_index_.data() + patch_start_[slot];
     const int* end = patch_index_.data() + patch_start_[slot + 1];
-    for (const int* v = begin; v != end && !moved[slot]; ++v) moved[slot] = V.row(*v) != rest_V_.row(*v);
     if (moved[slot]) rotation[slot] = patch_rotation(rest_V_, V, begin, end);
   }
   // Where each bound vertex goes with the surface under it.

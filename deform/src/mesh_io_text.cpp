@@ -136,6 +136,13 @@ Mesh parse_obj(std::string_view contents, const std::string& name) {
     detail::Tokens tokens(line);
     std::string_view keyword;
     tokens.next(keyword);
+    // A line ending in a backslash goes on on the next one: refused where this reader needs the line.
+    if (keyword == "v" || keyword == "f") {
+      const std::size_t last = line.find_last_not_of(" \t\r");
+      if (last != std::string_view::npos && line[last] == '\\')
+        fail(name, cursor.line_number(),
+             "a line continued with '\\' is not supported (join it with the next line)");
+    }
     if (keyword == "v") {
       double xyz[3];
       for (double& value : xyz) {
@@ -153,9 +160,6 @@ Mesh parse_obj(std::string_view contents, const std::string& name) {
         // "a", "a/b", "a//c", "a/b/c": the position index is the part before the first slash.
         const std::string_view position = token.substr(0, token.find('/'));
         std::int64_t index = 0;
-        if (token == "\\")
-          fail(name, cursor.line_number(),
-               "a face line continued with '\\' is not supported (join it with the next line)");
         if (!detail::parse_int64(position, index) || index == 0) {
           fail(name, cursor.line_number(), "bad face vertex '" + std::string(token) + "'");
         }

@@ -4,6 +4,7 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <numbers>
 
 #include "pushpull/deform/attached_parts.hpp"
 #include "pushpull/deform/deformer.hpp"
@@ -245,8 +246,8 @@ TEST(AttachedParts, APartFarAboveFineTrianglesMovesNoMoreThanTheSurfaceErrs) {
     const double x = mesh.V(v, 0), y = mesh.V(v, 1);
     const double bump = 0.05 * std::exp(-(x * x + y * y) / (2.0 * 0.15 * 0.15));
     smooth(v, 2) += bump;
-    rippled(v, 2) +=
-        bump + ripple * std::sin(2.0 * M_PI * x / 0.1 + 0.7) * std::sin(2.0 * M_PI * y / 0.1 + 0.3);
+    rippled(v, 2) += bump + ripple * std::sin(2.0 * std::numbers::pi * x / 0.1 + 0.7) *
+                                std::sin(2.0 * std::numbers::pi * y / 0.1 + 0.3);
   }
   parts.apply(smooth);
   parts.apply(rippled);
@@ -254,6 +255,47 @@ TEST(AttachedParts, APartFarAboveFineTrianglesMovesNoMoreThanTheSurfaceErrs) {
     EXPECT_GT(smooth(v, 2), 0.14) << "part vertex " << v << " did not follow the bump";
     EXPECT_LT((rippled.row(v) - smooth.row(v)).norm(), 1.5 * ripple) << "part vertex " << v;
   }
+}
+
+// A part just outside the region, over a panel the solve left byte-identical, stays exactly put: the patch
+// grown for its rotation (10 cm above 5 cm cells: four rings) reaches into the moved region, and deciding
+// "moved" on that patch swung the part with the bump next to it; the carrier's corners and their neighbours
+// decide instead.
+TEST(AttachedParts, APartBesideTheRegionOverAnUnmovedPanelStaysExactlyPut) {
+  const Mesh body = testing::grid(40, 40, -1.0, 1.0, -1.0, 1.0);
+  const Mesh part = testing::grid(2, 2, 0.42, 0.48, -0.03, 0.03, [](double, double) { return 0.1; });
+  const int body_vertices = static_cast<int>(body.V.rows());
+  const Mesh mesh = testing::append(body, part);
+  std::vector<int> handle;
+  for (int v = 0; v < body_vertices; ++v)
+    if (std::hypot(mesh.V(v, 0), mesh.V(v, 1)) < 0.1) handle.push_back(v);
+  const RegionOfInterest roi = build_roi(mesh, handle, {}, 0.3);
+  const AttachedParts parts(mesh, roi, {.reach = 0.2});
+  ASSERT_EQ(parts.parts().size(), 1u);
+  ASSERT_TRUE(parts.parts()[0].on_surface);
+
+  Eigen::MatrixXd V = mesh.V;
+  int moved = 0;
+  for (int v = 0; v < body_vertices; ++v) {
+    const VertexRole role = roi.role[static_cast<std::size_t>(v)];
+    if (role != VertexRole::Free && role != VertexRole::Handle) continue;
+    const double x = mesh.V(v, 0), y = mesh.V(v, 1);
+    V(v, 2) += 0.05 * std::exp(-(x * x + y * y) / (2.0 * 0.1 * 0.1));
+    moved += std::hypot(x - 0.45, y) < 0.25 ? 1 : 0;
+  }
+  ASSERT_GT(moved, 0);  // the bump lies within the part's grown patch
+  parts.apply(V);
+  for (int v = body_vertices; v < mesh.V.rows(); ++v)
+    EXPECT_EQ(V.row(v), mesh.V.row(v)) << "part vertex " << v;
+
+  // Over the moved panel the same part follows it.
+  Mesh shifted = mesh;
+  for (int v = body_vertices; v < mesh.V.rows(); ++v) shifted.V(v, 0) -= 0.4;
+  const AttachedParts over(shifted, roi, {.reach = 0.2});
+  Eigen::MatrixXd W = shifted.V;
+  for (int v = 0; v < body_vertices; ++v) W(v, 2) = V(v, 2);
+  over.apply(W);
+  for (int v = body_vertices; v < mesh.V.rows(); ++v) EXPECT_GT(W(v, 2), 0.12) << "part vertex " << v;
 }
 
 }  // namespace

@@ -104,8 +104,13 @@ TEST(MeshIoRead, ObjSlashesNegativeIndicesAndIgnoredRecords) {
             std::string::npos);
   const std::string continued =
       error_of([] { (void)pd::parse_obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 \\\n 3\n", "c.obj"); });
-  EXPECT_NE(continued.find("c.obj:4: a face line continued with '\\' is not supported"), std::string::npos)
+  EXPECT_NE(continued.find("c.obj:4: a line continued with '\\' is not supported"), std::string::npos)
       << continued;
+  // Glued to the last index or on a vertex line: the same.
+  for (const char* text : {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2\\\n 3\n", "v 0 0 0\nv 1 0 \\\n0\n"}) {
+    const std::string glued = error_of([&] { (void)pd::parse_obj(text, "g.obj"); });
+    EXPECT_NE(glued.find("a line continued with '\\' is not supported"), std::string::npos) << glued;
+  }
 }
 
 TEST(MeshIoRead, PlyAsciiWithExtraPropertiesAndElements) {

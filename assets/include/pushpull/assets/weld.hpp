@@ -45,7 +45,11 @@ struct WeldStats {
 
 // Welds all triangles of `primitives` (placed by their T_model_node) into `out` (V in the model
 // frame) and fills each primitive's deform_vertex map. Deterministic: same input, same output.
-WeldStats weld_primitives(std::vector<Primitive>& primitives, const WeldOptions& options, deform::Mesh& out);
+// exact_positions: for a single primitive read from a mesh file (OFF/OBJ/PLY), the reader's double positions
+// (#V by 3, the model frame): the weld compares and keeps those instead of the stored floats (a model in
+// large coordinates, e.g. 5e6 m, would otherwise merge everything within float's 0.5 m there).
+WeldStats weld_primitives(std::vector<Primitive>& primitives, const WeldOptions& options, deform::Mesh& out,
+                          const Eigen::MatrixXd* exact_positions = nullptr);
 
 // Components, boundary loops, non-manifold edges and degenerate faces of a triangle mesh. F is #F by 3.
 Topology analyze_topology(const deform::Mesh& mesh);

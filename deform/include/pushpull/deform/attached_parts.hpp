@@ -29,7 +29,8 @@
 //   same binding tells where its vertices would go; the part moves by the rigid motion that fits that best
 //   when the fit is good (residual within 25% of the motion: the surface under it moves as one) and
 //   otherwise stays where it is (a pulled wheel arch does not drag or bend the wheel inside it).
-// - Vertices of a part whose carrier patches did not move keep their exact values.
+// - Vertices of a part whose carrier triangles did not move (nor any neighbour of their corners) keep their
+//   exact values, even when the patch grown for the rotation reaches into the moved region.
 //
 // Units: model units (reach too). Frame: model space. Shapes: positions #V by 3.
 // Ownership: a value type holding the binding. Thread-safety: const members may run concurrently.
@@ -82,8 +83,10 @@ class AttachedParts {
   // CAD a corner's neighbours alone can lie nearly on a line, and a part 6 cm above them moved 4 mm where the
   // surface under it moved 0.4 mm off the minimiser).
   void build_patches(const detail::VertexGraph& graph, const std::vector<int>& slot_face);
-  // The RMS spread of the rest positions of `patch` along their second principal direction (model units).
-  [[nodiscard]] double in_plane_spread(const std::vector<int>& patch) const;
+  // The RMS spread of `count` points along their second principal direction (model units), from the sums of
+  // their positions and of their outer products.
+  [[nodiscard]] static double in_plane_spread(const Eigen::Vector3d& sum, const Eigen::Matrix3d& sum_outer,
+                                              std::size_t count);
 
   static constexpr double kOnSurfaceShare = 0.9;   // share of vertices within reach for "on the surface"
   static constexpr double kCoherentMotion = 0.25;  // rigid fit residual / motion (RMS) accepted
@@ -100,6 +103,8 @@ class AttachedParts {
   // Per carrier face used, its patch: the corners and the rings of neighbours around them, grown until the
   // patch's in-plane spread reaches the largest offset it carries (see build_patches).
   std::vector<int> patch_start_, patch_index_;
+  // Per carrier face used, its corners and their neighbours: the carrier moved when one of these did.
+  std::vector<int> ring_start_, ring_index_;
   Eigen::MatrixXi F_;                              // the mesh's faces
   Eigen::MatrixXd rest_V_;                         // rest corners, to tell moved triangles from unmoved ones
   std::vector<AttachedPart> parts_;

@@ -1,0 +1,44 @@
+#include "hud_clearance.hpp"
+
+#include <algorithm>
+#include <array>
+
+namespace pushpull::app {
+
+std::optional<ImageRect> label_image_rect(const glm::mat4& T_world_label, float width, float height,
+                                          const renderer::View& view) {
+  const std::array<glm::vec4, 4> corners{
+      glm::vec4(-0.5f * width, 0.0f, 0.0f, 1.0f), glm::vec4(0.5f * width, 0.0f, 0.0f, 1.0f),
+      glm::vec4(-0.5f * width, height, 0.0f, 1.0f), glm::vec4(0.5f * width, height, 0.0f, 1.0f)};
+  ImageRect rect{glm::vec2(1e30f), glm::vec2(-1e30f)};
+  for (const glm::vec4& corner : corners) {
+    const glm::vec4 clip = view.projection * view.view * T_world_label * corner;
+    if (!(clip.w > 1e-6f)) return std::nullopt;
+    const glm::vec2 ndc(clip.x / clip.w, clip.y / clip.w);
+    rect.low = glm::min(rect.low, ndc);
+    rect.high = glm::max(rect.high, ndc);
+  }
+  return rect;
+}
+
+glm::mat4 clear_of_hud(const glm::mat4& T_world_label, float width, float height, const ImageRect& hud,
+                       const renderer::View& view) {
+  const std::optional<ImageRect> label = label_image_rect(T_world_label, width, height, view);
+  if (!label) return T_world_label;
+  const bool overlap = label->low.x < hud.high.x && hud.low.x < label->high.x && label->low.y < hud.high.y &&
+                       hud.low.y < label->high.y;
+  if (!overlap) return T_world_label;
+  // Down the image by this much (NDC), then in eye space at the panel's depth: y_ndc = p11 y_eye / -z_eye.
+  const float gap = 0.05f * (hud.high.y - hud.low.y);
+  const float shift_ndc = hud.high.y + gap - label->low.y;
+  const glm::vec4 origin_eye = view.view * T_world_label[3];
+  const float depth = -origin_eye.z;
+  const float p11 = view.projection[1][1];
+  if (!(depth > 0.0f) || p11 == 0.0f) return T_world_label;
+  const float shift_eye_y = shift_ndc * depth / p11;
+  glm::mat4 move_eye(1.0f);
+  move_eye[3] = glm::vec4(0.0f, shift_eye_y, 0.0f, 1.0f);
+  return glm::inverse(view.view) * move_eye * view.view * T_world_label;
+}
+
+}  // namespace pushpull::app

@@ -1,0 +1,59 @@
+// The readout by the hand in the supervisor's mirror: where it would lie under the HUD (the window's top-left
+// panel), it is drawn moved down the image just clear of it; elsewhere exactly where it stands.
+#include "hud_clearance.hpp"
+
+#include <gtest/gtest.h>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <cmath>
+
+namespace {
+
+using pushpull::app::clear_of_hud;
+using pushpull::app::ImageRect;
+using pushpull::app::label_image_rect;
+
+// A camera at the origin looking down -Z, +Y up, 60 degrees vertically, square image, Vulkan's y-down clip
+// space (renderer/camera.cpp's convention).
+pushpull::renderer::View camera() {
+  pushpull::renderer::View view;
+  glm::mat4 p = glm::perspective(glm::radians(60.0f), 1.0f, 0.1f, 100.0f);
+  p[1][1] *= -1.0f;
+  view.projection = p;
+  return view;
+}
+
+// A panel 0.2 x 0.1 m facing the camera with its bottom centre at `at`.
+glm::mat4 panel_at(const glm::vec3& at) {
+  return glm::translate(glm::mat4(1.0f), at);
+}
+
+TEST(HudClearance, APanelUnderTheHudMovesDownJustClearOfIt) {
+  const auto view = camera();
+  const ImageRect hud{{-1.0f, -1.0f}, {-0.2f, -0.6f}};  // the top-left corner of the image
+  // Up and left in the image, 2 m away: under the HUD.
+  const glm::mat4 T = panel_at({-0.8f, 0.7f, -2.0f});
+  const auto before = label_image_rect(T, 0.2f, 0.1f, view);
+  ASSERT_TRUE(before);
+  ASSERT_LT(before->low.y, hud.high.y);
+  ASSERT_LT(before->low.x, hud.high.x);
+  const glm::mat4 moved = clear_of_hud(T, 0.2f, 0.1f, hud, view);
+  const auto after = label_image_rect(moved, 0.2f, 0.1f, view);
+  ASSERT_TRUE(after);
+  EXPECT_NEAR(after->low.y, hud.high.y + 0.05f * 0.4f, 1e-4f);  // just below, a twentieth of the HUD apart
+  EXPECT_NEAR(after->low.x, before->low.x, 1e-4f);              // straight down the image
+  EXPECT_NEAR(after->high.x - after->low.x, before->high.x - before->low.x, 1e-4f);
+  EXPECT_NEAR(moved[3].z, T[3].z, 1e-5f);  // at the same depth
+}
+
+TEST(HudClearance, APanelElsewhereOrBehindTheEyeStaysWhereItIs) {
+  const auto view = camera();
+  const ImageRect hud{{-1.0f, -1.0f}, {-0.2f, -0.6f}};
+  for (const glm::vec3 at : {glm::vec3(0.5f, -0.5f, -2.0f), glm::vec3(-0.8f, 0.7f, 2.0f)}) {
+    const glm::mat4 T = panel_at(at);
+    EXPECT_EQ(clear_of_hud(T, 0.2f, 0.1f, hud, view), T);
+  }
+  EXPECT_FALSE(label_image_rect(panel_at({0.0f, 0.0f, 2.0f}), 0.2f, 0.1f, view));  // behind the eye
+}
+
+}  // namespace
