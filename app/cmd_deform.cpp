@@ -135,13 +135,16 @@ deform::Method parse_method_or_throw(const std::string& name, const char* option
 // the surface (on that point's component only), the rule the headset uses for a ray hit.
 // o is in file units (convert_to_file_units); `scale` (metres per file unit) puts the message back in the
 // life-size metres the user typed.
-// `notes`, when given, receives warnings about the handle (a handle far from the point asked for).
+// `notes`, when given, receives warnings about the handle (a handle far from the point asked for); `source`,
+// when given, where it came from (the --handle file and the numbers it wrote).
 std::vector<int> pick_handle(const DeformCommandOptions& o, const LoadedModel& model, double scale,
-                             std::vector<std::string>* notes = nullptr) {
+                             std::vector<std::string>* notes = nullptr, SelectionSource* source = nullptr) {
   const deform::Mesh& mesh = *model.mesh;
   if (!o.handle_file.empty()) {
     std::size_t unused = 0;
-    std::vector<int> handle = read_model_index_file(o.handle_file, model.scene, &unused);
+    std::vector<int> named;
+    std::vector<int> handle = read_model_index_file(o.handle_file, model.scene, &unused, &named);
+    if (source) *source = {o.handle_file, std::move(named)};
     if (unused > 0 && notes != nullptr)
       notes->push_back(o.handle_file + ": " + std::to_string(unused) +
                        " of its vertices are used by no triangle of the model: left out of the handle");
@@ -317,11 +320,13 @@ void run_deform(DeformCommandOptions o) {
     }
   }
   std::vector<std::string> handle_notes;
-  const std::vector<int> handle = pick_handle(o, model, life.scale(), &handle_notes);
+  SelectionSource handle_source, fixed_source{o.fixed_file, {}};
+  const std::vector<int> handle = pick_handle(o, model, life.scale(), &handle_notes, &handle_source);
   std::size_t unused_fixed = 0;
-  const std::vector<int> fixed = o.fixed_file.empty()
-                                     ? std::vector<int>{}
-                                     : read_model_index_file(o.fixed_file, model.scene, &unused_fixed);
+  const std::vector<int> fixed =
+      o.fixed_file.empty()
+          ? std::vector<int>{}
+          : read_model_index_file(o.fixed_file, model.scene, &unused_fixed, &fixed_source.file_vertices);
   if (unused_fixed > 0)
     handle_notes.push_back(o.fixed_file + ": " + std::to_string(unused_fixed) +
                            " of its vertices are used by no triangle of the model: left out");
@@ -331,7 +336,7 @@ void run_deform(DeformCommandOptions o) {
   std::vector<int> both;
   std::set_intersection(handle.begin(), handle.end(), fixed.begin(), fixed.end(), std::back_inserter(both));
   if (!both.empty())
-    throw CommandError(shared_vertex_message(model.scene, both, o.handle_file, o.fixed_file));
+    throw CommandError(shared_vertex_message(model.scene, both, handle_source, fixed_source));
 
   deform::RegionOfInterest roi;
   try {
@@ -455,11 +460,13 @@ void run_deform(DeformCommandOptions o) {
   if (const assets::WeldStats& weld = model.scene.report.weld; weld.deform_vertices < weld.render_vertices)
     std::printf(
         "  welded: %zu vertices of the file's triangles -> %zu (%zu pieces -> %zu component%s), as "
-        "`pushpull info` reports; counts and vertex numbers here and in the metrics are the welded "
-        "surface's, "
-        "index files and the output keep the file's numbering\n",
+        "`pushpull info` reports; %s\n",
         weld.render_vertices, weld.deform_vertices, weld.pieces_before, weld.topology.components,
-        weld.topology.components == 1 ? "" : "s");
+        weld.topology.components == 1 ? "" : "s",
+        index_files_name_file_vertices(model.scene)
+            ? "counts and vertex numbers here and in the metrics are the welded surface's, index files and "
+              "the output keep the file's numbering"
+            : "counts and vertex numbers here, in the metrics and in index files are the welded surface's");
   std::printf("  %d iterations, %s (%s); estimated error %s; %.1f ms per iteration, %.1f ms factorize, %.1f ms "
               "total\n",
               r.iterations, r.converged ? "converged" : "not converged",

@@ -23,22 +23,27 @@ std::optional<ImageRect> label_image_rect(const glm::mat4& T_world_label, float 
 
 glm::mat4 clear_of_hud(const glm::mat4& T_world_label, float width, float height, const ImageRect& hud,
                        const renderer::View& view) {
-  const std::optional<ImageRect> label = label_image_rect(T_world_label, width, height, view);
-  if (!label) return T_world_label;
-  const bool overlap = label->low.x < hud.high.x && hud.low.x < label->high.x && label->low.y < hud.high.y &&
-                       hud.low.y < label->high.y;
-  if (!overlap) return T_world_label;
-  // Down the image by this much (NDC), then in eye space at the panel's depth: y_ndc = p11 y_eye / -z_eye.
-  const float gap = 0.05f * (hud.high.y - hud.low.y);
-  const float shift_ndc = hud.high.y + gap - label->low.y;
-  const glm::vec4 origin_eye = view.view * T_world_label[3];
-  const float depth = -origin_eye.z;
   const float p11 = view.projection[1][1];
-  if (!(depth > 0.0f) || p11 == 0.0f) return T_world_label;
-  const float shift_eye_y = shift_ndc * depth / p11;
-  glm::mat4 move_eye(1.0f);
-  move_eye[3] = glm::vec4(0.0f, shift_eye_y, 0.0f, 1.0f);
-  return glm::inverse(view.view) * move_eye * view.view * T_world_label;
+  const float gap = 0.05f * (hud.high.y - hud.low.y);
+  glm::mat4 T = T_world_label;
+  // The shift is exact for a panel facing the eye; a tilted one (its corners at other depths than its origin)
+  // is shifted again until it clears (two more passes at most).
+  for (int pass = 0; pass < 3; ++pass) {
+    const std::optional<ImageRect> label = label_image_rect(T, width, height, view);
+    if (!label) return T;
+    const bool overlap = label->low.x < hud.high.x && hud.low.x < label->high.x &&
+                         label->low.y < hud.high.y + 0.5f * gap && hud.low.y < label->high.y;
+    if (!overlap) return T;
+    // Down the image by this much (NDC), then in eye space at the panel's depth: y_ndc = p11 y_eye / -z_eye.
+    const float shift_ndc = hud.high.y + gap - label->low.y;
+    const glm::vec4 origin_eye = view.view * T[3];
+    const float depth = -origin_eye.z;
+    if (!(depth > 0.0f) || p11 == 0.0f) return T;
+    glm::mat4 move_eye(1.0f);
+    move_eye[3] = glm::vec4(0.0f, shift_ndc * depth / p11, 0.0f, 1.0f);
+    T = glm::inverse(view.view) * move_eye * view.view * T;
+  }
+  return T;
 }
 
 }  // namespace pushpull::app

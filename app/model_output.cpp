@@ -7,6 +7,7 @@
 
 #include <cctype>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 
 namespace pushpull::app {
@@ -50,8 +51,27 @@ std::vector<std::string> write_deformed_model(const std::filesystem::path& path,
     if (scene && scene->primitives.size() == 1 && deform::mesh_format_from_path(source) &&
         deform::mesh_format_from_path(path)) {
       const std::vector<int>& weld = scene->primitives.front().deform_vertex;
-      const deform::Mesh file = deform::read_mesh(source);
-      if (file.V.rows() == static_cast<Eigen::Index>(weld.size())) {
+      // The file as it is now must be the one the model was read from (same vertex count and triangles):
+      // one changed or gone since is not used, and the output is the welded surface, said in a warning.
+      deform::Mesh file;
+      std::string unusable;
+      try {
+        file = deform::read_mesh(source);
+      } catch (const std::exception& e) {
+        unusable = e.what();
+      }
+      const std::vector<std::uint32_t>& indices = scene->primitives.front().indices;
+      bool same = unusable.empty() && file.V.rows() == static_cast<Eigen::Index>(weld.size()) &&
+                  static_cast<std::size_t>(file.F.size()) == indices.size();
+      for (Eigen::Index f = 0; same && f < file.F.rows(); ++f)
+        for (int c = 0; c < 3 && same; ++c)
+          same = static_cast<std::uint32_t>(file.F(f, c)) == indices[static_cast<std::size_t>(3 * f + c)];
+      if (!same)
+        warnings.push_back(
+            path.string() + ": written as the welded surface (" + std::to_string(V.rows()) +
+            " vertices): " + source.string() +
+            (unusable.empty() ? " changed since it was read" : " can no longer be read: " + unusable));
+      if (same) {
         source_positions.setConstant(file.V.rows(), 3, std::nan(""));
         triangles = file;
         for (std::size_t v = 0; v < weld.size(); ++v) {

@@ -44,15 +44,23 @@ std::vector<int> read_index_file(const std::filesystem::path& path, Eigen::Index
   return indices;
 }
 
-std::vector<int> read_model_index_file(const std::filesystem::path& path, const assets::Model& model,
-                                       std::size_t* unused) {
+bool index_files_name_file_vertices(const assets::Model& model) {
   const std::string& format = model.report.format;
-  if (model.primitives.size() != 1 || (format != "OFF" && format != "OBJ" && format != "PLY"))
-    return read_index_file(path, model.deform_mesh.V.rows());
+  return model.primitives.size() == 1 && (format == "OFF" || format == "OBJ" || format == "PLY");
+}
+
+std::vector<int> read_model_index_file(const std::filesystem::path& path, const assets::Model& model,
+                                       std::size_t* unused, std::vector<int>* named) {
+  if (!index_files_name_file_vertices(model)) {
+    std::vector<int> indices = read_index_file(path, model.deform_mesh.V.rows());
+    if (named) *named = indices;
+    return indices;
+  }
   const std::vector<int>& weld = model.primitives.front().deform_vertex;
   std::vector<int> welded;
   std::size_t left_out = 0;
-  for (const int v : read_index_file(path, static_cast<Eigen::Index>(weld.size()))) {
+  const std::vector<int> file_vertices = read_index_file(path, static_cast<Eigen::Index>(weld.size()));
+  for (const int v : file_vertices) {
     const int w = weld[static_cast<std::size_t>(v)];
     if (w < 0)
       ++left_out;
@@ -64,17 +72,13 @@ std::vector<int> read_model_index_file(const std::filesystem::path& path, const 
   std::sort(welded.begin(), welded.end());
   welded.erase(std::unique(welded.begin(), welded.end()), welded.end());
   if (unused) *unused = left_out;
+  if (named) *named = file_vertices;
   return welded;
 }
 
 namespace {
 
-// Whether the model's index files name the file's own vertices (read_model_index_file).
-bool numbered_by_file(const assets::Model& model) {
-  const std::string& format = model.report.format;
-  return model.primitives.size() == 1 && (format == "OFF" || format == "OBJ" || format == "PLY");
-}
-
+// "3", "3 and 7", "3, 7 and 9".
 std::string joined(const std::vector<int>& numbers) {
   std::string text;
   for (std::size_t k = 0; k < numbers.size(); ++k)
@@ -82,42 +86,43 @@ std::string joined(const std::vector<int>& numbers) {
   return text;
 }
 
+std::string vertices_text(const std::vector<int>& numbers) {
+  return (numbers.size() == 1 ? "vertex " : "vertices ") + joined(numbers);
+}
+
 }  // namespace
 
 std::string shared_vertex_message(const assets::Model& model, const std::vector<int>& both,
-                                  const std::string& handle_file, const std::string& fixed_file) {
+                                  const SelectionSource& handle, const SelectionSource& fixed) {
   const int welded = both.front();
   const std::string count = both.size() == 1 ? "" : " (" + std::to_string(both.size()) + " such points)";
-  if (!numbered_by_file(model))
+  const std::string ending = count + "; a vertex cannot be both held and pulled";
+  if (!index_files_name_file_vertices(model))
     return "region of interest: vertex " + std::to_string(welded) + " is both a handle and a fixed vertex" +
-           count;
+           ending;
   // The file's vertices that are this point, and which of them each index file lists.
   const std::vector<int>& weld = model.primitives.front().deform_vertex;
-  std::vector<int> file_vertices;
-  for (std::size_t v = 0; v < weld.size(); ++v)
-    if (weld[v] == welded) file_vertices.push_back(static_cast<int>(v));
-  auto listed_in = [&](const std::string& file) {
+  auto listed_in = [&](const SelectionSource& source) {
     std::vector<int> listed;
-    if (file.empty()) return listed;
-    const std::vector<int> named = read_index_file(file, static_cast<Eigen::Index>(weld.size()));
-    std::set_intersection(named.begin(), named.end(), file_vertices.begin(), file_vertices.end(),
-                          std::back_inserter(listed));
+    for (const int v : source.file_vertices)
+      if (v >= 0 && static_cast<std::size_t>(v) < weld.size() && weld[static_cast<std::size_t>(v)] == welded)
+        listed.push_back(v);
+    std::sort(listed.begin(), listed.end());
     return listed;
   };
-  const std::vector<int> in_handle = listed_in(handle_file), in_fixed = listed_in(fixed_file);
-  auto vertices = [](const std::vector<int>& v) {
-    return (v.size() == 1 ? "vertex " : "vertices ") + joined(v);
-  };
-  auto is_are = [](const std::vector<int>& v) { return v.size() == 1 ? " is" : " are"; };
-  std::string text = "region of interest: file ";
-  if (in_handle.empty() || in_fixed.empty())  // one set was not read from a file (--handle-at)
-    text += vertices(file_vertices) + is_are(file_vertices) + " both a handle and a fixed vertex";
-  else if (in_handle == in_fixed)
-    text += vertices(in_handle) + is_are(in_handle) + " in both " + handle_file + " and " + fixed_file;
-  else
-    text += "vertices " + joined(in_handle) + " (" + handle_file + ") and " + joined(in_fixed) + " (" +
-            fixed_file + ") are one point once the seams are welded";
-  return text + count + "; a vertex cannot be both held and pulled";
+  const std::vector<int> in_handle = listed_in(handle), in_fixed = listed_in(fixed);
+  std::vector<int> in_both;
+  std::set_intersection(in_handle.begin(), in_handle.end(), in_fixed.begin(), in_fixed.end(),
+                        std::back_inserter(in_both));
+  const bool one = in_both.size() == 1;
+  if (!in_both.empty())
+    return "region of interest: file " + vertices_text(in_both) + (one ? " is" : " are") + " in both " +
+           handle.path + " and " + fixed.path + ending;
+  if (handle.path.empty())  // the handle was picked around a point (--handle-at)
+    return "region of interest: file " + vertices_text(in_fixed) + " of " + fixed.path +
+           (in_fixed.size() == 1 ? " lies" : " lie") + " in the handle picked around --handle-at" + ending;
+  return "region of interest: file " + vertices_text(in_handle) + " of " + handle.path + " and " +
+         vertices_text(in_fixed) + " of " + fixed.path + " are one point once the seams are welded" + ending;
 }
 
 }  // namespace pushpull::app

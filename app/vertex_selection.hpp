@@ -18,21 +18,31 @@ namespace pushpull::app {
 // lie in [0, vertex_count); duplicates are dropped; the result is sorted. An empty file is an error.
 [[nodiscard]] std::vector<int> read_index_file(const std::filesystem::path& path, Eigen::Index vertex_count);
 
-// An index file for `model`, as the commands read one: an OFF/OBJ/PLY model's files name the vertices of the
-// file itself (its own numbering, whatever the weld merged), a glTF/GLB/Draco model's the vertices of its
-// welded surface (model.deform_mesh, as `pushpull info` counts them). Returns the welded surface's vertices
-// named (sorted, unique). File vertices that no triangle uses are not on the surface: left out, counted in
-// *unused (an error when nothing else is left).
+// Whether the index files of `model` name the vertices of its file (an OFF/OBJ/PLY: its own numbering,
+// whatever the weld merged) rather than its welded surface's (a glTF/GLB/Draco, as `pushpull info` counts
+// them).
+[[nodiscard]] bool index_files_name_file_vertices(const assets::Model& model);
+
+// An index file for `model`, as the commands read one (index_files_name_file_vertices says how it numbers
+// vertices). Returns the welded surface's vertices named (sorted, unique). File vertices that no triangle
+// uses are not on the surface: left out, counted in *unused (an error when nothing else is left). *named,
+// when given, receives the numbers as the file wrote them (sorted, unique).
 [[nodiscard]] std::vector<int> read_model_index_file(const std::filesystem::path& path,
                                                      const assets::Model& model,
-                                                     std::size_t* unused = nullptr);
+                                                     std::size_t* unused = nullptr,
+                                                     std::vector<int>* named = nullptr);
+
+// Where a set of vertices came from: an index file (its path and the numbers it wrote), or not (empty path:
+// picked around a point).
+struct SelectionSource {
+  std::string path;
+  std::vector<int> file_vertices;
+};
 
 // The message for welded surface vertices `both` (sorted, not empty) that are both a handle and a fixed
-// vertex, naming the first as the user numbered it: for an OFF/OBJ/PLY model, the file's vertices the weld
-// made that point (and which index file lists which), else the welded surface's number. handle_file and
-// fixed_file: the index files the sets came from (empty: not from a file).
+// vertex, naming the first as the user numbered it: for an OFF/OBJ/PLY model, the file's vertices that are
+// that point and which index file lists which, else the welded surface's number.
 [[nodiscard]] std::string shared_vertex_message(const assets::Model& model, const std::vector<int>& both,
-                                                const std::string& handle_file,
-                                                const std::string& fixed_file);
+                                                const SelectionSource& handle, const SelectionSource& fixed);
 
 }  // namespace pushpull::app

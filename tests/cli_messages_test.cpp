@@ -280,6 +280,9 @@ TEST_F(CliMessages, UnusableCommandLinesNameTheCommandAndExitTwo) {
       {"deform " + model + " --paper-iterations --coarse-start-min-free 5 --displacement 0 0 1 --out " +
            path("o.off"),
        "pushpull deform: error: --paper-iterations excludes --coarse-start-min-free"},
+      {"deform " + model + " --paper-iterations --smooth-start-min-free 5 --displacement 0 0 1 --out " +
+           path("o.off"),
+       "pushpull deform: error: --paper-iterations excludes --smooth-start-min-free"},
       {"bogus", "pushpull: error: unknown command 'bogus'"},
       {"", "pushpull: error: A subcommand is required"},
   };

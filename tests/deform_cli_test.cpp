@@ -212,6 +212,8 @@ TEST_F(DeformCli, PatchesWithSeamVerticesTwiceDeformAsOneSurface) {
   EXPECT_NE(run.output.find("welded: 242 vertices of the file's triangles -> 231 (2 pieces -> 1 component)"),
             std::string::npos)
       << run.output;
+  EXPECT_NE(run.output.find("index files and the output keep the file's numbering"), std::string::npos)
+      << run.output;
   const pd::Mesh out = pd::read_mesh(path("o.off"));
   ASSERT_EQ(out.V.rows(), 242);
   for (int j = 0; j <= 10; ++j) {
@@ -242,10 +244,31 @@ TEST_F(DeformCli, PatchesWithSeamVerticesTwiceDeformAsOneSurface) {
                    path("seam_fixed.txt") + " --displacement 0 0 0.05 --out " + path("o2.off") +
                    " --metrics " + path("m3.json"));
   EXPECT_EQ(both.status, 1) << both.output;
-  EXPECT_NE(both.output.find("file vertices 65 (" + path("seam_handle.txt") + ") and 176 (" +
-                             path("seam_fixed.txt") + ") are one point once the seams are welded"),
+  EXPECT_NE(both.output.find("file vertex 65 of " + path("seam_handle.txt") + " and vertex 176 of " +
+                             path("seam_fixed.txt") + " are one point once the seams are welded"),
             std::string::npos)
       << both.output;
+  // The same vertex in both files, and a fixed vertex inside a handle picked around a point.
+  write("seam_fixed2.txt", "176 65\n");
+  const RunResult listed_twice =
+      run_pushpull("deform " + path("patches.off") + " --handle " + path("seam_handle.txt") + " --fixed " +
+                   path("seam_fixed2.txt") + " --displacement 0 0 0.05 --out " + path("o2.off") +
+                   " --metrics " + path("m3.json"));
+  EXPECT_EQ(listed_twice.status, 1) << listed_twice.output;
+  EXPECT_NE(listed_twice.output.find("file vertex 65 is in both " + path("seam_handle.txt") + " and " +
+                                     path("seam_fixed2.txt")),
+            std::string::npos)
+      << listed_twice.output;
+  const RunResult picked =
+      run_pushpull("deform " + path("patches.off") + " --handle-at 1 0.5 0 --handle-radius 0.01 --fixed " +
+                   path("seam_fixed.txt") + " --displacement 0 0 0.05 --out " + path("o2.off") +
+                   " --metrics " + path("m3.json"));
+  EXPECT_EQ(picked.status, 1) << picked.output;
+  EXPECT_NE(picked.output.find("file vertex 176 of " + path("seam_fixed.txt") +
+                               " lies in the handle picked around --handle-at"),
+            std::string::npos)
+      << picked.output;
+  EXPECT_FALSE(fs::exists(path("o2.off")));
 }
 
 TEST_F(DeformCli, AModelWithoutTrianglesIsRefusedNamingTheFile) {

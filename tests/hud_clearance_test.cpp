@@ -56,4 +56,37 @@ TEST(HudClearance, APanelElsewhereOrBehindTheEyeStaysWhereItIs) {
   EXPECT_FALSE(label_image_rect(panel_at({0.0f, 0.0f, 2.0f}), 0.2f, 0.1f, view));  // behind the eye
 }
 
+// The same from a camera turned and moved in the stage (the orbit view), the panel tilted away from it (the
+// readout faces the head, not the mirror's camera): moved in the camera's frame, straight down its image,
+// until it clears the HUD, and no further than a little past the gap.
+TEST(HudClearance, ATiltedPanelSeenFromATurnedCameraClearsTheHud) {
+  auto view = camera();
+  view.view =
+      glm::lookAt(glm::vec3(1.0f, 1.6f, 2.0f), glm::vec3(0.0f, 1.0f, 0.0f), glm::vec3(0.0f, 1.0f, 0.0f));
+  const ImageRect hud{{-1.0f, -1.0f}, {-0.2f, -0.6f}};
+  // 2 m in front of the camera, at image position (-0.6, -0.75): under the HUD.
+  const float depth = 2.0f;
+  const glm::vec4 eye_point(-0.6f * depth / view.projection[0][0], -0.75f * depth / view.projection[1][1],
+                            -depth, 1.0f);
+  const glm::vec3 at = glm::vec3(glm::inverse(view.view) * eye_point);
+  const glm::mat4 T = glm::rotate(
+      glm::rotate(glm::translate(glm::mat4(1.0f), at), glm::radians(50.0f), glm::vec3(0.0f, 1.0f, 0.0f)),
+      glm::radians(35.0f), glm::vec3(1.0f, 0.0f, 0.0f));
+  const auto before = label_image_rect(T, 0.2f, 0.1f, view);
+  ASSERT_TRUE(before);
+  ASSERT_LT(before->low.y, hud.high.y);
+  const glm::mat4 moved = clear_of_hud(T, 0.2f, 0.1f, hud, view);
+  const auto after = label_image_rect(moved, 0.2f, 0.1f, view);
+  ASSERT_TRUE(after);
+  EXPECT_GE(after->low.y, hud.high.y);                        // clear of the HUD
+  EXPECT_LE(after->low.y, hud.high.y + 2.0f * 0.05f * 0.4f);  // by no more than about its gap
+  // Moved along the camera's up axis only: the same x and depth in the camera's frame, the same orientation.
+  const glm::vec4 from = view.view * T[3], to = view.view * moved[3];
+  EXPECT_NEAR(to.x, from.x, 1e-5f);
+  EXPECT_NEAR(to.z, from.z, 1e-5f);
+  EXPECT_LT(to.y, from.y - 1e-3f);  // down the image (Vulkan's y runs down) is down the camera's y
+  for (int c = 0; c < 3; ++c)
+    for (int r = 0; r < 3; ++r) EXPECT_NEAR(moved[c][r], T[c][r], 1e-5f);
+}
+
 }  // namespace

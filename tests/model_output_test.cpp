@@ -66,10 +66,32 @@ TEST(ModelOutput, AWeldedObjIsWrittenBackAsItsOwnFile) {
     EXPECT_EQ(back.V.row(v).head<2>(), before.V.row(v).head<2>()) << v;
   }
   EXPECT_EQ(back.V.row(8), before.V.row(8));
-  // As a .glb, the scene; as a .ply, another format: triangles, no note.
+  // As a .ply, another format: the file's own nine vertices in its numbering (the unused one too) and its
+  // triangles, no note.
   EXPECT_TRUE(
       pushpull::app::write_deformed_model(dir / "out.ply", source, model.deform_mesh, &model, V).empty());
-  EXPECT_EQ(pd::read_mesh(dir / "out.ply").F.rows(), 4);
+  const pd::Mesh ply = pd::read_mesh(dir / "out.ply");
+  EXPECT_EQ(ply.F.rows(), 4);
+  EXPECT_EQ(ply.V, back.V);
+  // The source changed since it was read (its faces), or gone: the welded surface, and a warning that says
+  // why.
+  std::ofstream(source, std::ios::trunc)
+      << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 1.000000001 0 0\nv 1 1 0\nv 2 0 0\nv 2 1 0\n"
+         "v 9.5 9.5 9.5\nf 1 2 3\nf 1 3 4\nf 5 7 8\nf 5 8 9\n";
+  const std::vector<std::string> changed =
+      pushpull::app::write_deformed_model(dir / "changed.ply", source, model.deform_mesh, &model, V);
+  ASSERT_EQ(changed.size(), 1u);
+  EXPECT_NE(changed.front().find("written as the welded surface (6 vertices): " + source.string() +
+                                 " changed since it was read"),
+            std::string::npos)
+      << changed.front();
+  EXPECT_EQ(pd::read_mesh(dir / "changed.ply").V.rows(), 6);
+  fs::remove(source);
+  const std::vector<std::string> gone =
+      pushpull::app::write_deformed_model(dir / "gone.ply", source, model.deform_mesh, &model, V);
+  ASSERT_EQ(gone.size(), 1u);
+  EXPECT_NE(gone.front().find("can no longer be read"), std::string::npos) << gone.front();
+  EXPECT_EQ(pd::read_mesh(dir / "gone.ply").V.rows(), 6);
 }
 
 // A glTF written as a mesh file says what it leaves out; an unwritable path is an error naming it.

@@ -394,13 +394,15 @@ void split_lines(const std::string& text, const std::string& prefix, std::vector
 std::string shorten_data_uris(std::string text) {
   constexpr std::size_t kKept = 16;
   for (std::size_t at = text.find("data:"); at != std::string::npos; at = text.find("data:", at + 5)) {
-    // The URI ends at white space or a quote; its payload follows the first comma within it.
-    const std::size_t uri_end = std::min(text.find_first_of(" \t\n'\"", at), text.size());
+    // The URI ends at white space, a quote, a backslash (an escaped quote) or a closing bracket; its payload
+    // follows the first comma within it.
+    const std::size_t uri_end = std::min(text.find_first_of(" \t\r\n'\"\\)]", at), text.size());
     const std::size_t comma = text.find(',', at);
     if (comma == std::string::npos || comma >= uri_end) continue;
     const std::size_t payload = uri_end - (comma + 1);
-    if (payload <= 2 * kKept) continue;
-    text.replace(comma + 1 + kKept, payload - kKept, "... (" + std::to_string(payload) + " characters)");
+    const std::string cut = "... (" + std::to_string(payload) + " characters)";
+    if (payload <= kKept + cut.size()) continue;  // no shorter for it
+    text.replace(comma + 1 + kKept, payload - kKept, cut);
   }
   return text;
 }

@@ -120,27 +120,35 @@ TEST(AssetsLoad, InstancedMeshesGiveOnePrimitivePerNode) {
 }
 
 // A mesh file in large coordinates (a 1 cm grid of 1 mm cells 5,000 km from the origin, as site coordinates
-// put it) welds on the reader's doubles: as floats (0.5 m apart there) every vertex merged into a few and
-// every triangle collapsed.
+// put it) welds on the reader's doubles, its tolerance from their bounding box: as floats (0.5 m apart there)
+// every vertex merged into a few and every triangle collapsed.
 TEST(AssetsLoad, AMeshFileFarFromTheOriginKeepsEveryVertex) {
   const int n = 11;
-  std::string off = "OFF\n" + std::to_string(n * n) + " " + std::to_string(2 * (n - 1) * (n - 1)) + " 0\n";
+  // One more vertex: a copy of vertex 0 moved 1e-9 m (within the weld's 1e-5 of the 1.4 cm diagonal), used in
+  // vertex 0's place by the first cell's second triangle; welded into vertex 0, as near the origin.
+  std::string off =
+      "OFF\n" + std::to_string(n * n + 1) + " " + std::to_string(2 * (n - 1) * (n - 1)) + " 0\n";
   char line[128];
   for (int j = 0; j < n; ++j)
     for (int i = 0; i < n; ++i) {
       std::snprintf(line, sizeof line, "%.4f %.4f 0.25\n", 5e5 + 1e-3 * i, 5e6 + 1e-3 * j);
       off += line;
     }
+  std::snprintf(line, sizeof line, "%.9f %.4f 0.25\n", 5e5 + 1e-9, 5e6);
+  off += line;
   for (int j = 0; j + 1 < n; ++j)
     for (int i = 0; i + 1 < n; ++i) {
       const int a = j * n + i, b = a + 1, c = a + n, d = c + 1;
       off += "3 " + std::to_string(a) + " " + std::to_string(b) + " " + std::to_string(d) + "\n";
-      off += "3 " + std::to_string(a) + " " + std::to_string(d) + " " + std::to_string(c) + "\n";
+      off += "3 " + std::to_string(a == 0 ? n * n : a) + " " + std::to_string(d) + " " + std::to_string(c) +
+             "\n";
     }
   const Model model =
       load_model_from_memory(std::vector<std::uint8_t>(off.begin(), off.end()), "site.off", {});
   ASSERT_EQ(model.deform_mesh.V.rows(), n * n);
   EXPECT_EQ(model.deform_mesh.F.rows(), 2 * (n - 1) * (n - 1));
+  EXPECT_EQ(model.primitives.front().deform_vertex[static_cast<std::size_t>(n * n)], 0);
+  EXPECT_EQ(model.primitives.front().deform_vertex[static_cast<std::size_t>(n * n)], 0);
   EXPECT_EQ(model.report.weld.collapsed_triangles, 0u);
   EXPECT_EQ(model.report.weld.topology.components, 1u);
   for (int v = 0; v < n * n; ++v) {  // the reader's doubles, in the file's order

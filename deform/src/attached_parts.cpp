@@ -5,6 +5,7 @@
 #include <Eigen/Geometry>
 #include <Eigen/SVD>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numeric>
 #include <stdexcept>
@@ -128,9 +129,9 @@ AttachedParts::AttachedParts(const Mesh& rest, const RegionOfInterest& roi, cons
 
   const TriangleBvh carrier_tree(rest.V, rest.F, carrier_faces);
   const detail::VertexGraph graph = detail::build_vertex_graph(nv, rest.F, carrier_faces);
-  std::vector<int> slot_of_face(static_cast<std::size_t>(rest.F.rows()), -1);
+  std::vector<int> slot_of_vertex(static_cast<std::size_t>(nv), -1);
   std::vector<long> near(parts_.size(), 0);  // vertices within reach of the carrier, per part
-  std::vector<int> slot_face;                // the carrier face of each patch
+  std::vector<int> slot_vertex;              // the carrier vertex at the centre of each patch
   for (int v = 0; v < nv; ++v) {
     const int part = part_index[static_cast<std::size_t>(label[static_cast<std::size_t>(v)])];
     if (part < 0) continue;
@@ -141,15 +142,19 @@ AttachedParts::AttachedParts(const Mesh& rest, const RegionOfInterest& roi, cons
     const int f = hit->face;
     const Eigen::Vector3d a = rest.V.row(rest.F(f, 0)), b = rest.V.row(rest.F(f, 1)),
                           c = rest.V.row(rest.F(f, 2));
-    int& slot = slot_of_face[static_cast<std::size_t>(f)];
-    if (slot < 0) {  // the face's patch, built below once every offset bound to it is known
-      slot = static_cast<int>(slot_face.size());
-      slot_face.push_back(f);
+    std::array<int, 3> slots{};
+    for (int k = 0; k < 3; ++k) {
+      int& slot = slot_of_vertex[static_cast<std::size_t>(rest.F(f, k))];
+      if (slot < 0) {  // the corner's patch, built below once every offset bound to it is known
+        slot = static_cast<int>(slot_vertex.size());
+        slot_vertex.push_back(rest.F(f, k));
+      }
+      slots[static_cast<std::size_t>(k)] = slot;
     }
     bound_vertex_.push_back(v);
     bound_part_.push_back(part);
     carrier_face_.push_back(f);
-    carrier_slot_.push_back(slot);
+    carrier_slot_.push_back(slots);
     bary_.push_back(barycentric(hit->point, a, b, c));
     offset_.push_back(p - hit->point);
   }
@@ -185,29 +190,31 @@ AttachedParts::AttachedParts(const Mesh& rest, const RegionOfInterest& roi, cons
     carrier_slot_.resize(out), bary_.resize(out), offset_.resize(out);
   }
   parts_ = std::move(kept);
-  build_patches(graph, slot_face);
+  build_patches(graph, slot_vertex);
 }
 
-void AttachedParts::build_patches(const detail::VertexGraph& graph, const std::vector<int>& slot_face) {
-  // The largest offset each patch carries; a slot no kept binding uses gets empty patches.
-  std::vector<double> carried(slot_face.size(), 0.0);
-  std::vector<char> used(slot_face.size(), 0);
-  for (std::size_t k = 0; k < bound_vertex_.size(); ++k) {
-    const std::size_t slot = static_cast<std::size_t>(carrier_slot_[k]);
-    carried[slot] = std::max(carried[slot], offset_[k].norm());
-    used[slot] = 1;
-  }
+void AttachedParts::build_patches(const detail::VertexGraph& graph, const std::vector<int>& slot_vertex) {
+  // The largest offset each patch carries (of the vertices bound to a face around its centre); a slot no kept
+  // binding uses gets empty patches.
+  std::vector<double> carried(slot_vertex.size(), 0.0);
+  std::vector<char> used(slot_vertex.size(), 0);
+  for (std::size_t k = 0; k < bound_vertex_.size(); ++k)
+    for (const int slot : carrier_slot_[k]) {
+      carried[static_cast<std::size_t>(slot)] =
+          std::max(carried[static_cast<std::size_t>(slot)], offset_[k].norm());
+      used[static_cast<std::size_t>(slot)] = 1;
+    }
   patch_start_.assign(1, 0), ring_start_.assign(1, 0);
   patch_index_.clear(), ring_index_.clear();
   std::vector<int> seen_at(static_cast<std::size_t>(rest_V_.rows()), -1);  // slot that last took the vertex
   std::vector<int> patch, ring, next_ring;
-  for (std::size_t slot = 0; slot < slot_face.size(); ++slot) {
+  for (std::size_t slot = 0; slot < slot_vertex.size(); ++slot) {
     patch.clear(), ring.clear();
     if (used[slot]) {
-      const int f = slot_face[slot];
-      // Running sums of the patch's rest positions relative to its first corner (no cancellation on models
-      // far from the origin), for its in-plane spread as it grows.
-      const Eigen::Vector3d origin = rest_V_.row(F_(f, 0)).transpose();
+      const int centre = slot_vertex[slot];
+      // Running sums of the patch's rest positions relative to its centre (no cancellation on models far
+      // from the origin), for its in-plane spread as it grows.
+      const Eigen::Vector3d origin = rest_V_.row(centre).transpose();
       Eigen::Vector3d sum = Eigen::Vector3d::Zero();
       Eigen::Matrix3d sum_outer = Eigen::Matrix3d::Zero();
       auto take = [&](int v, std::vector<int>& into) {
@@ -218,29 +225,24 @@ void AttachedParts::build_patches(const detail::VertexGraph& graph, const std::v
         const Eigen::Vector3d p = rest_V_.row(v).transpose() - origin;
         sum += p, sum_outer += p * p.transpose();
       };
-      for (int k = 0; k < 3; ++k) take(F_(f, k), ring);
-      const std::size_t corners = patch.size();
+      take(centre, ring);
       for (int rings = 0; rings < kMaxPatchRings && !ring.empty(); ++rings) {
         next_ring.clear();
         for (const int v : ring)
           for (const int* w = graph.begin(v); w != graph.end(v); ++w) take(*w, next_ring);
         ring.swap(next_ring);
-        if (rings == 0) {  // the corners and their neighbours: what decides whether the carrier moved
-          ring_index_.insert(ring_index_.end(), patch.begin(), patch.end());
-        }
+        // The centre and its neighbours: what decides whether the surface moved there.
+        if (rings == 0) ring_index_.insert(ring_index_.end(), patch.begin(), patch.end());
         if (rings + 1 >= kMinPatchRings && (static_cast<int>(patch.size()) >= kMaxPatchVertices ||
                                             in_plane_spread(sum, sum_outer, patch.size()) >= carried[slot]))
           break;
       }
-      if (ring_index_.size() ==
-          static_cast<std::size_t>(ring_start_.back()))  // no ring grown (no neighbours)
-        ring_index_.insert(ring_index_.end(), patch.begin(), patch.end());
       // The rotation is as well defined by a few points spread over the patch as by all of them (its
-      // conditioning is the spread's), and apply() fits one per patch for every snapshot: the corners and an
+      // conditioning is the spread's), and apply() fits one per patch for every snapshot: the centre and an
       // even sample of the rings in the order they were grown.
       if (patch.size() > static_cast<std::size_t>(kPatchPoints)) {
-        const std::size_t others = patch.size() - corners, wanted = std::size_t(kPatchPoints) - corners;
-        for (std::size_t k = 0; k < wanted; ++k) patch[corners + k] = patch[corners + k * others / wanted];
+        const std::size_t others = patch.size() - 1, wanted = std::size_t(kPatchPoints) - 1;
+        for (std::size_t k = 0; k < wanted; ++k) patch[1 + k] = patch[1 + k * others / wanted];
         patch.resize(std::size_t(kPatchPoints));
       }
       std::sort(patch.begin(), patch.end());
@@ -266,28 +268,32 @@ void AttachedParts::apply(Eigen::MatrixXd& V) const {
                                 " by 3");
   }
   if (bound_vertex_.empty()) return;
-  // One rotation per carrier patch that moved (identity for the others).
+  // One rotation per carrier vertex whose surroundings moved (identity for the others).
   const std::size_t slots = patch_start_.size() - 1;
   std::vector<Eigen::Matrix3d> rotation(slots, Eigen::Matrix3d::Identity());
   std::vector<char> moved(slots, 0);
   for (std::size_t slot = 0; slot < slots; ++slot) {
-    // Moved: a corner of the carrier face or a neighbour of one (the grown patch can reach into the region
-    // from a face the solve left byte-identical, whose parts then stay exactly put).
+    // Moved: the centre or a neighbour of it (the patch grown for the rotation can reach into the region
+    // from where the solve left the surface byte-identical, whose parts then stay exactly put).
     for (int k = ring_start_[slot]; k < ring_start_[slot + 1] && !moved[slot]; ++k) {
       const int v = ring_index_[static_cast<std::size_t>(k)];
       moved[slot] = V.row(v) != rest_V_.row(v);
     }
-    const int* begin = patch_index_.data() + patch_start_[slot];
-    const int* end = patch_index_.data() + patch_start_[slot + 1];
-    if (moved[slot]) rotation[slot] = patch_rotation(rest_V_, V, begin, end);
+    if (moved[slot])
+      rotation[slot] = patch_rotation(rest_V_, V, patch_index_.data() + patch_start_[slot],
+                                      patch_index_.data() + patch_start_[slot + 1]);
   }
-  // Where each bound vertex goes with the surface under it.
+  // Where each bound vertex goes with the surface under it: the bound point moves with its triangle, the
+  // offset turns with the corners' rotations blended by the barycentric coordinates (continuous from one
+  // triangle to the next, so a part bends with the surface instead of stepping from triangle to triangle),
+  // its length kept.
   std::vector<Eigen::Vector3d> follow(bound_vertex_.size());
   std::vector<char> part_moved(parts_.size(), 0);
   for (std::size_t k = 0; k < bound_vertex_.size(); ++k) {
-    const std::size_t slot = static_cast<std::size_t>(carrier_slot_[k]);
+    const std::array<int, 3>& slot = carrier_slot_[k];
     const Eigen::Vector3d rest_position = rest_V_.row(bound_vertex_[k]).transpose();
-    if (!moved[slot]) {  // nothing under it moved
+    if (!moved[static_cast<std::size_t>(slot[0])] && !moved[static_cast<std::size_t>(slot[1])] &&
+        !moved[static_cast<std::size_t>(slot[2])]) {  // nothing under it moved
       follow[k] = rest_position;
       continue;
     }
@@ -296,7 +302,13 @@ void AttachedParts::apply(Eigen::MatrixXd& V) const {
     const Eigen::Vector3d q = bary_[k].x() * V.row(F_(f, 0)).transpose() +
                               bary_[k].y() * V.row(F_(f, 1)).transpose() +
                               bary_[k].z() * V.row(F_(f, 2)).transpose();
-    follow[k] = q + rotation[slot] * offset_[k];
+    Eigen::Vector3d turned = Eigen::Vector3d::Zero();
+    for (int c = 0; c < 3; ++c)
+      turned +=
+          bary_[k](c) * (rotation[static_cast<std::size_t>(slot[static_cast<std::size_t>(c)])] * offset_[k]);
+    const double length = turned.norm();
+    // (The blend of rotations apart by angle a shortens the offset by about cos(a/2): put back.)
+    follow[k] = q + (length > 0.5 * offset_[k].norm() ? turned * (offset_[k].norm() / length) : turned);
   }
   // Parts off the surface: the rigid motion that best fits where their vertices would go, when it fits.
   std::vector<Eigen::Matrix3d> part_rotation(parts_.size(), Eigen::Matrix3d::Identity());

@@ -4,7 +4,9 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <functional>
 #include <numbers>
+#include <utility>
 
 #include "pushpull/deform/attached_parts.hpp"
 #include "pushpull/deform/deformer.hpp"
@@ -257,45 +259,115 @@ TEST(AttachedParts, APartFarAboveFineTrianglesMovesNoMoreThanTheSurfaceErrs) {
   }
 }
 
+// A 2 x 2 m panel of 5 cm cells with `part` above it, the region grown `region_radius` along the surface from
+// the panel's vertices within 10 cm of its centre.
+struct PanelScene {
+  Mesh mesh;
+  int body_vertices = 0;
+  RegionOfInterest roi;
+};
+
+PanelScene panel_with(const Mesh& part, double region_radius) {
+  PanelScene s;
+  const Mesh body = testing::grid(40, 40, -1.0, 1.0, -1.0, 1.0);
+  s.body_vertices = static_cast<int>(body.V.rows());
+  s.mesh = testing::append(body, part);
+  std::vector<int> handle;
+  for (int v = 0; v < s.body_vertices; ++v)
+    if (std::hypot(s.mesh.V(v, 0), s.mesh.V(v, 1)) < 0.1) handle.push_back(v);
+  s.roi = build_roi(s.mesh, handle, {}, region_radius);
+  return s;
+}
+
+// The scene's positions with the region's handle and free vertices raised by height(x, y), the rest at rest.
+Eigen::MatrixXd raised(const PanelScene& s, const std::function<double(double, double)>& height) {
+  Eigen::MatrixXd V = s.mesh.V;
+  for (int v = 0; v < s.body_vertices; ++v) {
+    const VertexRole role = s.roi.role[static_cast<std::size_t>(v)];
+    if (role == VertexRole::Free || role == VertexRole::Handle) V(v, 2) += height(V(v, 0), V(v, 1));
+  }
+  return V;
+}
+
 // A part just outside the region, over a panel the solve left byte-identical, stays exactly put: the patch
 // grown for its rotation (10 cm above 5 cm cells: four rings) reaches into the moved region, and deciding
 // "moved" on that patch swung the part with the bump next to it; the carrier's corners and their neighbours
 // decide instead.
 TEST(AttachedParts, APartBesideTheRegionOverAnUnmovedPanelStaysExactlyPut) {
-  const Mesh body = testing::grid(40, 40, -1.0, 1.0, -1.0, 1.0);
-  const Mesh part = testing::grid(2, 2, 0.42, 0.48, -0.03, 0.03, [](double, double) { return 0.1; });
-  const int body_vertices = static_cast<int>(body.V.rows());
-  const Mesh mesh = testing::append(body, part);
-  std::vector<int> handle;
-  for (int v = 0; v < body_vertices; ++v)
-    if (std::hypot(mesh.V(v, 0), mesh.V(v, 1)) < 0.1) handle.push_back(v);
-  const RegionOfInterest roi = build_roi(mesh, handle, {}, 0.3);
-  const AttachedParts parts(mesh, roi, {.reach = 0.2});
+  const PanelScene s =
+      panel_with(testing::grid(2, 2, 0.42, 0.48, -0.03, 0.03, [](double, double) { return 0.1; }), 0.3);
+  const AttachedParts parts(s.mesh, s.roi, {.reach = 0.2});
   ASSERT_EQ(parts.parts().size(), 1u);
   ASSERT_TRUE(parts.parts()[0].on_surface);
-
-  Eigen::MatrixXd V = mesh.V;
-  int moved = 0;
-  for (int v = 0; v < body_vertices; ++v) {
-    const VertexRole role = roi.role[static_cast<std::size_t>(v)];
-    if (role != VertexRole::Free && role != VertexRole::Handle) continue;
-    const double x = mesh.V(v, 0), y = mesh.V(v, 1);
-    V(v, 2) += 0.05 * std::exp(-(x * x + y * y) / (2.0 * 0.1 * 0.1));
-    moved += std::hypot(x - 0.45, y) < 0.25 ? 1 : 0;
-  }
-  ASSERT_GT(moved, 0);  // the bump lies within the part's grown patch
+  const auto bump = [](double x, double y) { return 0.05 * std::exp(-(x * x + y * y) / (2.0 * 0.1 * 0.1)); };
+  Eigen::MatrixXd V = raised(s, bump);
+  int moved = 0;  // within the part's grown patch
+  for (int v = 0; v < s.body_vertices; ++v)
+    moved += V(v, 2) != s.mesh.V(v, 2) && std::hypot(s.mesh.V(v, 0) - 0.45, s.mesh.V(v, 1)) < 0.25 ? 1 : 0;
+  ASSERT_GT(moved, 0);
   parts.apply(V);
-  for (int v = body_vertices; v < mesh.V.rows(); ++v)
-    EXPECT_EQ(V.row(v), mesh.V.row(v)) << "part vertex " << v;
+  for (int v = s.body_vertices; v < s.mesh.V.rows(); ++v)
+    EXPECT_EQ(V.row(v), s.mesh.V.row(v)) << "part vertex " << v;
+
+  // The part's carrier triangles have corners at x = 0.40, 0.45 and 0.50 (straight under it): a neighbour of
+  // a corner (x = 0.55) moved alone moves the part; a vertex three rings out (x = 0.65), though within the
+  // grown patches, does not.
+  auto vertex_at = [&](double x, double y) {
+    for (int v = 0; v < s.body_vertices; ++v)
+      if (std::abs(s.mesh.V(v, 0) - x) < 1e-9 && std::abs(s.mesh.V(v, 1) - y) < 1e-9) return v;
+    return -1;
+  };
+  for (const auto& [x, follows] : {std::pair{0.55, true}, std::pair{0.65, false}}) {
+    Eigen::MatrixXd U = s.mesh.V;
+    const int v = vertex_at(x, 0.0);
+    ASSERT_GE(v, 0);
+    U(v, 2) += 0.01;
+    parts.apply(U);
+    EXPECT_EQ(U.bottomRows(U.rows() - s.body_vertices) != s.mesh.V.bottomRows(U.rows() - s.body_vertices),
+              follows)
+        << "x = " << x;
+  }
 
   // Over the moved panel the same part follows it.
-  Mesh shifted = mesh;
-  for (int v = body_vertices; v < mesh.V.rows(); ++v) shifted.V(v, 0) -= 0.4;
-  const AttachedParts over(shifted, roi, {.reach = 0.2});
+  Mesh shifted = s.mesh;
+  for (int v = s.body_vertices; v < s.mesh.V.rows(); ++v) shifted.V(v, 0) -= 0.4;
+  const AttachedParts over(shifted, s.roi, {.reach = 0.2});
   Eigen::MatrixXd W = shifted.V;
-  for (int v = 0; v < body_vertices; ++v) W(v, 2) = V(v, 2);
+  W.topRows(s.body_vertices) = V.topRows(s.body_vertices);
   over.apply(W);
-  for (int v = body_vertices; v < mesh.V.rows(); ++v) EXPECT_GT(W(v, 2), 0.12) << "part vertex " << v;
+  for (int v = s.body_vertices; v < s.mesh.V.rows(); ++v) EXPECT_GT(W(v, 2), 0.12) << "part vertex " << v;
+}
+
+// A trim lying along a bulge and across the region's border (2 cm above a smooth bump pulled 8 cm, 5 cm
+// cells, the trim's vertices 1.5 cm apart) bends with the surface instead of stepping: each triangle's offset
+// turns by its corners' rotations blended across it. Turned by one rotation per triangle, the trim shifted
+// along itself in steps where its vertices changed triangles (second differences of its in-plane
+// displacement up to 1.7 mm; blended 0.25 mm, about what the bump's own curvature gives).
+TEST(AttachedParts, ATrimAlongABulgeBendsWithoutSteps) {
+  const PanelScene s =
+      panel_with(testing::grid(40, 1, 0.1, 0.7, -0.01, 0.01, [](double, double) { return 0.02; }), 0.4);
+  const AttachedParts parts(s.mesh, s.roi, {.reach = 0.1});
+  ASSERT_EQ(parts.parts().size(), 1u);
+  ASSERT_TRUE(parts.parts()[0].on_surface);
+  Eigen::MatrixXd V = raised(s, [](double x, double y) {
+    const double t = std::max(0.0, 1.0 - (x * x + y * y) / (0.42 * 0.42));
+    return 0.08 * t * t;
+  });
+  parts.apply(V);
+  // Along each of the trim's two rows of 41 vertices.
+  double worst = 0.0;
+  for (int row = 0; row < 2; ++row)
+    for (int i = 1; i < 40; ++i) {
+      const int v = s.body_vertices + row * 41 + i;
+      auto shift = [&](int w) -> Eigen::Vector2d {
+        return (V.row(w) - s.mesh.V.row(w)).head<2>().transpose();
+      };
+      worst = std::max(worst, (shift(v - 1) - 2.0 * shift(v) + shift(v + 1)).norm());
+    }
+  EXPECT_LT(worst, 5e-4);
+  EXPECT_GT(V(s.body_vertices, 2) - s.mesh.V(s.body_vertices, 2),
+            0.06);  // the trim's inner end rose with the bump
+  EXPECT_EQ(V.row(s.body_vertices + 40), s.mesh.V.row(s.body_vertices + 40));  // its outer end stayed
 }
 
 }  // namespace

@@ -18,25 +18,28 @@
 //   (all triangles of the solved components, moving or not) as that triangle, its barycentric coordinates
 //   and its offset from that point, as Blender's Surface Deform modifier binds a mesh to a target. After the
 //   solve the bound point moves with the triangle and the offset turns with the surface around it: the
-//   best rotation (Kabsch) of the patch made of the triangle's corners and rings of their neighbours, grown
-//   until the patch spreads as far across the surface as the offsets it carries reach above it, which stays
-//   well defined on the sliver triangles of tessellated CAD where a triangle's own normal flips on a tiny
-//   move. So the part keeps its height above the panel under it everywhere (it never sinks in, which one
-//   rigid motion per part cannot promise on a panel that bends under a long trim) and bends only as much as
-//   the panel does; a part straddling the region's border stays attached to both sides without a tear.
-//   This was chosen over one rigid motion per part for those reasons.
+//   rotations of the triangle's corners blended by the barycentric coordinates (so the turn is continuous
+//   from triangle to triangle, and the offset keeps its length), each corner's the best rotation (Kabsch) of
+//   the patch made of it and rings of its neighbours, grown until the patch spreads as far across the surface
+//   as the offsets it carries reach above it, which stays well defined on the sliver triangles of tessellated
+//   CAD where a triangle's own normal flips on a tiny move. So the part keeps its height above the panel
+//   under it everywhere (it never sinks in, which one rigid motion per part cannot promise on a panel that
+//   bends under a long trim) and bends only as much as the panel does; a part straddling the region's border
+//   stays attached to both sides without a tear. This was chosen over one rigid motion per part for those
+//   reasons.
 // - How, for a part that only comes close to the surface (a wheel in its arch, a seat behind a panel): the
 //   same binding tells where its vertices would go; the part moves by the rigid motion that fits that best
 //   when the fit is good (residual within 25% of the motion: the surface under it moves as one) and
 //   otherwise stays where it is (a pulled wheel arch does not drag or bend the wheel inside it).
 // - Vertices of a part whose carrier triangles did not move (nor any neighbour of their corners) keep their
-//   exact values, even when the patch grown for the rotation reaches into the moved region.
+//   exact values, even where the patches grown for the rotations reach into the moved region.
 //
 // Units: model units (reach too). Frame: model space. Shapes: positions #V by 3.
 // Ownership: a value type holding the binding. Thread-safety: const members may run concurrently.
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <vector>
 
 #include "pushpull/deform/mesh.hpp"
@@ -76,13 +79,13 @@ class AttachedParts {
   void apply(Eigen::MatrixXd& V) const;
 
  private:
-  // The patches of the carrier faces slot_face[slot] (each bound vertex's carrier_slot_): the face's corners
-  // and rings of their neighbours, grown ring by ring until the patch's in-plane spread (in_plane_spread)
-  // reaches the largest offset the patch carries, so that the rotation's error, about the solve's error over
-  // the patch's spread, turns an offset by no more than the solve's error (on the needle fans of tessellated
-  // CAD a corner's neighbours alone can lie nearly on a line, and a part 6 cm above them moved 4 mm where the
-  // surface under it moved 0.4 mm off the minimiser).
-  void build_patches(const detail::VertexGraph& graph, const std::vector<int>& slot_face);
+  // The patches of the carrier vertices slot_vertex[slot] (the corners of each bound vertex's carrier face,
+  // carrier_slot_): the vertex and rings of its neighbours, grown ring by ring until the patch's in-plane
+  // spread (in_plane_spread) reaches the largest offset the patch carries, so that the rotation's error,
+  // about the solve's error over the patch's spread, turns an offset by no more than the solve's error (on
+  // the needle fans of tessellated CAD a vertex's neighbours alone can lie nearly on a line, and a part 6 cm
+  // above them moved 4 mm where the surface under it moved 0.4 mm off the minimiser).
+  void build_patches(const detail::VertexGraph& graph, const std::vector<int>& slot_vertex);
   // The RMS spread of `count` points along their second principal direction (model units), from the sums of
   // their positions and of their outer products.
   [[nodiscard]] static double in_plane_spread(const Eigen::Vector3d& sum, const Eigen::Matrix3d& sum_outer,
@@ -90,20 +93,20 @@ class AttachedParts {
 
   static constexpr double kOnSurfaceShare = 0.9;   // share of vertices within reach for "on the surface"
   static constexpr double kCoherentMotion = 0.25;  // rigid fit residual / motion (RMS) accepted
-  static constexpr int kMinPatchRings = 1;         // a patch: the corners and at least their neighbours
+  static constexpr int kMinPatchRings = 1;         // a patch: the vertex and at least its neighbours
   static constexpr int kMaxPatchRings = 16;        // ... grown by at most this many rings
   static constexpr int kMaxPatchVertices = 512;    // ... or until it holds this many vertices
   static constexpr int kPatchPoints = 32;          // of which it keeps at most this many (see build_patches)
   std::vector<int> bound_vertex_;                  // mesh vertex
   std::vector<int> bound_part_;                    // index into parts_
   std::vector<int> carrier_face_;                  // row of F it is bound to
-  std::vector<int> carrier_slot_;                  // its patch (index into patch_start_)
+  std::vector<std::array<int, 3>> carrier_slot_;   // its carrier face's corners' patches (patch_start_)
   std::vector<Eigen::Vector3d> bary_;              // barycentric coordinates of the bound point
   std::vector<Eigen::Vector3d> offset_;            // vertex - bound point at rest (model space)
-  // Per carrier face used, its patch: the corners and the rings of neighbours around them, grown until the
+  // Per carrier vertex used, its patch: the vertex and the rings of neighbours around it, grown until the
   // patch's in-plane spread reaches the largest offset it carries (see build_patches).
   std::vector<int> patch_start_, patch_index_;
-  // Per carrier face used, its corners and their neighbours: the carrier moved when one of these did.
+  // Per carrier vertex used, the vertex and its neighbours: the surface moved there when one of these did.
   std::vector<int> ring_start_, ring_index_;
   Eigen::MatrixXi F_;                              // the mesh's faces
   Eigen::MatrixXd rest_V_;                         // rest corners, to tell moved triangles from unmoved ones
