@@ -27,6 +27,21 @@ Eigen::VectorXd probe_start(Eigen::Index dimension) {
 
 namespace {
 
+// The start vector: the fixed random one, plus, when given, the hint, each scaled to unit M norm (the caller
+// normalises the sum).
+Eigen::VectorXd start_vector(Eigen::Index dimension, const Eigen::VectorXd* hint,
+                             const std::function<void(const Eigen::VectorXd&, Eigen::VectorXd&)>& metric) {
+  Eigen::VectorXd v = probe_start(dimension);
+  if (hint == nullptr || hint->size() != dimension || !hint->allFinite()) return v;
+  Eigen::VectorXd m(dimension);
+  metric(v, m);
+  const double v_norm = std::sqrt(std::max(0.0, v.dot(m)));
+  metric(*hint, m);
+  const double h_norm = std::sqrt(std::max(0.0, hint->dot(m)));
+  if (!(v_norm > 0.0) || !(h_norm > 0.0) || !std::isfinite(h_norm)) return v;
+  return v / v_norm + *hint / h_norm;
+}
+
 // One classical Gram-Schmidt pass in the M inner product against the k basis columns of V: c = V^T (M w),
 // w -= V c, h += c. The rows are split in two fixed halves (one per thread when given one); the halves'
 // partial sums of c are added in a fixed order, so the bits do not depend on the thread count.
@@ -54,14 +69,14 @@ void orthogonalise(const Eigen::MatrixXd& V, int k, const Eigen::VectorXd& mw, E
 RateProbe probe_rate(Eigen::Index dimension, int steps,
                      const std::function<bool(const Eigen::VectorXd&, Eigen::VectorXd&)>& jacobian,
                      const std::function<void(const Eigen::VectorXd&, Eigen::VectorXd&)>& metric,
-                     HelperThread* threads) {
+                     HelperThread* threads, const Eigen::VectorXd* hint) {
   RateProbe probe;
   if (dimension <= 0 || steps <= 0) return probe;
   steps = static_cast<int>(std::min<Eigen::Index>(steps, dimension));
   // V: an M-orthonormal basis of the Krylov space; H: J projected on it (upper Hessenberg).
   Eigen::MatrixXd V(dimension, steps);
   Eigen::MatrixXd H = Eigen::MatrixXd::Zero(steps + 1, steps);
-  Eigen::VectorXd v = probe_start(dimension), w(dimension), mw(dimension);
+  Eigen::VectorXd v = start_vector(dimension, hint, metric), w(dimension), mw(dimension);
   metric(v, mw);
   const double start_norm = std::sqrt(std::max(0.0, v.dot(mw)));
   if (!(start_norm > 0.0) || !std::isfinite(start_norm)) return probe;
@@ -105,12 +120,13 @@ RateProbe probe_rate(Eigen::Index dimension, int steps,
 RateProbe probe_rate_self_adjoint(
     Eigen::Index dimension, int steps,
     const std::function<bool(const Eigen::VectorXd&, Eigen::VectorXd&)>& jacobian,
-    const std::function<void(const Eigen::VectorXd&, Eigen::VectorXd&)>& metric) {
+    const std::function<void(const Eigen::VectorXd&, Eigen::VectorXd&)>& metric,
+    const Eigen::VectorXd* hint) {
   RateProbe probe;
   if (dimension <= 0 || steps <= 0) return probe;
   steps = static_cast<int>(std::min<Eigen::Index>(steps, dimension));
   // v, mv: the current basis vector and M v; previous, m_previous: the one before (zero at the start).
-  Eigen::VectorXd v = probe_start(dimension), mv(dimension), w(dimension), mw(dimension);
+  Eigen::VectorXd v = start_vector(dimension, hint, metric), mv(dimension), w(dimension), mw(dimension);
   Eigen::VectorXd previous = Eigen::VectorXd::Zero(dimension), m_previous = Eigen::VectorXd::Zero(dimension);
   metric(v, mv);
   const double start_norm = std::sqrt(std::max(0.0, v.dot(mv)));

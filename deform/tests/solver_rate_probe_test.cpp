@@ -60,6 +60,29 @@ TEST(RateProbe, FindsTheSlowModeFromInsideTheSpectrum) {
   EXPECT_LE(probe.rate, 0.999 + 1e-9);  // a Ritz value of a self-adjoint map: never above its largest
 }
 
+// A hint along the solve's last step points the probe at the slow mode that holds a stalled solve: 200
+// iterations of the map leave the fast modes (rates <= 0.95) at 3.5e-5 of their start and the slow one
+// (0.999) at 0.82, so the last step lies along it; 4 steps from the random start alone stay in the fast
+// cluster (0.894), from the random start plus the last step they reach 0.9952 (the solver's floor from it:
+// 0.9976).
+TEST(RateProbe, AHintAlongTheLastStepFindsTheModeThatHoldsAStall) {
+  const LinearMap map(400, 1e-3);
+  auto jacobian = [&](const Eigen::VectorXd& v, Eigen::VectorXd& out) {
+    out = map.J * v;
+    return true;
+  };
+  auto metric = [&](const Eigen::VectorXd& v, Eigen::VectorXd& out) { out = map.m.cwiseProduct(v); };
+  Eigen::VectorXd x = detail::probe_start(400), previous = x;
+  for (int k = 0; k < 200; ++k) previous = x, x = map.J * x;
+  const Eigen::VectorXd last_step = x - previous;
+  EXPECT_LT(detail::probe_rate(400, 4, jacobian, metric).rate, 0.95);  // 0.894
+  EXPECT_LT(detail::probe_rate_self_adjoint(400, 4, jacobian, metric).rate, 0.95);
+  EXPECT_GT(detail::probe_rate(400, 4, jacobian, metric, nullptr, &last_step).rate, 0.99);  // 0.9952
+  EXPECT_GT(detail::probe_rate_self_adjoint(400, 4, jacobian, metric, &last_step).rate, 0.99);
+  // Still a Ritz value of the map: never above its largest.
+  EXPECT_LE(detail::probe_rate_self_adjoint(400, 4, jacobian, metric, &last_step).rate, 0.999 + 1e-9);
+}
+
 // The Lanczos recurrence on the same self-adjoint map: Arnoldi's rate (the same Krylov space, the same
 // projection in exact arithmetic), one metric product per step.
 TEST(RateProbe, LanczosReadsArnoldisRateOnASelfAdjointMap) {
