@@ -343,6 +343,10 @@ TEST_F(CliMessages, DeformWarnsOfPullsThatAreNotAPushPull) {
          "the whole part moves: the region covers its connected part and no border holds it");
   warned("--handle-at 0 0 1 --handle-radius 0.2 --roi-radius 0.8 --displacement 0 0 0.1 --iterations 2",
          "not converged: stopped after 2 iteration(s) (max-iterations)");
+  // Stopped at the cap with an estimate (no rate probe checked it): said to be unchecked.
+  warned("--handle-at 0 0 1 --handle-radius 0.2 --roi-radius 0.8 --displacement 0 0 0.1 --iterations 18",
+         "not converged: stopped after 18 iteration(s) (max-iterations) with the estimated distance to the "
+         "minimiser 0.015 |d|, above --tolerance 0.01 (an unchecked estimate: it can be 2-3x low)");
   // The paper's setting says "not converged" in its stop text, not as a warning.
   const CommandResult paper = run_pushpull("deform " + model +
                                            " --handle-at 0 0 1 --handle-radius 0.2 --roi-radius 0.8 "
