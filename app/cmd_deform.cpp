@@ -608,10 +608,8 @@ void add_deform_command(CLI::App& root) {
   CLI::Option* coarse_start =
       cmd->add_option("--coarse-start-min-free", o->coarse_start_min_free,
                       "asan: regions with at least this many free vertices are solved first on a coarser "
-                      "tessellation of "
-                      "the region, and the iterations start from that shape (the same minimiser in fewer "
-                      "iterations on "
-                      "large regions); -1 = never (default: " +
+                      "tessellation of the region, and the iterations start from that shape (the same "
+                      "minimiser in fewer iterations on large regions); -1 = never (default: " +
                           std::to_string(deform::DeformOptions{}.coarse_start_min_free) + ")")
           ->check(whole_number_in(-1, std::numeric_limits<int>::max()));
   paper->excludes(smooth_start)->excludes(coarse_start);

@@ -71,7 +71,7 @@ std::vector<std::string> write_deformed_model(const std::filesystem::path& path,
             path.string() + ": written as the welded surface (" + std::to_string(V.rows()) +
             " vertices): " + source.string() +
             (unusable.empty() ? " changed since it was read" : " can no longer be read: " + unusable));
-      if (same) {
+      else {
         source_positions.setConstant(file.V.rows(), 3, std::nan(""));
         triangles = file;
         for (std::size_t v = 0; v < weld.size(); ++v) {

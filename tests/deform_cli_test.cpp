@@ -239,10 +239,11 @@ TEST_F(DeformCli, PatchesWithSeamVerticesTwiceDeformAsOneSurface) {
   // Held on one patch's copy of a seam vertex, pulled on the other's: named as the files number them.
   write("seam_handle.txt", std::to_string(5 * 11 + 10) + "\n");
   write("seam_fixed.txt", std::to_string(121 + 5 * 11) + "\n");
-  const RunResult both =
-      run_pushpull("deform " + path("patches.off") + " --handle " + path("seam_handle.txt") + " --fixed " +
-                   path("seam_fixed.txt") + " --displacement 0 0 0.05 --out " + path("o2.off") +
-                   " --metrics " + path("m3.json"));
+  auto held_and_fixed = [&](const std::string& handle, const std::string& fixed) {
+    return run_pushpull("deform " + path("patches.off") + " " + handle + " --fixed " + path(fixed) +
+                        " --displacement 0 0 0.05 --out " + path("o2.off") + " --metrics " + path("m3.json"));
+  };
+  const RunResult both = held_and_fixed("--handle " + path("seam_handle.txt"), "seam_fixed.txt");
   EXPECT_EQ(both.status, 1) << both.output;
   EXPECT_NE(both.output.find("file vertex 65 of " + path("seam_handle.txt") + " and vertex 176 of " +
                              path("seam_fixed.txt") + " are one point once the seams are welded"),
@@ -250,19 +251,13 @@ TEST_F(DeformCli, PatchesWithSeamVerticesTwiceDeformAsOneSurface) {
       << both.output;
   // The same vertex in both files, and a fixed vertex inside a handle picked around a point.
   write("seam_fixed2.txt", "176 65\n");
-  const RunResult listed_twice =
-      run_pushpull("deform " + path("patches.off") + " --handle " + path("seam_handle.txt") + " --fixed " +
-                   path("seam_fixed2.txt") + " --displacement 0 0 0.05 --out " + path("o2.off") +
-                   " --metrics " + path("m3.json"));
+  const RunResult listed_twice = held_and_fixed("--handle " + path("seam_handle.txt"), "seam_fixed2.txt");
   EXPECT_EQ(listed_twice.status, 1) << listed_twice.output;
   EXPECT_NE(listed_twice.output.find("file vertex 65 is in both " + path("seam_handle.txt") + " and " +
                                      path("seam_fixed2.txt")),
             std::string::npos)
       << listed_twice.output;
-  const RunResult picked =
-      run_pushpull("deform " + path("patches.off") + " --handle-at 1 0.5 0 --handle-radius 0.01 --fixed " +
-                   path("seam_fixed.txt") + " --displacement 0 0 0.05 --out " + path("o2.off") +
-                   " --metrics " + path("m3.json"));
+  const RunResult picked = held_and_fixed("--handle-at 1 0.5 0 --handle-radius 0.01", "seam_fixed.txt");
   EXPECT_EQ(picked.status, 1) << picked.output;
   EXPECT_NE(picked.output.find("file vertex 176 of " + path("seam_fixed.txt") +
                                " lies in the handle picked around --handle-at"),

@@ -93,10 +93,12 @@ WeldStats weld_primitives(std::vector<Primitive>& primitives, const WeldOptions&
       (primitives.size() != 1 || exact_positions->rows() != primitives.front().positions.rows()))
     exact_positions = nullptr;
   // A render vertex's model-frame position: the reader's doubles where given, else the stored floats.
+  std::vector<Eigen::Affine3d> T_model_node;
+  T_model_node.reserve(primitives.size());
+  for (const Primitive& primitive : primitives) T_model_node.emplace_back(primitive.T_model_node);
   auto position = [&](std::size_t p, Eigen::Index v) -> Eigen::Vector3d {
     if (exact_positions != nullptr) return exact_positions->row(v).transpose();
-    return Eigen::Affine3d(primitives[p].T_model_node) *
-           primitives[p].positions.row(v).transpose().cast<double>();
+    return T_model_node[p] * primitives[p].positions.row(v).transpose().cast<double>();
   };
   // Model-frame positions of every render vertex used by a triangle, and the bounding box.
   std::vector<std::vector<bool>> used(primitives.size());

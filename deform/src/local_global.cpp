@@ -291,10 +291,9 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
   // with sr-arap's sweeps from a fixed R this is the map of X alone, its rotations' coupling aside), and h a
   // 1e-6 |d| move of the largest entry (rounding noise ~1e-10 |X| / |d| relative). Between evaluations the
   // progress callback is asked whether to go on (IterationReport::probe_step): false abandons the solve.
-  // The probe's start also points along the last plain step, G(X) - X (rate_probe.hpp: where the iterates
-  // stall, it lies along the slow mode that holds them).
-  Eigen::VectorXd last_step;
-  auto probe_at = [&](const Eigen::Matrix3Xd& X_at, int iteration) {
+  // last_step: the last plain step, G(X) - X, along which the probe's start also points (rate_probe.hpp:
+  // where the iterates stall, it lies along the slow mode that holds them).
+  auto probe_at = [&](const Eigen::Matrix3Xd& X_at, int iteration, const Eigen::Matrix3Xd& last_step) {
     Eigen::Matrix3Xd B_at(3, n_free), G0(3, n_free), Gv(3, n_free), Y = X_at;
     std::vector<Eigen::Matrix3d> R_at;
     std::vector<Eigen::Quaterniond> q_at;
@@ -329,10 +328,10 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
       Eigen::Map<Eigen::Matrix3Xd>(out.data(), 3, n_free).noalias() =
           Eigen::Map<const Eigen::Matrix3Xd>(v.data(), 3, n_free) * model.Q.topLeftCorner(n_free, n_free);
     };
-    const Eigen::VectorXd* hint_ptr = last_step.size() == N ? &last_step : nullptr;
+    const Eigen::VectorXd hint = Eigen::Map<const Eigen::VectorXd>(last_step.data(), N);
     const detail::RateProbe found =
-        self_adjoint_map ? detail::probe_rate_self_adjoint(N, kProbeSteps, jacobian, metric, hint_ptr)
-                         : detail::probe_rate(N, kProbeSteps, jacobian, metric, threads, hint_ptr);
+        self_adjoint_map ? detail::probe_rate_self_adjoint(N, kProbeSteps, jacobian, metric, &hint)
+                         : detail::probe_rate(N, kProbeSteps, jacobian, metric, threads, &hint);
     result.probe_evaluations += found.evaluations + (found.abandoned ? 2 : 1);
     return found;
   };
@@ -416,11 +415,8 @@ DeformResult Deformer::Impl::run(const Eigen::Matrix3Xd& X_c, const Eigen::Vecto
           move > kFixedPointMove) {
         probe_pending = false;
         rate_settled = true;
-        {  // (X was swapped: X_next holds the iterate G was computed from)
-          const Eigen::Matrix3Xd step = G - X_next.leftCols(n_free);
-          last_step = Eigen::Map<const Eigen::VectorXd>(step.data(), 3 * static_cast<Eigen::Index>(n_free));
-        }
-        const detail::RateProbe found = probe_at(X, iteration);
+        // (X was swapped: X_next holds the iterate G was computed from.)
+        const detail::RateProbe found = probe_at(X, iteration, G - X_next.leftCols(n_free));
         if (found.abandoned) {
           result.cancelled = true;
           result.stop_reason = StopReason::Cancelled;
