@@ -6,6 +6,7 @@
 #include "metrics_json.hpp"
 #include "model_output.hpp"
 #include "number_checks.hpp"
+#include "output_guard.hpp"
 #include "region_notes.hpp"
 #include "vertex_selection.hpp"
 
@@ -151,13 +152,29 @@ std::vector<int> pick_handle(const DeformCommandOptions& o, const LoadedModel& m
     return handle;
   }
   const Eigen::Vector3d point = vector3(o.handle_at, "--handle-at");
+  {
+    // A point a million model sizes away is a typing slip (units, an exponent); its nearest surface point is
+    // not even computable where the squared distances overflow.
+    const Eigen::Vector3d low = mesh.V.colwise().minCoeff(), high = mesh.V.colwise().maxCoeff();
+    const double across = (high - low).norm();
+    const double away = (point - point.cwiseMax(low).cwiseMin(high)).stableNorm();
+    if (away > 1e6 * std::max(across, std::numeric_limits<double>::min())) {
+      char text[192];
+      std::snprintf(
+          text, sizeof text,
+          "--handle-at %.6g %.6g %.6g is %.3g m from the model's bounding box, over a million times its "
+          "size (%.3g m across): a point on or near the surface is expected",
+          point.x() * scale, point.y() * scale, point.z() * scale, away * scale, across * scale);
+      throw CommandError(o.mesh + ": " + text);
+    }
+  }
   deform::SurfacePoint hit;
   try {
     hit = deform::closest_surface_point(mesh, point);
   } catch (const std::invalid_argument& error) {
     throw CommandError(o.mesh + ": " + error.what());
   }
-  const double gap = (hit.point - point).norm();
+  const double gap = (hit.point - point).stableNorm();
   if (gap > o.handle_radius) {
     auto metres = [&](const Eigen::Vector3d& p) {
       char text[128];
@@ -198,7 +215,8 @@ deform::DeformOptions solver_options(const DeformCommandOptions& o) {
   options.mu = o.mu;
   if (!o.stretch_direction.empty()) {
     options.stretch_direction = vector3(o.stretch_direction, "--stretch-direction");
-    if (options.stretch_direction->norm() == 0.0) throw CommandError("--stretch-direction: must not be zero");
+    if (options.stretch_direction->stableNorm() == 0.0)
+      throw CommandError("--stretch-direction: must not be zero");
   }
   options.max_iterations = o.iterations;
   options.tolerance = o.tolerance;  // --tolerance 0 (and no --energy-tolerance): exactly --iterations
@@ -233,9 +251,12 @@ std::string stop_text(deform::StopReason reason, const DeformCommandOptions& o,
 
 // A length in mm with `decimals` decimals, or three significant digits below what they show (a 5 um pull is
 // "0.005 mm", not "0.0 mm").
+// Beyond a kilometre, four significant digits (not 300 of them).
 std::string mm_text(double mm, int decimals) {
   char text[48];
-  if (mm != 0.0 && std::abs(mm) < std::pow(10.0, -decimals) * 10.0)
+  if (std::abs(mm) >= 1e6 || !std::isfinite(mm))
+    std::snprintf(text, sizeof text, "%.4g mm", mm);
+  else if (mm != 0.0 && std::abs(mm) < std::pow(10.0, -decimals) * 10.0)
     std::snprintf(text, sizeof text, "%.3g mm", mm);
   else
     std::snprintf(text, sizeof text, "%.*f mm", decimals, mm);
@@ -268,6 +289,8 @@ std::vector<double> section_offsets(const deform::Mesh& mesh, const std::vector<
 
 // The smallest pull solved, relative to the model's bounding-box diagonal.
 constexpr double kSmallestPull = 1e-10;
+// A region vertex that moved more than this many times |d| makes the result suspect (warned).
+constexpr double kFarMove = 10.0;
 
 void run_deform(DeformCommandOptions o) {
   const auto start = std::chrono::steady_clock::now();
@@ -284,14 +307,21 @@ void run_deform(DeformCommandOptions o) {
   deform::DeformOptions options = solver_options(o);
   check_output_model_path(o.out);
   // Every output is checked before any is written, so a bad one leaves the others as they were.
-  for (const std::string& output : {o.out, o.metrics})
-    if (const std::string problem = deform::output_path_problem(output); !problem.empty())
-      throw CommandError(output + ": " + problem);
+  for (const auto& [option, output] : {std::pair{"--out", &o.out}, std::pair{"--metrics", &o.metrics}})
+    if (const std::string problem = deform::output_path_problem(*output); !problem.empty())
+      throw CommandError((output->empty() ? std::string(option) : *output) + ": " + problem);
   if (deform::same_output_file(o.out, o.metrics))
     throw CommandError("--out and --metrics name the same file (" + o.out +
                        "): the metrics would replace the model");
 
   const LoadedModel model = load_model(o.mesh);
+  {
+    std::vector<InputFile> inputs = model_inputs(model.scene.source_files);
+    if (!o.handle_file.empty()) inputs.push_back({o.handle_file, "the --handle file"});
+    if (!o.fixed_file.empty()) inputs.push_back({o.fixed_file, "the --fixed file"});
+    refuse_output_over_inputs("--out", o.out, inputs);
+    refuse_output_over_inputs("--metrics", o.metrics, inputs);
+  }
   const std::shared_ptr<const deform::Mesh>& mesh = model.mesh;
   const LifeSize life(o.life_size, bounds_of(mesh->V), o.mesh);
   convert_to_file_units(o, life);
@@ -304,7 +334,7 @@ void run_deform(DeformCommandOptions o) {
       char text[192];
       std::snprintf(text, sizeof text,
                     "--displacement: |d| = %.6g m is more than 100 times the model's size (%.6g m across)",
-                    d.norm() * life.scale(), across * life.scale());
+                    d.stableNorm() * life.scale(), across * life.scale());
       throw CommandError(text);
     }
     // So is one below what the model's coordinates resolve: on a 2 m model a pull of 1e-11 m came out 7% of
@@ -381,6 +411,26 @@ void run_deform(DeformCommandOptions o) {
           text, sizeof text, "not converged: stopped after %d iteration(s) (%s) without a distance estimate",
           record.result.iterations, std::string(deform::stop_reason_name(record.result.stop_reason)).c_str());
     record.result.warnings.push_back(text);
+  }
+  // A surface that moved many times farther than the handle is no push/pull: a parameter far from its range
+  // (arap-h's --lambda 1e12 moved the bonnet 316 m on a 100 mm pull, exit 0 and only "not converged" said).
+  {
+    double farthest = 0.0;
+    for (const std::vector<int>* part : {&roi.free, &roi.handle})
+      for (const int v : *part)
+        farthest = std::max(farthest, (record.result.V.row(v) - mesh->V.row(v)).norm());
+    if (farthest > kFarMove * d.norm()) {
+      const char* hint = options.method == deform::Method::ArapH || options.method == deform::Method::ArapSrH
+                             ? " (a smaller --lambda weighs the curvature term less)"
+                         : options.method == deform::Method::SrArap ? " (try a smaller --alpha)"
+                         : options.method == deform::Method::Asan   ? " (try the paper's --mu 100)"
+                                                                    : "";
+      char ratio[32];
+      std::snprintf(ratio, sizeof ratio, "%.3g", farthest / d.norm());
+      record.result.warnings.push_back("the surface moved up to " + mm_text(life.to_mm(farthest), 1) + ", " +
+                                       ratio + " times |d| = " + mm_text(life.to_mm(d.norm()), 1) +
+                                       ": far more than the pull, not a push/pull result" + hint);
+    }
   }
   if (unheld) {
     record.result.warnings.insert(

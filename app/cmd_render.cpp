@@ -3,6 +3,7 @@
 #include "commands.hpp"
 #include "life_size.hpp"
 #include "number_checks.hpp"
+#include "output_guard.hpp"
 #include "render_inputs.hpp"
 #include "render_model.hpp"
 #include "render_session.hpp"
@@ -50,7 +51,7 @@ void run_render(RenderCommandOptions options) {
   if (options.up.size() == 3 && options.up[0] == 0.0 && options.up[1] == 0.0 && options.up[2] == 0.0)
     throw CommandError("--up: the up direction must not be zero");
   if (const std::string problem = deform::output_path_problem(options.out); !problem.empty())
-    throw CommandError(options.out + ": " + problem);
+    throw CommandError((options.out.empty() ? std::string("--out") : options.out) + ": " + problem);
   // The picture is PNG whatever the name says: a name that promises another format (x.jpg) is refused
   // rather than written as a PNG under it. A name without an extension (/dev/stdout) is taken as it is.
   {
@@ -76,6 +77,17 @@ void run_render(RenderCommandOptions options) {
       throw CommandError(options.deformed + ": has " + std::to_string(result->deform_mesh.V.rows()) +
                          " (welded) vertices but " + options.model + " has " + std::to_string(V0.rows()) +
                          ": not a deformation of that model");
+  }
+  {
+    std::vector<InputFile> inputs = model_inputs(model.source_files);
+    if (result)
+      for (const fs::path& file : result->source_files)
+        inputs.push_back({file, "the deformed result's files"});
+    for (const auto& [file, role] :
+         {std::pair{&options.handle_file, "the --handle file"},
+          std::pair{&options.fixed_file, "the --fixed file"}, std::pair{&options.roi_file, "the --roi file"}})
+      if (!file->empty()) inputs.push_back({*file, role});
+    refuse_output_over_inputs("--out", options.out, inputs);
   }
   const Eigen::MatrixXd& V = result ? result->deform_mesh.V : V0;
   render_to_png(prepare_render_inputs(std::move(render), model.deform_mesh, V, result.has_value(), options,

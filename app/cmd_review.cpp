@@ -5,9 +5,11 @@
 #include "solver_cpus.hpp"
 
 #include "pushpull/deform/cpu_affinity.hpp"
+#include "pushpull/deform/file_output.hpp"
 
 #include <CLI/CLI.hpp>
 
+#include <filesystem>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -144,6 +146,16 @@ void add_review_command(CLI::App& root) {
   add_life_size_options(*cmd, o->life_size);
   cmd->callback([o, samples] {
     o->samples_given = samples->count() > 0;
+    // A recording is the one copy of a session: one already at --record is not replaced (a replay's own
+    // recording, which it rewrites each time, does not come this way).
+    if (!o->record.empty() && !deform::holds_descriptor(o->record)) {
+      std::error_code error;
+      if (std::filesystem::is_regular_file(o->record, error) &&
+          std::filesystem::file_size(o->record, error) > 0 && !error)
+        throw CommandError(o->record +
+                           ": --record: a file is already there (an earlier session?); give "
+                           "another name or remove it first");
+    }
     run_review(*o);
   });
 }

@@ -38,14 +38,17 @@ glm::vec3 to_glm(const Eigen::Vector3d& v) {
 
 View make_view(const RenderCommandOptions& o, const Bounds& bounds, float aspect) {
   OrbitCamera orbit;
-  orbit.up = to_glm(o.up);
+  // Scaled in doubles first: --up 1e300 1e300 1e300 is a direction, not three infinities.
+  const Eigen::Vector3d up(o.up[0], o.up[1], o.up[2]);
+  orbit.up = to_glm(Eigen::Vector3d(up / up.stableNorm()));
   orbit.fov_y_deg = float(o.fov_deg);
   if (o.camera.size() >= 2) {
     orbit.azimuth_deg = float(o.camera[0]);
     orbit.elevation_deg = float(o.camera[1]);
   }
   if (o.camera.size() == 3) {
-    if (o.camera[2] <= 0.0) throw CommandError("--camera: ZOOM must be > 0");
+    if (!(o.camera[2] >= 1e-6 && o.camera[2] <= 1e6))
+      throw CommandError("--camera: ZOOM must be from 1e-6 to 1e6 (1 frames the model)");
     orbit.distance_scale = float(1.0 / o.camera[2]);
   }
   View view = frame_bounds(bounds, orbit, aspect);
@@ -53,6 +56,11 @@ View make_view(const RenderCommandOptions& o, const Bounds& bounds, float aspect
     const glm::vec3 target = o.target.empty() ? bounds.centre() : to_glm(o.target);
     const glm::vec3 eye = o.eye.empty() ? glm::vec3(glm::inverse(view.view)[3]) : to_glm(o.eye);
     if (glm::length(eye - target) <= 0.0f) throw CommandError("--eye and --target coincide");
+    // Looking along --up leaves the picture's up undefined (it came out blank).
+    if (glm::length(glm::cross(glm::normalize(target - eye), orbit.up)) < 1e-4f)
+      throw CommandError(
+          "--up is parallel to the view direction (from --eye to --target): the picture's up "
+          "is undefined; give another --up");
     view.view = glm::lookAt(eye, target, glm::normalize(orbit.up));
     const float distance = glm::length(eye - bounds.centre());
     const float radius = std::max(bounds.radius(), 1e-6f);

@@ -105,6 +105,35 @@ int recorded_threshold(const json& header, const char* key, const std::string& r
   return value.get<int>();
 }
 
+// The names a replay writes in --out (and eyes/), and of those the ones it clears first: an earlier replay's
+// commits and final model (it may have had more), and its report, which would otherwise outlive an
+// interrupted replay and point at files no longer there.
+bool replay_clears(const std::string& name) {
+  return name.rfind("commit-", 0) == 0 || name.rfind("final.", 0) == 0 || name == "report.html";
+}
+bool replay_writes(const std::string& name) {
+  return replay_clears(name) || name == "input.jsonl" || name == "replay-session.jsonl";
+}
+
+// A file the replay reads (the recording, the model) lying in --out under a name the replay writes or clears
+// would be lost (a model renamed final.gltf was deleted before it was read): refused.
+void refuse_out_over_inputs(const fs::path& out,
+                            const std::vector<std::pair<fs::path, const char*>>& inputs) {
+  std::error_code ec;
+  const fs::path folder = fs::weakly_canonical(fs::absolute(out, ec), ec);
+  for (const auto& [input, role] : inputs) {
+    std::error_code error;
+    const fs::path file = fs::weakly_canonical(fs::absolute(input, error), error);
+    if (error) continue;
+    const bool in_out = file.parent_path() == folder && replay_writes(file.filename().string());
+    const bool in_eyes = file.parent_path() == folder / "eyes";
+    if (in_out || in_eyes)
+      throw CommandError(input.string() + ": " + role + " lies in --out " + out.string() +
+                         " under a name the " + "replay writes or clears (" +
+                         (in_eyes ? "eyes/*" : file.filename().string()) + "): give --out another folder");
+  }
+}
+
 }  // namespace
 
 void run_replay(const ReplayOptions& o) {
@@ -132,7 +161,9 @@ void run_replay(const ReplayOptions& o) {
                        " was made on another model file); refusing to replay");
   if (rec.cut) std::printf("pushpull replay: %s: %s; replaying up to the cut\n", o.recording.c_str(), rec.cut->c_str());
 
+  if (o.out.empty()) throw CommandError("--out: an empty folder name");
   const fs::path out = o.out;
+  refuse_out_over_inputs(out, {{o.recording, "the recording"}, {model_path, "the model"}});
   std::error_code ec;
   fs::create_directories(out / "eyes", ec);
   if (ec) throw CommandError(out.string() + ": cannot create the output folder: " + ec.message());
@@ -140,8 +171,7 @@ void run_replay(const ReplayOptions& o) {
   // What an earlier replay into the same folder wrote (it may have had more commits).
   for (const auto& entry : fs::directory_iterator(out)) {
     const std::string name = entry.path().filename().string();
-    if (entry.is_regular_file() && (name.rfind("commit-", 0) == 0 || name.rfind("final.", 0) == 0))
-      fs::remove(entry.path(), ec);
+    if (entry.is_regular_file() && replay_clears(name)) fs::remove(entry.path(), ec);
   }
 
   // The script: the recording's complete lines, the eyes captured one frame after every release and at the

@@ -2,6 +2,7 @@
 
 #include "commands.hpp"
 #include "model_output.hpp"
+#include "output_guard.hpp"
 
 #include "pushpull/assets/write.hpp"
 #include "pushpull/deform/file_output.hpp"
@@ -58,6 +59,9 @@ ReviewSetup prepare_review(const ReviewCommandOptions& o) {
   } catch (const std::exception& e) {
     throw CommandError(e.what());
   }
+  for (const auto& [option, path] :
+       {std::pair{"--out", &o.out}, std::pair{"--record", &o.record}, std::pair{"--events", &o.events}})
+    refuse_output_over_inputs(option, *path, model_inputs(s.model.source_files));
   if (!o.out.empty()) {  // found out now, not after the session (its folder is made as --record's is)
     const fs::path folder = fs::path(o.out).parent_path();
     if (!folder.empty() && !fs::is_directory(folder, ec)) {

@@ -8,7 +8,10 @@
 
 #include "pushpull/deform/method.hpp"
 
+#include <Eigen/Core>
+
 #include <cstdint>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <optional>
@@ -35,7 +38,14 @@ bool is_method_name(const std::string& name) {
 // The problem with an input line ("t" lines, read by xr/sim), or "" when it is well formed.
 std::string input_line_problem(const nlohmann::json& j) {
   if (!j["t"].is_number()) return "\"t\" is not a number";
-  if (j.contains("event")) return j["event"].is_string() ? "" : "\"event\" is not a string";
+  if (j.contains("event")) {
+    // The events xr/sim's script knows (an unknown one failed the replay's runtime, blamed on OpenXR).
+    if (!j["event"].is_string()) return "\"event\" is not a string";
+    const std::string event = j["event"].get<std::string>();
+    for (const char* known : {"exit", "loss", "lost", "capture", "recenter", "failure"})
+      if (event == known) return "";
+    return "unknown event \"" + event + "\" (exit, loss, lost, capture, recenter or failure)";
+  }
   if (!j.contains("path") || !j["path"].is_string()) return "an input line needs a string \"path\"";
   if (j.contains("pose")) {
     const auto& pose = j["pose"];
@@ -59,14 +69,11 @@ std::string input_line_problem(const nlohmann::json& j) {
 
 }  // namespace
 
-SessionRecording read_session_recording(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw CommandError(path + ": cannot open the session recording");
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  const std::string text = buffer.str();
-  if (text.empty()) throw CommandError(path + ": the session recording is empty");
+namespace {
 
+// The recording's lines; `number` is the line being read (for the caller's message on a field of the wrong
+// type, which nlohmann's accessors throw from anywhere below).
+SessionRecording read_lines(const std::string& path, const std::string& text, std::size_t& number) {
   SessionRecording r;
   r.path = path;
   bool ended = false;
@@ -75,7 +82,8 @@ SessionRecording read_session_recording(const std::string& path) {
   // loop would open its panel): read as "colour" records instead, cycling from the header's colour map.
   bool legacy_desktop = false;
   ReviewColour legacy_colour = ReviewColour::Displacement;
-  std::size_t begin = 0, number = 0;
+  std::size_t begin = 0;
+  number = 0;
   while (begin < text.size()) {
     ++number;
     const std::size_t newline = text.find('\n', begin);
@@ -100,6 +108,8 @@ SessionRecording read_session_recording(const std::string& path) {
       if (!j.contains("model_sha256") || !j["model_sha256"].is_string() || !j.contains("model") ||
           !j["model"].is_string())
         corrupted(path, 1, "the header lacks \"model\" or \"model_sha256\"");
+      if (j.contains("model_relative") && !j["model_relative"].is_string())
+        corrupted(path, 1, "the header's \"model_relative\" is not a path");
       // What `pushpull replay` sets the review up from.
       const nlohmann::json* options = j.contains("options") && j["options"].is_object() ? &j["options"] : nullptr;
       if (options == nullptr) corrupted(path, 1, "the header lacks the review's \"options\"");
@@ -133,6 +143,11 @@ SessionRecording read_session_recording(const std::string& path) {
                         (*options)[key][0].is_number() && (*options)[key][1].is_number() &&
                         (*options)[key][2].is_number();
         if (!ok) corrupted(path, 1, std::string("header option \"") + key + "\" is not [x, y, z]");
+        const Eigen::Vector3d axis((*options)[key][0].get<double>(), (*options)[key][1].get<double>(),
+                                   (*options)[key][2].get<double>());
+        if (!axis.allFinite() || !(axis.stableNorm() > 0.0))
+          corrupted(path, 1,
+                    std::string("header option \"") + key + "\" must be a finite, non-zero direction");
       }
       r.header = j;
       const std::string format =
@@ -166,6 +181,13 @@ SessionRecording read_session_recording(const std::string& path) {
       }
       // The clock counts frames, so consecutive lines are a frame apart: a jump of over a minute is damage
       // too, which a recording cut short (no end record to check against) would otherwise replay for ever.
+      // The first line is the first frame's (t = 0): one over a minute later is damage the same way.
+      if (last_input_line == 0 && t > 60.0) {
+        std::ostringstream problem;
+        problem << "\"t\" " << t
+                << " s on the first input line (a session's inputs start at its first frame, t = 0)";
+        corrupted(path, number, problem.str());
+      }
       if (last_input_line > 0 && t > r.last_input_time + 60.0) {
         std::ostringstream problem;
         problem << "\"t\" " << t << " s jumps " << t - r.last_input_time << " s ahead of line "
@@ -188,6 +210,9 @@ SessionRecording read_session_recording(const std::string& path) {
     } else if (j.contains("record")) {
       if (!j["record"].is_string()) corrupted(path, number, "\"record\" is not a string");
       const std::string kind = j["record"];
+      // Every record the review writes carries its time in seconds (the replay reads it, e.g. a release's).
+      if (j.contains("time") && !(j["time"].is_number() && std::isfinite(j["time"].get<double>())))
+        corrupted(path, number, "a record's \"time\" is not a finite number");
       if (kind == "commit") {
         if (!j.contains("hash") || !j["hash"].is_string() || !j.contains("index"))
           corrupted(path, number, "a commit record needs \"index\" and \"hash\"");
@@ -239,7 +264,13 @@ SessionRecording read_session_recording(const std::string& path) {
         r.anchor = HeadAnchor{j["time"].get<double>(), j["x"].get<double>(), j["z"].get<double>(),
                               j["yaw"].get<double>(), j.value("floor_y", 0.0)};
       } else if (kind == "clock") {
-        r.rate_hz = j.value("rate_hz", 0.0);
+        // A review records its display rate in whole Hz from 10 to 1000 (review_loop.cpp); a rate outside
+        // would stretch the replay's clock without end (1e-9 Hz wrote 2 GB and never finished).
+        if (!j.contains("rate_hz") || !j["rate_hz"].is_number() || !(j["rate_hz"].get<double>() >= 10.0) ||
+            !(j["rate_hz"].get<double>() <= 1000.0))
+          corrupted(path, number,
+                    "a clock record's \"rate_hz\" must be a number from 10 to 1000 (frames a second)");
+        r.rate_hz = j["rate_hz"].get<double>();
       } else if (kind == "profile" && r.profile.empty()) {
         r.profile = j.value("profile", "");
       } else if (kind == "end") {
@@ -269,6 +300,26 @@ SessionRecording read_session_recording(const std::string& path) {
     r.cut = "no \"end\" record after line " + std::to_string(r.lines) +
             " (the session crashed or the file was truncated)";
   return r;
+}
+
+}  // namespace
+
+SessionRecording read_session_recording(const std::string& path) {
+  std::error_code error;
+  if (std::filesystem::is_directory(path, error))
+    throw CommandError(path + ": is a folder, not a session recording");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw CommandError(path + ": cannot open the session recording");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  const std::string text = buffer.str();
+  if (text.empty()) throw CommandError(path + ": the session recording is empty");
+  std::size_t number = 0;
+  try {
+    return read_lines(path, text, number);
+  } catch (const nlohmann::json::exception& e) {  // a field read as the type it should have, and is not
+    corrupted(path, number, std::string("a field has the wrong type (") + e.what() + ")");
+  }
 }
 
 namespace {

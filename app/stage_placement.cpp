@@ -1,5 +1,6 @@
 #include "stage_placement.hpp"
 
+#include <cmath>
 #include <stdexcept>
 
 namespace pushpull::app {
@@ -28,10 +29,18 @@ StagePlacement placement_from(const Eigen::Matrix4d& T) {
 StagePlacement place_on_stage(const Eigen::MatrixXd& V, const PlacementOptions& o) {
   if (V.rows() == 0) throw std::invalid_argument("place_on_stage: the model has no vertices");
   if (!(o.scale > 0.0)) throw std::invalid_argument("place_on_stage: the scale must be > 0");
-  if (o.up_model.norm() == 0.0) throw std::invalid_argument("place_on_stage: the up axis is zero");
-  const Eigen::Vector3d up = o.up_model.normalized();
-  const Eigen::Vector3d front_in = o.front_model - o.front_model.dot(up) * up;
-  if (front_in.norm() < 1e-9 * std::max(1.0, o.front_model.norm()))
+  // An axis whose plain norm overflows or underflows (--up 1e308 1e308 1e308) is scaled by its stable norm
+  // first (it squashed the model to nothing); other axes keep the plain path's bits.
+  auto axis = [](const Eigen::Vector3d& v) -> Eigen::Vector3d {
+    const double plain = v.norm(), stable = v.stableNorm();
+    if (plain > 0.0 && std::isfinite(plain)) return v;
+    return stable > 0.0 && std::isfinite(stable) ? Eigen::Vector3d(v / stable) : Eigen::Vector3d::Zero();
+  };
+  const Eigen::Vector3d up_model = axis(o.up_model), front_model = axis(o.front_model);
+  if (up_model.norm() == 0.0) throw std::invalid_argument("place_on_stage: the up axis is zero");
+  const Eigen::Vector3d up = up_model.normalized();
+  const Eigen::Vector3d front_in = front_model - front_model.dot(up) * up;
+  if (front_in.norm() < 1e-9 * std::max(1.0, front_model.norm()))
     throw std::invalid_argument("place_on_stage: the front axis is zero or parallel to the up axis");
   const Eigen::Vector3d front = front_in.normalized();
   const Eigen::Vector3d right = up.cross(front);

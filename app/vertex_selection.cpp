@@ -14,11 +14,15 @@
 namespace pushpull::app {
 
 std::vector<int> read_index_file(const std::filesystem::path& path, Eigen::Index vertex_count) {
+  std::error_code error;
+  if (std::filesystem::is_directory(path, error))
+    throw CommandError(path.string() + ": is a folder, not an index file");
   std::ifstream in(path);
   if (!in) throw CommandError(path.string() + ": cannot open index file: " + std::strerror(errno));
   std::vector<int> indices;
   std::string line;
   for (std::size_t line_no = 1; std::getline(in, line); ++line_no) {
+    if (line_no == 1 && line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);  // a UTF-8 byte order mark
     const std::size_t hash = line.find('#');
     if (hash != std::string::npos) line.resize(hash);
     std::istringstream tokens(line);

@@ -298,7 +298,8 @@ TEST_F(CliMessages, UnusableCommandLinesNameTheCommandAndExitTwo) {
 }
 
 // What deform says of a pull that is not a push/pull: over 100 times the model's size is refused before
-// anything is written; a spike, a handle torn out, a whole part moved and a solve cut short are warned
+// anything is written; a spike, a handle torn out, a whole part moved, a surface moved far more than the pull
+// and a solve cut short are warned
 // about, on the terminal and in METRICS.json's warnings (scripts read those), each once.
 TEST_F(CliMessages, DeformWarnsOfPullsThatAreNotAPushPull) {
   const std::string model = kHemisphere.string();
@@ -347,6 +348,21 @@ TEST_F(CliMessages, DeformWarnsOfPullsThatAreNotAPushPull) {
   warned("--handle-at 0 0 1 --handle-radius 0.2 --roi-radius 0.8 --displacement 0 0 0.1 --iterations 18",
          "not converged: stopped after 18 iteration(s) (max-iterations) with the estimated distance to the "
          "minimiser 0.015 |d|, above --tolerance 0.01 (an unchecked estimate: it can be 2-3x low)");
+  // A surface torn many times |d| away (arap-h with a huge curvature weight): said, with the parameter to
+  // change. (On the bundled bonnet, an open sheet: 341 m after 20 iterations.)
+  {
+    const std::string far =
+        "times |d| = 100.0 mm: far more than the pull, not a push/pull result (a smaller "
+        "--lambda weighs the curvature term less)";
+    const CommandResult run =
+        run_pushpull("deform " + (fs::path(PUSHPULL_SOURCE_DIR) / "examples" / "hood.off").string() +
+                     " --handle-at 0 0.6 0.9 --handle-radius 0.2 --roi-radius 0.5 "
+                     "--displacement 0 0 0.1 --method arap-h --lambda 1e12 --iterations 20" +
+                     outputs);
+    ASSERT_EQ(run.status, 0) << run.output;
+    EXPECT_EQ(count(run.output, far), 1u) << run.output;
+    EXPECT_EQ(warnings_with(path("m.json"), far).first, 1u);
+  }
   // The paper's setting says "not converged" in its stop text, not as a warning.
   const CommandResult paper = run_pushpull("deform " + model +
                                            " --handle-at 0 0 1 --handle-radius 0.2 --roi-radius 0.8 "

@@ -17,6 +17,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 namespace {
@@ -453,6 +454,28 @@ TEST(ReplayXr, AnInputTimeOutOfOrderOrPastTheEndIsNamedByItsLine) {
               std::string::npos)
         << c.t << ": " << r.output;
     EXPECT_NE(r.output.find(c.says), std::string::npos) << c.t << ": " << r.output;
+  }
+  // The first input line far from the first frame, and a clock rate no review records (1e-9 Hz wrote 2 GB of
+  // replay and never ended): named by their lines too.
+  std::size_t first = 0;
+  while (first < recorded.size() && recorded[first].find("\"t\":") == std::string::npos) ++first;
+  std::size_t clock = 0;
+  while (clock < recorded.size() && recorded[clock].find("\"record\":\"clock\"") == std::string::npos)
+    ++clock;
+  ASSERT_LT(clock, recorded.size());
+  for (const auto& [line, text, says] :
+       {std::tuple{first, with_time(recorded[first], "1e300"), std::string("on the first input line")},
+        std::tuple{clock, std::string(R"({"record":"clock","time":0,"rate_hz":1e-9})"),
+                   std::string("\"rate_hz\" must be a number from 10 to 1000")}}) {
+    auto lines = recorded;
+    lines[line] = text;
+    write_lines(session, lines);
+    const auto r = replay(session, dir / "out", "--no-pictures");
+    EXPECT_NE(r.status, 0) << r.output;
+    EXPECT_NE(r.output.find(session.string() + ":" + std::to_string(line + 1) + ": corrupted line: "),
+              std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find(says), std::string::npos) << r.output;
   }
   // Cut short (no end record) with a damaged last time: still named, not replayed for ever.
   auto cut = recorded;

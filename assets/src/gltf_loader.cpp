@@ -38,6 +38,7 @@ struct FsContext {
   fs::path root;  // canonical folder of the model, empty = no external files
   std::uint64_t max_bytes = 0;
   std::string refusal;  // first refusal, for the error message
+  std::vector<fs::path> read;  // the external files read
 };
 
 bool allowed(FsContext& context, const std::string& path) {
@@ -84,6 +85,7 @@ bool fs_read_whole_file(std::vector<unsigned char>* out, std::string* err, const
     if (err) *err += "cannot read '" + path + "'\n";
     return false;
   }
+  context.read.emplace_back(path);
   return true;
 }
 
@@ -502,6 +504,7 @@ void load_gltf(std::span<const std::uint8_t> bytes, const std::string& name, con
   if (!gltf.skins.empty() || !gltf.animations.empty())
     model.report.warnings.push_back(name + ": skins and animations are ignored (rest pose used)");
 
+  model.source_files.insert(model.source_files.end(), context.read.begin(), context.read.end());
   convert_materials(gltf, model);
   try {
     Flattener(gltf, document, name, limits, model).run();

@@ -182,6 +182,7 @@ Model load_model(const fs::path& path, const LoadOptions& options) {
   if (base.empty()) base = ".";
   Model model = load_model_from_memory(bytes, path.string(), base, options);
   model.source_path = path;
+  model.source_files.insert(model.source_files.begin(), path);
   return model;
 }
 

@@ -27,7 +27,8 @@
 // --smooth-start-min-free N: the default solves' DeformOptions::smooth_start_min_free, e.g. 0 to check asan's
 // estimate from the smooth start on every region; --coarse-start-min-free N: likewise
 // DeformOptions::coarse_start_min_free, e.g. 500 to check the estimate after coarse-to-fine starts on the
-// random pulls' regions; --method: only these methods' rows, repeatable)
+// random pulls' regions; --mu M: asan's stretch factor (> 1) instead of the paper's 100, e.g. to check the
+// estimate on stiffer or softer materials; --method: only these methods' rows, repeatable)
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -81,6 +82,7 @@ std::vector<pd::Method> g_methods(pd::kAllMethods.begin(), pd::kAllMethods.end()
 std::optional<int> g_smooth_start_min_free;  // --smooth-start-min-free; empty: the solver's default
 std::optional<int> g_coarse_start_min_free;  // --coarse-start-min-free; empty: the solver's default
 bool g_traced = false;                       // --trace
+std::optional<double> g_mu;                  // --mu: asan's stretch factor; empty: the solver's default
 
 // The minimiser of each method's energy on one problem, solved to an estimated 1e-9 |d| (minutes on the car's
 // asan), so run() and run_warm() share it.
@@ -91,6 +93,7 @@ const pd::DeformResult& reference_of(const Problem& p, pd::Method method, Refere
   if (it == references.end()) {
     pd::DeformOptions tight;
     tight.method = method;
+    if (g_mu) tight.mu = *g_mu;
     tight.tolerance = 1e-9;
     tight.max_iterations = 20000;
     // The same start as the default solves: where the minimiser is not unique (a part hanging from the
@@ -113,6 +116,7 @@ std::optional<pd::DeformResult> default_solve(const Problem& p, pd::Method metho
                                               Trace* trace = nullptr) {
   pd::DeformOptions options;
   options.method = method;
+  if (g_mu) options.mu = *g_mu;
   if (g_smooth_start_min_free) options.smooth_start_min_free = *g_smooth_start_min_free;
   if (g_coarse_start_min_free) options.coarse_start_min_free = *g_coarse_start_min_free;
   if (trace)
@@ -171,6 +175,7 @@ int run(const Problem& p, References& references) {
     const pd::DeformResult& r = *solved;
     pd::DeformOptions options;
     options.method = method;
+    if (g_mu) options.mu = *g_mu;
     const pd::DeformResult& reference = reference_of(p, method, references);
     const pd::DeformResult paper = pd::deform(p.mesh, p.roi, p.d, pd::paper_iterations(options));
     const double truth = true_error(r.V, reference.V, p.d);
@@ -217,6 +222,7 @@ int run_warm(const Problem& p, References& references) {
     if (method != pd::Method::Asan && method != pd::Method::ArapSR) continue;  // the service's defaults
     pd::DeformOptions options;
     options.method = method;
+    if (g_mu) options.mu = *g_mu;
     const pd::DeformResult& reference = reference_of(p, method, references);
     auto mesh = std::make_shared<const pd::Mesh>(p.mesh);
     for (const double fraction : {0.9, 0.97, 0.995}) {
@@ -387,6 +393,8 @@ int main(int argc, char** argv) {
     } else if (std::strcmp(argv[a], "--coarse-start-min-free") == 0 && a + 1 < argc &&
                std::atoi(argv[a + 1]) >= -1) {
       g_coarse_start_min_free = std::atoi(argv[++a]);
+    } else if (std::strcmp(argv[a], "--mu") == 0 && a + 1 < argc && std::atof(argv[a + 1]) > 1.0) {
+      g_mu = std::atof(argv[++a]);
     } else if (std::strcmp(argv[a], "--method") == 0 && a + 1 < argc) {
       try {
         methods.push_back(pd::parse_method(argv[++a]));
@@ -397,7 +405,7 @@ int main(int argc, char** argv) {
     } else {
       std::fprintf(stderr,
                    "usage: stopping_bench [--quick] [--random-pulls N [--seed S] [--details] [--trace]] "
-                   "[--smooth-start-min-free N] [--coarse-start-min-free N] [--method NAME]...\n");
+                   "[--smooth-start-min-free N] [--coarse-start-min-free N] [--mu M] [--method NAME]...\n");
       return 2;
     }
   }

@@ -35,7 +35,8 @@ void check_options(const DeformOptions& o) {
     fail("sr_arap_alpha must be finite and >= 0");
   if (!(o.arap_h_lambda >= 0.0) || !std::isfinite(o.arap_h_lambda))
     fail("arap_h_lambda must be finite and >= 0");
-  if (o.stretch_direction && (!o.stretch_direction->allFinite() || o.stretch_direction->norm() == 0.0)) {
+  if (o.stretch_direction &&
+      (!o.stretch_direction->allFinite() || o.stretch_direction->stableNorm() == 0.0)) {
     fail("stretch_direction must be finite and non-zero");
   }
 }
@@ -349,8 +350,13 @@ double Deformer::Impl::prepare_weights(const Eigen::Vector3d& push_direction,
   if (options.method == Method::Asan) {
     const Eigen::Vector3d d_o = options.stretch_direction.value_or(push_direction);
     std::optional<Eigen::Vector3d> unit;
-    if (d_o.norm() > 0.0)
+    // A direction given as 1e300 1e300 0 or 1e-200 0 0 (whose plain norm overflows or underflows) is a
+    // direction all the same: scaled by its stable norm first (other directions keep the plain path's bits).
+    const double length = d_o.norm(), stable = d_o.stableNorm();
+    if (length > 0.0 && std::isfinite(length))
       unit = d_o.normalized();
+    else if (stable > 0.0 && std::isfinite(stable))
+      unit = (d_o / stable).normalized();
     else
       warnings.push_back("asan: zero push/pull direction, the unstretched (arap) weights are used");
     // tau depends on d_o d_o^T only: opposite directions share weights. Bit-equal directions only, so that

@@ -152,7 +152,7 @@ fs::path followed(const fs::path& path) {
 // The descriptor a path names that the process already holds (/dev/stdout, /dev/stderr, /dev/fd/N,
 // /proc/self/fd/N): written through as it is, so that a shell's redirection (`>> log`, a pipe) keeps its
 // meaning; reopening it would start at the file's beginning or replace the file.
-std::optional<int> inherited_descriptor(const fs::path& path) {
+std::optional<int> descriptor_name(const fs::path& path) {
   const std::string p = path.lexically_normal().string();
   if (p == "/dev/stdout") return 1;
   if (p == "/dev/stderr") return 2;
@@ -162,6 +162,21 @@ std::optional<int> inherited_descriptor(const fs::path& path) {
     const char* first = p.data() + prefix.size();
     const auto [end, error] = std::from_chars(first, p.data() + p.size(), fd);
     if (error == std::errc() && end == p.data() + p.size() && fd >= 0) return fd;
+  }
+  return std::nullopt;
+}
+
+// The same for the path or any link on the way from it (a link `out.json -> /dev/stdout`): followed to the
+// end, /dev/stdout leads to the file the shell opened (`>> log`), which a rename would replace.
+std::optional<int> inherited_descriptor(const fs::path& path) {
+  fs::path p = path;
+  for (int hops = 0; hops < 40; ++hops) {
+    if (const std::optional<int> fd = descriptor_name(p)) return fd;
+    std::error_code error;
+    if (!fs::is_symlink(fs::symlink_status(p, error))) return std::nullopt;
+    const fs::path target = fs::read_symlink(p, error);
+    if (error) return std::nullopt;
+    p = target.is_absolute() ? target : p.parent_path() / target;
   }
   return std::nullopt;
 }
@@ -188,6 +203,7 @@ int write_all(int fd, std::string_view bytes) {
 
 // Returns the problem ("" on success).
 std::string write_to(const fs::path& requested, std::string_view bytes) {
+  if (requested.empty()) return "an empty file name";
   if (const std::optional<int> fd = inherited_descriptor(requested)) {
     if (::fcntl(*fd, F_GETFD) == -1) return "no such open file descriptor";
     const int failed = write_all(*fd, bytes);
@@ -258,6 +274,7 @@ void write_file_atomically(const fs::path& path, std::string_view bytes) {
 }
 
 std::string output_path_problem(const fs::path& requested, MissingFolder missing) {
+  if (requested.empty()) return "an empty file name";
   if (inherited_descriptor(requested)) return {};
   const fs::path path = followed(requested);
   struct stat existing {};
@@ -274,6 +291,10 @@ std::string output_path_problem(const fs::path& requested, MissingFolder missing
            : missing == MissingFolder::WillBeMade ? std::string()
                                                   : "the folder " + folder.string() + " does not exist";
   return {};
+}
+
+bool holds_descriptor(const fs::path& path) {
+  return inherited_descriptor(path).has_value();
 }
 
 bool same_output_file(const fs::path& a, const fs::path& b) {

@@ -1,6 +1,7 @@
 #include "global_system.hpp"
 
 #include <Eigen/SparseCholesky>
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
@@ -267,9 +268,11 @@ void GlobalSystem::factorize(const Eigen::SparseMatrix<double>& Q) {
   const double largest = d.cwiseAbs().maxCoeff();
   for (Eigen::Index i = 0; i < d.size(); ++i) {
     if (!(d(i) > 1e-13 * largest)) {
+      char values[64];  // (%.3g: std::to_string wrote 300 digits for 1e300 and 0.000000 for 4e-9)
+      std::snprintf(values, sizeof values, " = %.3g, largest %.3g)", d(i), largest);
       throw FactorizationError("the global matrix (" + std::to_string(n_free_) +
                                " free vertices) is singular or indefinite (pivot " + std::to_string(i) +
-                               " = " + std::to_string(d(i)) + ", largest " + std::to_string(largest) + ")");
+                               values);
     }
   }
   inv_d_ = d.cwiseInverse();

@@ -1,4 +1,5 @@
 // OFF and OBJ readers.
+#include <algorithm>
 #include "mesh_io_detail.hpp"
 #include "text_scan.hpp"
 
@@ -68,13 +69,17 @@ Mesh parse_off(std::string_view contents, const std::string& name) {
   if (counts.size() < 2) fail(name, counts_line, "expected 'vertices faces [edges]' counts");
   const std::int64_t vertex_count = counts[0];
   const std::int64_t face_count = counts[1];
-  // Smallest possible records: "0 0 0\n" per vertex and "3 0 0 0\n" per face.
-  detail::check_count_fits(name, counts_line, "vertices", vertex_count, 6, cursor.remaining_bytes());
-  detail::check_count_fits(name, counts_line, "faces", face_count, 8,
-                           cursor.remaining_bytes() - 6 * static_cast<std::size_t>(vertex_count));
+  // The counts must fit the bytes that follow, counting any record as at least "x\n" (a short record, "0 0"
+  // for a vertex or "2 0 1" for a face, is then read and refused for what it is, not as a corrupt count);
+  // memory is reserved for at most as many as well-formed records ("0 0 0\n", "3 0 0 0\n") would fit.
+  const std::size_t bytes_left = cursor.remaining_bytes() + 1;  // (the last line may lack its '\n')
+  detail::check_count_fits(name, counts_line, "vertices", vertex_count, 2, bytes_left);
+  detail::check_count_fits(name, counts_line, "faces", face_count, 2,
+                           bytes_left - 2 * static_cast<std::size_t>(vertex_count));
 
   detail::MeshBuilder builder(name);
-  builder.reserve(static_cast<std::size_t>(vertex_count), static_cast<std::size_t>(face_count));
+  builder.reserve(std::min(static_cast<std::size_t>(vertex_count), bytes_left / 6),
+                  std::min(static_cast<std::size_t>(face_count), bytes_left / 8));
   for (std::int64_t i = 0; i < vertex_count; ++i) {
     if (!next_content_line(cursor, line)) {
       fail(name, cursor.line_number(),

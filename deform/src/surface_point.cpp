@@ -40,8 +40,10 @@ SurfacePoint closest_surface_point(const Mesh& mesh, const Eigen::Vector3d& p) {
                           c = mesh.V.row(mesh.F(f, 2));
     if (degenerate(a, b, c)) continue;
     const Eigen::Vector3d q = closest_point_on_triangle(p, a, b, c);
+    // (A point so far away that the squared distance overflows still gets a triangle, not "no triangle":
+    // callers refuse such points by their distance to the model first.)
     const double distance2 = (q - p).squaredNorm();
-    if (distance2 < best_distance2) {
+    if (distance2 < best_distance2 || best.face < 0) {
       best_distance2 = distance2;
       best.face = static_cast<int>(f);
       best.point = q;

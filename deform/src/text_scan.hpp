@@ -12,7 +12,12 @@ namespace pushpull::deform::detail {
 // Walks `text` one line at a time. Lines exclude the '\n' and a trailing '\r'.
 class LineCursor {
  public:
-  explicit LineCursor(std::string_view text) : text_(text) {}
+  // A UTF-8 byte order mark at the start (editors on Windows write one) is skipped: it is not part of the
+  // first line's first word (an OBJ's first "v" read as "\xEF\xBB\xBFv" dropped that vertex and shifted every
+  // index). offset() still counts from the text's start.
+  explicit LineCursor(std::string_view text) : text_(text) {
+    if (text_.substr(0, 3) == "\xEF\xBB\xBF") pos_ = 3;
+  }
 
   // The next line, or false at the end of the text. line_number() is then that line's 1-based number.
   bool next(std::string_view& line) {

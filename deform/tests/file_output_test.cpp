@@ -110,6 +110,26 @@ TEST(FileOutput, ADescriptorItHoldsIsWrittenThrough) {
   EXPECT_FALSE(pd::same_output_file("/dev/stdout", "/dev/stdout"));  // streams: both results may go there
 }
 
+// So is one reached through a link (out.json -> /dev/fd/N): followed to its end, the link leads to the log
+// itself, which a temporary renamed over it would replace.
+TEST(FileOutput, ALinkToADescriptorItHoldsIsWrittenThrough) {
+  TempDir dir;
+  const fs::path log = dir.path / "log.txt";
+  const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
+  ASSERT_GE(fd, 0);
+  ASSERT_EQ(::write(fd, "earlier\n", 8), 8);
+  const fs::path link = dir.path / "out.json";
+  fs::create_symlink("/dev/fd/" + std::to_string(fd), link);
+  EXPECT_TRUE(pd::holds_descriptor(link));
+  EXPECT_EQ(pd::output_path_problem(link), "");
+  pd::write_file_atomically(link, "{\"metrics\": 1}\n");
+  ::close(fd);
+  EXPECT_EQ(read_all(log), "earlier\n{\"metrics\": 1}\n");
+  EXPECT_TRUE(fs::is_symlink(link));
+  EXPECT_FALSE(pd::holds_descriptor(log));
+  EXPECT_EQ(pd::output_path_problem(""), "an empty file name");
+}
+
 TEST(FileOutput, AFifoIsWrittenInPlace) {
   TempDir dir;
   const fs::path fifo = dir.path / "fifo";

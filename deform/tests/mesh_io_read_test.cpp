@@ -61,8 +61,18 @@ TEST(MeshIoRead, OffRefusals) {
   const std::string truncated =
       error_of([] { (void)pd::parse_off("OFF\n3 1 0\n0.00000000 0.00000000 0.00000000\n1 0 0\n", "t.off"); });
   EXPECT_NE(truncated.find("t.off:4: truncated: 2 of 3 vertices"), std::string::npos) << truncated;
-  const std::string counts = error_of([] { (void)pd::parse_off("OFF\n3 1 0\n0 0 0\n1 0 0\n", "c.off"); });
-  EXPECT_NE(counts.find("c.off:2: header claims 3 vertices"), std::string::npos) << counts;
+  // Counts the bytes cannot hold even as two-byte records: refused at the counts line. Short records are read
+  // and refused for what they are (a face "2 0 1" was refused as a corrupt count).
+  const std::string counts = error_of([] { (void)pd::parse_off("OFF\n30 1 0\n0 0 0\n1 0 0\n", "c.off"); });
+  EXPECT_NE(counts.find("c.off:2: header claims 30 vertices"), std::string::npos) << counts;
+  const std::string cut = error_of([] { (void)pd::parse_off("OFF\n3 1 0\n0 0 0\n1 0 0\n", "cut.off"); });
+  EXPECT_NE(cut.find("cut.off:4: truncated: 2 of 3 vertices read"), std::string::npos) << cut;
+  const std::string two =
+      error_of([] { (void)pd::parse_off("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n2 0 1\n", "two.off"); });
+  EXPECT_NE(two.find("two.off:6: face with 2 vertices"), std::string::npos) << two;
+  const std::string flat =
+      error_of([] { (void)pd::parse_off("OFF\n3 1 0\n0 0\n1 0\n0 1\n3 0 1 2\n", "xy.off"); });
+  EXPECT_NE(flat.find("xy.off:3: vertex 0 has fewer than 3 coordinates"), std::string::npos) << flat;
   const std::string absurd = error_of([] { (void)pd::parse_off("OFF\n2000000000 1 0\n0 0 0\n", "big.off"); });
   EXPECT_NE(absurd.find("big.off:2"), std::string::npos) << absurd;
   EXPECT_NE(absurd.find("2000000000"), std::string::npos) << absurd;
@@ -209,4 +219,25 @@ TEST(MeshIoRead, EveryTruncationFailsCleanly) {
                   .V,
               mesh.V);
   }
+}
+
+// A UTF-8 byte order mark at the start is not part of the first record: the OBJ's first vertex stays (it was
+// dropped and every face index shifted), and the OFF and PLY headers read as without it.
+TEST(MeshIoRead, AByteOrderMarkIsSkipped) {
+  const std::string bom = "\xEF\xBB\xBF";
+  const pd::Mesh obj =
+      pd::parse_obj(bom + "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 5 5 5\nf 1 2 3\nf 1 3 4\n", "bom.obj");
+  ASSERT_EQ(obj.V.rows(), 5);
+  EXPECT_EQ(obj.V.row(0), Eigen::RowVector3d(0, 0, 0));
+  EXPECT_EQ(obj.F.row(1), Eigen::RowVector3i(0, 2, 3));
+  const pd::Mesh off = pd::parse_off(bom + "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "bom.off");
+  EXPECT_EQ(off.F.rows(), 1);
+  const pd::Mesh ply =
+      pd::parse_ply(bom +
+                        "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty "
+                        "float y\nproperty float z\nelement face 1\nproperty list uchar int "
+                        "vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n",
+                    "bom.ply");
+  EXPECT_EQ(ply.V(1, 0), 1.0);
+  EXPECT_EQ(ply.F.rows(), 1);
 }

@@ -213,3 +213,12 @@ TEST(MeshIoRewrite, AsciiPlyTokensAreFoundWhereTheReaderReadsThem) {
   expected.replace(expected.find(before), before.size(), "0.9 0.25 1.000 1.000 0.9");
   EXPECT_EQ(text, expected);
 }
+
+// A file that starts with a byte order mark keeps it, and its first vertex is the one rewritten first.
+TEST(MeshIoRewrite, AByteOrderMarkStaysAndTheFirstVertexMoves) {
+  const std::string source = "\xEF\xBB\xBFv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  Eigen::MatrixXd V(3, 3);
+  V << 0.5, 0, 0, 1, 0, 0, 0, 1, 0;
+  const pd::PositionRewrite rewrite = pd::rewrite_positions(source, pd::MeshFormat::obj, V, "bom.obj");
+  EXPECT_EQ(rewrite.contents, "\xEF\xBB\xBFv 0.5 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+}

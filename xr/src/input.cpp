@@ -3,6 +3,7 @@
 #include "finite_pose.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <utility>
@@ -216,7 +217,15 @@ struct Input::Impl {
     const XrActionStateGetInfo info = get_info(action, hand);
     XrActionStateFloat s{XR_TYPE_ACTION_STATE_FLOAT};
     PUSHPULL_XR_CHECK(instance, xrGetActionStateFloat(session, &info, &s));
-    return s.isActive ? s.currentState : 0.0f;
+    return s.isActive ? in_range(s.currentState, 0.0f) : 0.0f;
+  }
+  // A float action's value as the specification bounds it (triggers and grips 0..1, thumbstick axes -1..1):
+  // a runtime's out-of-range or non-finite value (one gave 1e308, an infinity as a float) reads as the
+  // nearest bound, or as released, instead of reaching the gesture and the recording (which wrote it as
+  // null).
+  static float in_range(float value, float low) {
+    if (!std::isfinite(value)) return 0.0f;
+    return std::clamp(value, low, 1.0f);
   }
 };
 
@@ -299,7 +308,8 @@ void Input::sync(XrTime time) {
       const XrActionStateGetInfo info = s.get_info(Thumbstick, h);
       XrActionStateVector2f v{XR_TYPE_ACTION_STATE_VECTOR2F};
       PUSHPULL_XR_CHECK(s.instance, xrGetActionStateVector2f(s.session, &info, &v));
-      if (v.isActive) in.thumbstick = v.currentState;
+      if (v.isActive)
+        in.thumbstick = {Impl::in_range(v.currentState.x, -1.0f), Impl::in_range(v.currentState.y, -1.0f)};
     }
     XrSpaceLocation location{XR_TYPE_SPACE_LOCATION};
     PUSHPULL_XR_CHECK(s.instance, xrLocateSpace(s.aim_spaces[h], s.stage, time, &location));

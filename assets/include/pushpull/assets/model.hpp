@@ -77,6 +77,9 @@ struct SourceDocument;
 
 struct Model {
   std::filesystem::path source_path;
+  // Every file the load read: the model file (load_model) and each external file its URIs named (glTF
+  // buffers and images), as the paths opened. Commands refuse outputs that would replace one of them.
+  std::vector<std::filesystem::path> source_files;
   std::vector<Primitive> primitives;
   std::vector<Material> materials;
   std::vector<Texture> textures;

@@ -7,8 +7,8 @@
 //   permissions. A file without any write permission is refused, not replaced.
 // - A symbolic link is followed (a chain too, and a link to a file not there yet): the file it names is
 //   replaced the same way, the link stays.
-// - A descriptor the process holds (/dev/stdout, /dev/stderr, /dev/fd/N, /proc/self/fd/N) is written through
-//   as it is, so a shell's `> file`, `>> log` or pipe keeps its meaning.
+// - A descriptor the process holds (/dev/stdout, /dev/stderr, /dev/fd/N, /proc/self/fd/N), named or reached
+//   through links, is written through as it is, so a shell's `> file`, `>> log` or pipe keeps its meaning.
 // - A character device, FIFO or socket is opened and written in place (no temporary).
 // - SIGINT or SIGTERM while a temporary exists removes it before the process ends (where the signal would
 //   end the process; a handler the program installed, e.g. a review's graceful Ctrl-C, is called instead).
@@ -31,10 +31,14 @@ void write_file_atomically(const std::filesystem::path& path, std::string_view b
 enum class MissingFolder { Refused, WillBeMade };
 
 // Why `path` cannot be written as above, or "" when it can (as far as one can tell before writing): its
-// folder does not exist (unless it will be made) or is a file, it is a folder, it has no write permission.
+// name is empty, its folder does not exist (unless it will be made) or is a file, it is a folder, it has no
+// write permission.
 // For checking every output of a command before writing any of them.
 [[nodiscard]] std::string output_path_problem(const std::filesystem::path& path,
                                               MissingFolder missing = MissingFolder::Refused);
+
+// Whether `path`, or a link on the way from it, names a descriptor the process holds (written through).
+[[nodiscard]] bool holds_descriptor(const std::filesystem::path& path);
 
 // Whether two output paths name the same file (after following symbolic links; either may not exist yet).
 [[nodiscard]] bool same_output_file(const std::filesystem::path& a, const std::filesystem::path& b);

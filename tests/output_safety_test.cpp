@@ -1,0 +1,151 @@
+// Outputs never replace what a command reads (the model, a glTF's buffers and images, index files; a replay's
+// recording and model in its --out), a review's --record never replaces an earlier recording, and a
+// link to /dev/stdout is written through to the stream the shell opened instead of replacing the file at its
+// end. Each refusal exits non-zero, names the output and what it would replace, and leaves the input as it
+// was.
+#include "command_runner.hpp"
+
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+using pushpull::testing::CommandResult;
+using pushpull::testing::run_command;
+using pushpull::testing::run_pushpull;
+
+const fs::path kHood = fs::path(PUSHPULL_SOURCE_DIR) / "examples" / "hood.off";
+const fs::path kCarFolder = fs::path(PUSHPULL_SOURCE_DIR) / "examples" / "AsamVehicle";
+const std::string kPull =
+    " --handle-at 0 0.6 0.9 --handle-radius 0.2 --roi-radius 0.5 --displacement 0 0 0.1";
+
+std::string bytes_of(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+class OutputSafety : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("pushpull_output_safety_" + std::to_string(::getpid()) + "_" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  [[nodiscard]] std::string path(const std::string& leaf) const { return (dir_ / leaf).string(); }
+  // Runs `arguments`, expects a refusal naming `output` and "would replace", and `input` unchanged.
+  void expect_refused(const std::string& arguments, const std::string& output, const fs::path& input,
+                      const std::string& why = "would replace") {
+    const std::string before = bytes_of(input);
+    ASSERT_FALSE(before.empty()) << input;
+    const CommandResult r = run_pushpull(arguments);
+    EXPECT_NE(r.status, 0) << arguments << "\n" << r.output;
+    EXPECT_NE(r.output.find(output + ": "), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find(why), std::string::npos) << r.output;
+    EXPECT_EQ(bytes_of(input), before) << input << " changed by: " << arguments;
+  }
+  fs::path dir_;
+};
+
+TEST_F(OutputSafety, DeformRefusesOutputsThatWouldReplaceItsInputs) {
+  const std::string model = path("w.off");
+  fs::copy_file(kHood, model);
+  expect_refused("deform " + model + kPull + " --out " + model + " --metrics " + path("m.json"), model,
+                 model);
+  expect_refused("deform " + model + kPull + " --out " + path("x.off") + " --metrics " + model, model, model);
+  // Through a link to the model.
+  fs::create_symlink(model, path("link.off"));
+  expect_refused("deform " + model + kPull + " --out " + path("link.off") + " --metrics " + path("m.json"),
+                 path("link.off"), model);
+  // An index file.
+  std::ofstream(path("handle.txt")) << "0\n1\n2\n";
+  std::ofstream(path("fixed.txt")) << "4000\n4001\n";
+  expect_refused("deform " + model + " --handle " + path("handle.txt") + " --fixed " + path("fixed.txt") +
+                     " --displacement 0 0 0.05 --out " + path("x.off") + " --metrics " + path("handle.txt"),
+                 path("handle.txt"), path("handle.txt"));
+  // A glTF's external buffer, named the way the output's folder sees it.
+  fs::create_directories(path("car"));
+  for (const auto& entry : fs::directory_iterator(kCarFolder))
+    fs::copy_file(entry.path(), dir_ / "car" / entry.path().filename());
+  expect_refused("deform " + path("car/vehicle_example.gltf") +
+                     " --handle-at 1.855 0.694 0 --handle-radius 0.05 --roi-radius 2 --displacement 0.1 0 0 "
+                     "--out " +
+                     path("car.glb") + " --metrics " + path("car/../car/vehicle_example.bin"),
+                 path("car/../car/vehicle_example.bin"), path("car/vehicle_example.bin"));
+  EXPECT_FALSE(fs::exists(path("x.off")));
+  EXPECT_FALSE(fs::exists(path("m.json")));
+  EXPECT_FALSE(fs::exists(path("car.glb")));
+}
+
+TEST_F(OutputSafety, RenderAndReviewRefuseOutputsOverTheModelsFiles) {
+  fs::create_directories(path("car"));
+  for (const auto& entry : fs::directory_iterator(kCarFolder))
+    fs::copy_file(entry.path(), dir_ / "car" / entry.path().filename());
+  // The glTF's texture is a PNG a render could be asked to write.
+  expect_refused("render " + path("car/vehicle_example.gltf") + " --out " + path("car/License_Plate.png"),
+                 path("car/License_Plate.png"), path("car/License_Plate.png"));
+  // A review refuses before any session starts (no runtime needed).
+  const std::string model = path("w.off");
+  fs::copy_file(kHood, model);
+  expect_refused("review " + model + " --out " + model, model, model);
+  // An existing file at --record (here the model itself) is not replaced: a recording is a session's only
+  // copy.
+  expect_refused("review " + model + " --record " + model, model, model, "--record: a file is already there");
+}
+
+// A replay clears and writes commit-*, final.*, report.html, input.jsonl, replay-session.jsonl and eyes/ in
+// its
+// --out: a recording or model lying there under such a name is refused before anything is removed (a model
+// renamed final.gltf was deleted, then "no such file").
+TEST_F(OutputSafety, AReplayRefusesAnOutFolderThatHoldsItsInputsUnderItsNames) {
+  const fs::path bundled = fs::path(PUSHPULL_SOURCE_DIR) / "examples" / "sessions" / "paper_scenarios.jsonl";
+  const std::string model = (kCarFolder / "vehicle_example.gltf").string();
+  for (const char* name : {"final.jsonl", "input.jsonl", "commit-log.jsonl"}) {
+    fs::copy_file(bundled, path(name), fs::copy_options::overwrite_existing);
+    expect_refused(
+        "replay " + path(name) + " --model " + model + " --out " + dir_.string() + " --no-pictures",
+        path(name), path(name), "under a name the replay writes or clears");
+  }
+  fs::create_directories(path("car"));
+  for (const auto& entry : fs::directory_iterator(kCarFolder))
+    fs::copy_file(entry.path(), dir_ / "car" /
+                                    (entry.path().extension() == ".gltf" ? fs::path("final.gltf")
+                                                                         : entry.path().filename()));
+  expect_refused("replay " + bundled.string() + " --model " + path("car/final.gltf") + " --out " +
+                     path("car") + " --no-pictures",
+                 path("car/final.gltf"), path("car/final.gltf"), "under a name the replay writes or clears");
+  const CommandResult empty = run_pushpull("replay " + bundled.string() + " --out ''");
+  EXPECT_NE(empty.status, 0);
+  EXPECT_NE(empty.output.find("--out: an empty folder name"), std::string::npos) << empty.output;
+}
+
+TEST_F(OutputSafety, ALinkToStdoutIsWrittenThroughAndTheLogKeepsItsLines) {
+  fs::create_symlink("/dev/stdout", path("stdout.json"));
+  std::ofstream(path("log.txt")) << "KEEP ME\n";
+  const CommandResult r =
+      run_command(std::string(PUSHPULL_EXECUTABLE) + " deform " + kHood.string() + kPull + " --out " +
+                  path("z.off") + " --metrics " + path("stdout.json") + " >> " + path("log.txt"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  const std::string log = bytes_of(path("log.txt"));
+  EXPECT_EQ(log.rfind("KEEP ME\n", 0), 0u) << log.substr(0, 200);
+  EXPECT_NE(log.find("\"input\""), std::string::npos) << "the metrics went to the log through the link";
+  EXPECT_TRUE(fs::is_symlink(path("stdout.json")));
+}
+
+TEST_F(OutputSafety, AnEmptyOutputNameIsRefusedByItsOption) {
+  const CommandResult r =
+      run_pushpull("deform " + kHood.string() + kPull + " --out " + path("x.off") + " --metrics ''");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("--metrics: an empty file name"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(path("x.off")));
+}
+
+}  // namespace
