@@ -3,6 +3,7 @@
 #include "commands.hpp"
 #include "drag_notes.hpp"
 #include "life_size.hpp"
+#include "method_check.hpp"
 #include "metrics_json.hpp"
 #include "model_output.hpp"
 #include "number_checks.hpp"
@@ -439,8 +440,19 @@ void run_deform(DeformCommandOptions o) {
                                            ? " (give --fixed or a smaller --roi-radius to hold it)"
                                            : " (give a --roi-radius that reaches past the handle)"));
   }
+  // Held, but with nothing between the handle and the fixed vertices to give: the handle steps out alone.
+  if (roi.free.empty() && !roi.fixed.empty() && !roi.handle.empty())
+    record.result.warnings.insert(
+        record.result.warnings.begin(),
+        "only the handle moves: no free vertex lies between it and the fixed ones, so "
+        "it steps out of the surface (a larger --roi-radius gives the region room)");
   for (const std::string& note : handle_notes)
     record.result.warnings.insert(record.result.warnings.begin(), note);
+  // What the load noticed (an unsupported extension the file requires, parts it ignored): said here too, as
+  // `pushpull info` says it.
+  for (auto it = model.scene.report.warnings.rbegin(); it != model.scene.report.warnings.rend(); ++it)
+    record.result.warnings.insert(record.result.warnings.begin(),
+                                  it->rfind(o.mesh + ":", 0) == 0 ? *it : o.mesh + ": " + *it);
   // The review's readout says it of a pull over kSteepPull handle radii; so does deform.
   if (!o.handle_at.empty() && d.norm() > kSteepPull * o.handle_radius) {
     char text[160];
@@ -595,13 +607,15 @@ void add_deform_command(CLI::App& root) {
       ->required();
   cmd->add_option("--method", o->method,
                   "arap-s, arap-sr, arap-m, arap-n, sr-arap, arap-h, arap-sr-h or asan")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(method_name());
   cmd->add_option("--mu", o->mu, "asan: stretch factor of the region along d_o (> 1)")
       ->capture_default_str()
       ->check(finite_above(1.0));
   cmd->add_option("--stretch-direction", o->stretch_direction, "asan: direction d_o (default: d)")
       ->expected(3);
   cmd->add_option("--asan-base", o->asan_base, "asan: membrane energy, arap-sr or arap-m")
+      ->check(asan_base_name())
       ->capture_default_str();
   cmd->add_option("--alpha", o->alpha, "sr-arap: rotation smoothness weight")
       ->capture_default_str()

@@ -1,5 +1,6 @@
 // `pushpull replay`: a recorded review session run again headless (replay_session.hpp).
 #include "commands.hpp"
+#include "method_check.hpp"
 #include "number_checks.hpp"
 #include "replay_compare.hpp"
 #include "replay_session.hpp"
@@ -32,19 +33,9 @@ void add_replay_command(CLI::App& root) {
   cmd->add_option("--out", o->out, "Output folder")->required();
   cmd->add_option("--model", o->model, "The model file, when it is no longer where the recording says");
   // A method name is checked when the command line is read, before any replay runs.
-  const CLI::Validator method_name(
-      [](std::string& name) -> std::string {
-        try {
-          (void)deform::parse_method(name);
-        } catch (const std::invalid_argument& e) {
-          return e.what();
-        }
-        return "";
-      },
-      "METHOD");
   cmd->add_option("--method", o->method,
                   "Replay with another method (asan, arap-s, arap-sr, arap-m, arap-n, ...)")
-      ->check(method_name);
+      ->check(method_name());
   auto* mu_option =
       cmd->add_option("--mu", *mu, "Replay with another ASAN stiffness ratio")->check(finite_above(1.0));
   cmd->add_option("--eye-size", o->eye_size, "Per-eye image size W H of the simulated headset")
@@ -59,7 +50,7 @@ void add_replay_command(CLI::App& root) {
          "--compare", *compare,
          "Replay once per method (e.g. asan,arap-sr) into OUT/METHOD and write OUT/compare.html side by side")
       ->delimiter(',')
-      ->check(method_name);
+      ->check(method_name());
   cmd->add_option(
          "--capture-every", o->capture_every,
          "Also write both eyes every N frames into OUT/eyes (default: at each release and at the end)")

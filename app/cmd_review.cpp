@@ -1,5 +1,6 @@
 // `pushpull review`: push and pull a model in an OpenXR headset (review_loop.hpp).
 #include "commands.hpp"
+#include "method_check.hpp"
 #include "number_checks.hpp"
 #include "review_loop.hpp"
 #include "solver_cpus.hpp"
@@ -43,7 +44,8 @@ void add_review_command(CLI::App& root) {
   cmd->add_option("model", o->model, "Model file: .gltf .glb .drc .off .obj .ply")->required();
   cmd->add_option("--method", o->method,
                   "Deformation method (asan, arap-s, arap-sr, arap-m, arap-n, sr-arap, arap-h, arap-sr-h)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(method_name());
   cmd->add_option("--mu", o->mu, "ASAN stiffness ratio")->capture_default_str()->check(finite_above(1.0));
   cmd->add_option(
          "--handle-radius", o->handle_radius_m,

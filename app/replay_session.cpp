@@ -182,7 +182,10 @@ void run_replay(const ReplayOptions& o) {
   std::vector<double> captures;
   for (const json& r : rec.records)
     if (r.value("record", "") == "release") captures.push_back(r.value("time", 0.0) + frame);
-  captures.push_back(rec.last_input_time + frame);
+  // The end's: one frame after the last input, or, where the review recorded the runtime's exit, at the last
+  // frame before it (the exit's frame shows nothing, and the session is gone after it).
+  captures.push_back(rec.exit_time ? std::min(rec.last_input_time + frame, *rec.exit_time - frame)
+                                   : rec.last_input_time + frame);
   for (const double t : captures) script += json{{"t", t}, {"event", "capture"}}.dump() + "\n";
   script += json{{"t", rec.last_input_time + 2.0 * frame}, {"event", "exit"}}.dump() + "\n";
   const fs::path script_path = out / "input.jsonl";
@@ -304,6 +307,11 @@ void run_replay(const ReplayOptions& o) {
                      : "not compared (the recording could not commit this push/pull)";
       if (!beyond && same_solver && first_mismatch.empty())
         first_mismatch = "commit " + std::to_string(c.index) + " was not committed in the recording";
+      // Past the commits of a recording that ended (its end record there, not cut): one the review never
+      // made.
+      if (beyond && !rec.cut && same_solver && first_mismatch.empty())
+        first_mismatch = "commit " + std::to_string(c.index) + " is one more than the recording's " +
+                         std::to_string(recorded_outcomes.size()) + " (the review did not make it)";
       on_recorded_path = false;
     } else {
       const json& r = rec.commits[*pair].record;

@@ -335,6 +335,10 @@ void run_review(const ReviewCommandOptions& o) {
       eyes.emplace(vk.device, xr.eye(0), xr.eye(1));
       input.emplace(xr.instance(), xr.handle(), xr.stage_space(), xr.enabled_extensions());
       menu = ReviewMenu{};
+      // A trigger still pulled when the headset is back must be let go before it presses: the live review
+      // read no release across the loss and did not press, but its replay, whose runtime loses the session
+      // through LOSS_PENDING, read the last frame's inputs as released and pressed again at once.
+      interaction.require_release();
       log.write({{"event", "session recreated"}});
       recorder.write_record("resumed", t);
       std::printf("pushpull review: the headset is back; the review goes on\n");
@@ -351,12 +355,19 @@ void run_review(const ReviewCommandOptions& o) {
     auto abandon_mirror_frame = [&] {
       if (mirror) mirror->abandon();
     };
+    // Whether the review asked to end (Esc, the window, Ctrl-C): otherwise an exit is the runtime's (the
+    // reviewer quit from its menu), recorded as xr/sim's exit event so that a replay ends there too.
+    bool asked_to_exit = false;
+    auto ask_exit = [&] {
+      asked_to_exit = true;
+      xr.request_exit();
+    };
     while (!xr.exit_requested() || xr.lost() || session_lost) {
       if (interrupted() && !interrupted_at) {
         interrupted_at = Clock::now();
         std::printf("pushpull review: interrupted; ending the review (again to quit at once)\n");
         std::fflush(stdout);
-        guarded(failure, [&] { xr.request_exit(); });
+        guarded(failure, ask_exit);
         if (session_lost || xr.lost() || failure) break;  // nothing to end gracefully
       }
       // A runtime that does not end the session within 3 s of the request: the review ends without it (the
@@ -380,8 +391,8 @@ void run_review(const ReviewCommandOptions& o) {
           // The headset is idle (standby, not yet ready): the supervisor's window still answers (close, Esc).
           if (mirror) {
             for (int key : mirror->poll())
-              if (key == 256 /* GLFW_KEY_ESCAPE */) xr.request_exit();
-            if (mirror->should_close()) xr.request_exit();
+              if (key == 256 /* GLFW_KEY_ESCAPE */) ask_exit();
+            if (mirror->should_close()) ask_exit();
           }
           std::this_thread::sleep_for(std::chrono::milliseconds(10));
           continue;
@@ -592,9 +603,9 @@ void run_review(const ReviewCommandOptions& o) {
               else
                 change_method(next_method(interaction.method()));
             }
-            if (key == 256 /* GLFW_KEY_ESCAPE */) xr.request_exit();
+            if (key == 256 /* GLFW_KEY_ESCAPE */) ask_exit();
           }
-          if (mirror->should_close()) xr.request_exit();
+          if (mirror->should_close()) ask_exit();
         }
         apply_due(o.colour_changes, next_colour_change, due_until, [&](const auto& change) {
           if (const auto c = parse_colour(change.second)) change_colour(*c);
@@ -700,6 +711,11 @@ void run_review(const ReviewCommandOptions& o) {
         break;
       }
     }
+    // The runtime ended the session (its exit, not ours, nor a loss): in the middle of a drag the frame that
+    // saw it read the trigger released and the drag was cancelled; a replay without the exit at that frame
+    // took the release as one and committed the drag. Recorded at the last frame's time.
+    if (xr.exit_requested() && !asked_to_exit && !xr.lost() && !session_lost && !failure)
+      recorder.write_event_input(t, "exit");
     // The end, also after a failure (review_end.hpp). A drag still in progress is cancelled (as the desktop
     // loop does): the model stays as it was before it.
     if (mirror && mirror->lost())

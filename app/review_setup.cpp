@@ -59,6 +59,10 @@ ReviewSetup prepare_review(const ReviewCommandOptions& o) {
   } catch (const std::exception& e) {
     throw CommandError(e.what());
   }
+  if (!o.quiet)
+    for (const std::string& w : s.model.report.warnings)
+      std::fprintf(stderr, "pushpull review: warning: %s%s\n",
+                   w.rfind(o.model + ":", 0) == 0 ? "" : (o.model + ": ").c_str(), w.c_str());
   for (const auto& [option, path] :
        {std::pair{"--out", &o.out}, std::pair{"--record", &o.record}, std::pair{"--events", &o.events}})
     refuse_output_over_inputs(option, *path, model_inputs(s.model.source_files));
@@ -79,8 +83,9 @@ ReviewSetup prepare_review(const ReviewCommandOptions& o) {
     const Eigen::Vector3d size = s.model.bounds.sizes() * s.life.scale();
     const double longest = size.maxCoeff();
     if (!o.quiet)
-      std::printf("pushpull review: the model is %.2f x %.2f x %.2f m at this scale\n", size.x(), size.y(),
-                  size.z());
+      std::printf(longest < 1e6 ? "pushpull review: the model is %.2f x %.2f x %.2f m at this scale\n"
+                                : "pushpull review: the model is %.3g x %.3g x %.3g m at this scale\n",
+                  size.x(), size.y(), size.z());
     if (longest < 0.3 || longest > 30.0)
       std::fprintf(stderr,
                    "pushpull review: note: its longest side is %.3g m; --length M makes it M metres long "

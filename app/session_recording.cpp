@@ -22,6 +22,19 @@
 namespace pushpull::app {
 namespace {
 
+// A parser's message as it can be printed: it quotes the bytes it stopped at, which in a binary file are raw
+// bytes for the terminal; those outside printable ASCII become \xNN, and at most 200 are kept.
+std::string printable(std::string_view text) {
+  static const char* const kHex = "0123456789abcdef";
+  std::string out;
+  for (std::size_t k = 0; k < text.size() && k < 200; ++k) {
+    const auto c = static_cast<unsigned char>(text[k]);
+    out += c >= 0x20 && c < 0x7f ? std::string(1, static_cast<char>(c))
+                                 : std::string("\\x") + kHex[c >> 4] + kHex[c & 15];
+  }
+  return text.size() > 200 ? out + "..." : out;
+}
+
 [[noreturn]] void corrupted(const std::string& path, std::size_t line, const std::string& what) {
   throw CommandError(path + ":" + std::to_string(line) + ": corrupted line: " + what);
 }
@@ -99,9 +112,11 @@ SessionRecording read_lines(const std::string& path, const std::string& text, st
         r.cut = "line " + std::to_string(number) + " is cut off (the session stopped while writing it)";
         break;
       }
-      corrupted(path, number, std::string("not JSON (") + e.what() + ")");
+      corrupted(path, number, "not JSON (" + printable(e.what()) + ")");
     }
     if (!j.is_object()) corrupted(path, number, "not a JSON object");
+    if (number > 1 && j.value("record", "") == "header")
+      corrupted(path, number, "a second header (two recordings joined?)");
     if (number == 1) {
       if (j.value("record", "") != "header")
         throw CommandError(path + ":1: not a pushpull session recording (the first line is not its header)");
@@ -199,6 +214,7 @@ SessionRecording read_lines(const std::string& path, const std::string& text, st
         r.last_input_time = t;
         last_input_line = number;
       }
+      if (!r.exit_time && j.value("event", "") == "exit") r.exit_time = t;
       if (legacy_desktop && j.value("path", "") == "/user/hand/left/input/menu/click") {
         if (j.contains("value") && j["value"].is_number() && j["value"].get<double>() > 0.5) {
           legacy_colour = next_colour(legacy_colour);

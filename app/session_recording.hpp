@@ -43,6 +43,9 @@ struct SessionRecording {
   std::optional<HeadAnchor> anchor;          // the "anchor" record, if any (at most one)
   std::string script;                        // the complete lines before any cut, '\n'-terminated (for xr/sim)
   double last_input_time = 0.0;              // largest "t" of an input line (seconds)
+  // The runtime's exit as the review recorded it (xr/sim's "exit" event line), if any: the session ends
+  // there.
+  std::optional<double> exit_time;
   double rate_hz = 0.0;                      // display rate of the recorded session (0: unknown)
   std::string profile;                       // the interaction profile the runtime chose ("" when none)
   std::size_t lines = 0;                     // complete lines read

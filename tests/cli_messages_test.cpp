@@ -283,6 +283,12 @@ TEST_F(CliMessages, UnusableCommandLinesNameTheCommandAndExitTwo) {
       {"deform " + model + " --paper-iterations --smooth-start-min-free 5 --displacement 0 0 1 --out " +
            path("o.off"),
        "pushpull deform: error: --paper-iterations excludes --smooth-start-min-free"},
+      {"deform " + model + " --method ASAN --displacement 0 0 1 --out " + path("o.off"),
+       "pushpull deform: error: --method: unknown deformation method 'ASAN'"},
+      {"deform " + model + " --asan-base arap-s --displacement 0 0 1 --out " + path("o.off"),
+       "pushpull deform: error: --asan-base: asan's base must be arap-sr or arap-m, got 'arap-s'"},
+      {"review " + model + " --method foo",
+       "pushpull review: error: --method: unknown deformation method 'foo'"},
       {"bogus", "pushpull: error: unknown command 'bogus'"},
       {"", "pushpull: error: A subcommand is required"},
   };

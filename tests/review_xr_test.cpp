@@ -1040,6 +1040,25 @@ TEST(ReviewXr, APressStillHeldWhenTheReviewEndsIsRecordedAndReplaysWithoutAPress
   }
 }
 
+// The runtime ends the session in the middle of a drag (the reviewer quit from its menu): the frame that saw
+// it read the trigger released and the drag was cancelled; the recording holds the exit as xr/sim's event at
+// that frame, so the replay cancels it too (without it, the replay took the released trigger for a release
+// and committed a push/pull the review never made, and said "all checks passed"). A review that ends itself
+// (Esc, Ctrl-C) records no exit event.
+TEST(ReviewXr, ARuntimeExitMidDragIsRecordedAndTheReplayCancelsTheDragToo) {
+  const fs::path dir = test_dir();
+  const fs::path recording = dir / "session.jsonl";
+  const ReviewRun run = run_review(dir, script_start() + R"({"t":1.2,"event":"exit"}
+)",
+                                   "--record " + recording.string(), "PUSHPULL_XR_SIM_PACE=1");
+  ASSERT_EQ(run.result.status, 0) << run.result.output;
+  EXPECT_EQ(run.of("cancel").size(), 1u) << run.result.output;
+  EXPECT_EQ(run.of("commit").size(), 0u) << run.result.output;
+  EXPECT_EQ(lines_where(recording, "event", "exit").size(), 1u);
+  expect_replays_with_commits(recording, 0);
+  EXPECT_EQ(recording_records(dir / "replay" / "replay-session.jsonl", "press").size(), 1u);
+}
+
 // Script lines for the grip tests: the right hand aiming straight down from (0.0123, y, z), and an input
 // path's value.
 const std::string kRightTrigger = "/user/hand/right/input/trigger/value";
@@ -1050,6 +1069,34 @@ std::string right_aim_down(double t, double y, double z) {
 }
 std::string input_value(double t, const std::string& path, double v) {
   return R"({"t":)" + number(t) + R"(,"path":")" + path + R"(","value":)" + number(v) + "}\n";
+}
+
+// The session lost abruptly mid-drag (a call fails with XR_ERROR_SESSION_LOST: xr/sim's "lost") with the
+// trigger still pulled: back, the held trigger does not press (it must be let go first), in the review and in
+// its replay, whose runtime loses the session through LOSS_PENDING and reads that frame's inputs as released
+// (the replay pressed again at once and committed a push/pull the review never made).
+TEST(ReviewXr, ATriggerHeldThroughALostSessionDoesNotPressInTheReplayEither) {
+  const fs::path dir = test_dir();
+  // Pressed at 0.5 s, the hand rising 1 cm every 0.1 s, lost at 1.0 s (with a pose line of that frame), let
+  // go at 1.6 s, then a push/pull at 2.0 s.
+  std::string script = R"({"t":0.0,"path":"/user/head","pose":{"p":[0,1.0,0],"q":[-0.32557,0,0,0.94552]}}
+)" + right_aim_down(0.0, 0.5, -0.65) +
+                       input_value(0.0, kRightTrigger, 0.0) + input_value(0.5, kRightTrigger, 1.0);
+  for (int k = 6; k <= 15; ++k) script += right_aim_down(0.1 * k, 0.5 + 0.01 * (k - 5), -0.65);
+  script += R"({"t":1.0,"event":"lost"}
+{"t":1.6,"path":"/user/hand/right/input/trigger/value","value":0.0}
+)" + push_pull_100mm_at(2.0) +
+            R"({"t":3.5,"event":"exit"}
+)";
+  const fs::path recording = dir / "session.jsonl";
+  const ReviewRun run =
+      run_review(dir, script, "--reconnect 2 --record " + recording.string(), "PUSHPULL_XR_SIM_PACE=1");
+  ASSERT_EQ(run.result.status, 0) << run.result.output;
+  EXPECT_NE(run.result.output.find("the headset is back"), std::string::npos) << run.result.output;
+  EXPECT_EQ(run.of("press").size(), 2u) << run.result.output;
+  ASSERT_EQ(run.of("commit").size(), 1u) << run.result.output;
+  expect_replays_with_commits(recording, 1);
+  EXPECT_EQ(recording_records(dir / "replay" / "replay-session.jsonl", "press").size(), 2u);
 }
 
 // Grip moves the model: 0.5 m towards the reviewer; a later push/pull aimed at where the bonnet's front now

@@ -10,13 +10,30 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
+#include <limits>
 
 namespace pushpull::assets {
 
 namespace fs = std::filesystem;
 
 namespace {
+
+// Whether some triangle of the primitives has a non-zero area in the model frame (their node transforms
+// applied): a model whose every triangle is degenerate in the file is named as such, not as welded away.
+bool any_triangle_with_area(const std::vector<Primitive>& primitives) {
+  for (const Primitive& p : primitives) {
+    const Eigen::Matrix3d linear = p.T_model_node.topLeftCorner<3, 3>();
+    for (std::size_t t = 0; t + 2 < p.indices.size(); t += 3) {
+      const Eigen::Vector3d a = linear * p.positions.row(p.indices[t]).transpose().cast<double>(),
+                            b = linear * p.positions.row(p.indices[t + 1]).transpose().cast<double>(),
+                            c = linear * p.positions.row(p.indices[t + 2]).transpose().cast<double>();
+      if ((b - a).cross(c - a).squaredNorm() > 0.0) return true;
+    }
+  }
+  return false;
+}
 
 std::string lower_extension(const fs::path& path) {
   std::string extension = path.extension().string();
@@ -72,6 +89,18 @@ void load_plain_mesh(std::span<const std::uint8_t> bytes, const std::string& nam
   model.report.format = extension == ".off" ? "OFF" : extension == ".obj" ? "OBJ" : "PLY";
   Primitive primitive;
   primitive.name = fs::path(name).stem().string();
+  // Drawn in 32-bit floats: a coordinate beyond their range (1e150 in an OFF) is named here, with its vertex,
+  // instead of as the float positions' "non-finite values".
+  for (Eigen::Index v = 0; v < exact.V.rows(); ++v)
+    for (int axis = 0; axis < 3; ++axis)
+      if (!(std::abs(exact.V(v, axis)) <= double(std::numeric_limits<float>::max()))) {
+        char text[160];
+        std::snprintf(text, sizeof text,
+                      ": vertex %lld has the coordinate %.6g, beyond the 32-bit floats it is drawn in (|x| < "
+                      "3.4e38)",
+                      static_cast<long long>(v), exact.V(v, axis));
+        throw AssetError(name + text);
+      }
   primitive.positions = exact.V.cast<float>();
   std::vector<std::uint32_t> indices;
   indices.reserve(static_cast<std::size_t>(exact.F.size()));
@@ -117,6 +146,11 @@ Model load_model_from_memory(const std::vector<std::uint8_t>& bytes, const std::
   model.report.weld = weld_primitives(model.primitives, options.weld, model.deform_mesh,
                                       exact.V.rows() > 0 ? &exact.V : nullptr);
   if (model.deform_mesh.F.rows() == 0) {
+    if (model.report.weld.collapsed_triangles > 0 && !any_triangle_with_area(model.primitives))
+      throw AssetError(
+          name + ": every triangle (" + std::to_string(model.report.weld.collapsed_triangles) +
+          ") has zero area in the file itself (repeated corners, coincident or collinear points, or a "
+          "node scaled to zero): nothing to draw or deform");
     if (model.report.weld.collapsed_triangles > 0)  // there were some: the weld's tolerance took them all
       throw AssetError(name + ": welding collapsed every triangle (" +
                        std::to_string(model.report.weld.collapsed_triangles) +

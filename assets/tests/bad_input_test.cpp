@@ -65,6 +65,30 @@ TEST(AssetsBadInput, ValidTriangleLoads) {
   EXPECT_EQ(model.report.weld.topology.boundary_loops, 1u);
 }
 
+// A model whose every triangle has zero area in the file (a node scaled to zero; coincident points) is named
+// as degenerate, not as collapsed by a weld tolerance "too large"; the load also lists the files it read.
+TEST(AssetsBadInput, AModelOfZeroAreaTrianglesIsNamedDegenerate) {
+  ScratchDir dir;
+  json flat = triangle_gltf();
+  flat["nodes"][0]["scale"] = {0, 0, 0};
+  expect_refused(dir, flat, "every triangle (1) has zero area in the file itself");
+  try {
+    (void)load_model_from_memory(
+        std::vector<std::uint8_t>{'O', 'F', 'F', '\n', '3', ' ', '1', ' ', '0', '\n', '1', ' ',
+                                  '1', ' ', '1', '\n', '1', ' ', '1', ' ', '1', '\n', '1', ' ',
+                                  '1', ' ', '1', '\n', '3', ' ', '0', ' ', '1', ' ',  '2', '\n'},
+        "same.off", {});
+    ADD_FAILURE() << "three coincident points loaded";
+  } catch (const AssetError& e) {
+    EXPECT_NE(std::string(e.what()).find("same.off: every triangle (1) has zero area"), std::string::npos)
+        << e.what();
+  }
+  const Model model = load_document(dir, triangle_gltf());
+  ASSERT_EQ(model.source_files.size(), 2u);
+  EXPECT_EQ(model.source_files[0], dir / "model.gltf");
+  EXPECT_EQ(model.source_files[1].filename(), "tri.bin");
+}
+
 TEST(AssetsBadInput, UriPolicy) {
   using detail::uri_problem;
   EXPECT_EQ(uri_problem("tri.bin"), "");

@@ -26,6 +26,25 @@ inline void append_number(std::string& out, double value) {
   out.append(buffer, ec == std::errc{} ? end : buffer);
 }
 
+// `text` as it can be quoted in a message: bytes outside printable ASCII as \xNN, at most `limit` bytes of it
+// (then "..."): a binary file's first bytes named as its header wrote raw bytes to the terminal.
+inline std::string printable(std::string_view text, std::size_t limit = 40) {
+  static const char* const kHex = "0123456789abcdef";
+  std::string out;
+  for (std::size_t k = 0; k < text.size() && k < limit; ++k) {
+    const auto c = static_cast<unsigned char>(text[k]);
+    if (c >= 0x20 && c < 0x7f) {
+      out += static_cast<char>(c);
+    } else {
+      out += "\\x";
+      out += kHex[c >> 4];
+      out += kHex[c & 15];
+    }
+  }
+  if (text.size() > limit) out += "...";
+  return out;
+}
+
 [[noreturn]] inline void fail(const std::string& file, std::size_t line, const std::string& problem) {
   throw MeshIoError(file, line, problem);
 }

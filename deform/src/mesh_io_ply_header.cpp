@@ -34,7 +34,7 @@ PlyHeader read_ply_header(std::string_view contents, const std::string& name) {
       else if (a == "binary_big_endian")
         encoding = Encoding::binary_be;
       else
-        fail(name, cursor.line_number(), "unknown PLY format '" + std::string(a) + "'");
+        fail(name, cursor.line_number(), "unknown PLY format '" + detail::printable(a) + "'");
       have_format = true;
     } else if (keyword == "element") {
       Element element;

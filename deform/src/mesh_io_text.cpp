@@ -53,7 +53,7 @@ Mesh parse_off(std::string_view contents, const std::string& name) {
   const bool off_keyword = keyword.size() >= 3 && keyword.substr(keyword.size() - 3) == "OFF" &&
                            keyword.find('4') == std::string_view::npos && keyword.front() != 'n';
   if (!off_keyword) {
-    fail(name, cursor.line_number(), "not an OFF file (header '" + std::string(keyword) + "')");
+    fail(name, cursor.line_number(), "not an OFF file (header '" + detail::printable(keyword) + "')");
   }
   // The counts may share the header line or follow on the next one.
   std::string_view rest =
