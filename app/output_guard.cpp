@@ -21,9 +21,16 @@ void refuse_output_over_inputs(const std::string& option, const std::string& out
   if (output.empty() || deform::holds_descriptor(output)) return;
   for (const InputFile& input : inputs) {
     if (input.path.empty()) continue;
+    // The same path after links, or the same entry of the same folder reached another way (a bind mount):
+    // a temporary renamed over it replaces the input. (A hard link to the input is another entry: renaming
+    // over it leaves the input's bytes as they were, so it is not refused.)
     std::error_code error;
-    const bool same = deform::same_output_file(output, input.path) ||
-                      (fs::exists(output, error) && fs::equivalent(output, input.path, error) && !error);
+    const fs::path out_path = fs::absolute(output, error);
+    const bool same =
+        deform::same_output_file(output, input.path) ||
+        (out_path.filename() == input.path.filename() &&
+         fs::equivalent(out_path.parent_path(), fs::absolute(input.path, error).parent_path(), error) &&
+         !error);
     if (same)
       throw CommandError(output + ": " + option + " names " + input.role + " (" + input.path.string() +
                          "): writing there would replace what this command reads; choose another name");

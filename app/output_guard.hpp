@@ -22,8 +22,8 @@ struct InputFile {
 [[nodiscard]] std::vector<InputFile> model_inputs(const std::vector<std::filesystem::path>& source_files);
 
 // Throws CommandError when `output` (given by `option`) names one of `inputs`: the same path after links, or
-// an existing file that is the same file (fs::equivalent). Empty outputs and descriptors the process holds
-// (/dev/stdout, ...) pass.
+// the same name in the same folder reached by another path. Empty outputs, descriptors the process holds
+// (/dev/stdout, ...) and hard links to an input (replacing one leaves the input as it was) pass.
 void refuse_output_over_inputs(const std::string& option, const std::string& output,
                                const std::vector<InputFile>& inputs);
 

@@ -6,6 +6,7 @@
 #include "pushpull/deform/surface_point.hpp"
 
 #include <cstdint>
+#include <cstdio>
 
 namespace pushpull::app {
 namespace {
@@ -65,7 +66,21 @@ RenderInputs prepare_render_inputs(std::shared_ptr<const RenderModel> render, co
     if (options.handle_radius <= 0.0)
       throw CommandError("--handle-at needs --handle-radius > 0 (metres at life size)");
     // The same rule as `pushpull deform`: along the surface from the closest surface point.
-    const deform::SurfacePoint hit = deform::closest_surface_point(rest, vec3(options.handle_at));
+    deform::SurfacePoint hit;
+    try {
+      hit = deform::closest_surface_point(rest, vec3(options.handle_at));
+    } catch (const std::invalid_argument& e) {
+      throw CommandError(std::string("--handle-at: ") + e.what());
+    }
+    // Where deform refuses such a point, the picture says it drew the handle elsewhere.
+    if (const double gap = (hit.point - vec3(options.handle_at)).stableNorm(); gap > options.handle_radius)
+      std::fprintf(stderr,
+                   "pushpull render: warning: --handle-at is %.4g m from the surface, farther than "
+                   "--handle-radius %.4g m: the handle drawn is around the nearest surface point (%.4g %.4g "
+                   "%.4g)\n",
+                   gap * life_size_scale, options.handle_radius * life_size_scale,
+                   hit.point.x() * life_size_scale, hit.point.y() * life_size_scale,
+                   hit.point.z() * life_size_scale);
     mark(deform::surface_handle(rest, hit, options.handle_radius), &renderer::OverlayWeights::handle);
   }
   if (any_overlay) {

@@ -38,9 +38,11 @@ glm::vec3 to_glm(const Eigen::Vector3d& v) {
 
 View make_view(const RenderCommandOptions& o, const Bounds& bounds, float aspect) {
   OrbitCamera orbit;
-  // Scaled in doubles first: --up 1e300 1e300 1e300 is a direction, not three infinities.
+  // --up 1e300 1e300 1e300 is a direction, not three infinities: scaled by its stable norm first where the
+  // plain one overflows (or underflows); other directions keep their bits.
   const Eigen::Vector3d up(o.up[0], o.up[1], o.up[2]);
-  orbit.up = to_glm(Eigen::Vector3d(up / up.stableNorm()));
+  const double plain = up.norm();
+  orbit.up = to_glm(plain > 0.0 && std::isfinite(plain) ? up : Eigen::Vector3d(up / up.stableNorm()));
   orbit.fov_y_deg = float(o.fov_deg);
   if (o.camera.size() >= 2) {
     orbit.azimuth_deg = float(o.camera[0]);

@@ -21,11 +21,13 @@
 #include "pushpull/deform/metrics.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -115,6 +117,28 @@ bool replay_writes(const std::string& name) {
   return replay_clears(name) || name == "input.jsonl" || name == "replay-session.jsonl";
 }
 
+// A .gltf's external files (its buffers' and images' URIs, data: URIs aside) beside it, read before the model
+// is loaded (the replay clears its --out first): only their names are needed here; the load checks the rest.
+std::vector<fs::path> external_files(const fs::path& model) {
+  std::vector<fs::path> files;
+  std::string extension = model.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (extension != ".gltf") return files;
+  std::ifstream in(model);
+  const json document = json::parse(in, nullptr, /*allow_exceptions=*/false);
+  if (!document.is_object()) return files;
+  for (const char* key : {"buffers", "images"}) {
+    if (!document.contains(key) || !document[key].is_array()) continue;
+    for (const json& entry : document[key])
+      if (entry.is_object() && entry.contains("uri") && entry["uri"].is_string()) {
+        const std::string uri = entry["uri"].get<std::string>();
+        if (uri.rfind("data:", 0) != 0) files.push_back(model.parent_path() / uri);
+      }
+  }
+  return files;
+}
+
 // A file the replay reads (the recording, the model) lying in --out under a name the replay writes or clears
 // would be lost (a model renamed final.gltf was deleted before it was read): refused.
 void refuse_out_over_inputs(const fs::path& out,
@@ -163,7 +187,13 @@ void run_replay(const ReplayOptions& o) {
 
   if (o.out.empty()) throw CommandError("--out: an empty folder name");
   const fs::path out = o.out;
-  refuse_out_over_inputs(out, {{o.recording, "the recording"}, {model_path, "the model"}});
+  {
+    std::vector<std::pair<fs::path, const char*>> inputs{{o.recording, "the recording"},
+                                                         {model_path, "the model"}};
+    for (const fs::path& file : external_files(model_path))
+      inputs.emplace_back(file, "a file the model reads");
+    refuse_out_over_inputs(out, inputs);
+  }
   std::error_code ec;
   fs::create_directories(out / "eyes", ec);
   if (ec) throw CommandError(out.string() + ": cannot create the output folder: " + ec.message());
@@ -184,8 +214,9 @@ void run_replay(const ReplayOptions& o) {
     if (r.value("record", "") == "release") captures.push_back(r.value("time", 0.0) + frame);
   // The end's: one frame after the last input, or, where the review recorded the runtime's exit, at the last
   // frame before it (the exit's frame shows nothing, and the session is gone after it).
-  captures.push_back(rec.exit_time ? std::min(rec.last_input_time + frame, *rec.exit_time - frame)
-                                   : rec.last_input_time + frame);
+  captures.push_back(rec.exit_time
+                         ? std::max(0.0, std::min(rec.last_input_time + frame, *rec.exit_time - frame))
+                         : rec.last_input_time + frame);
   for (const double t : captures) script += json{{"t", t}, {"event", "capture"}}.dump() + "\n";
   script += json{{"t", rec.last_input_time + 2.0 * frame}, {"event", "exit"}}.dump() + "\n";
   const fs::path script_path = out / "input.jsonl";

@@ -115,7 +115,7 @@ SessionRecording read_lines(const std::string& path, const std::string& text, st
       corrupted(path, number, "not JSON (" + printable(e.what()) + ")");
     }
     if (!j.is_object()) corrupted(path, number, "not a JSON object");
-    if (number > 1 && j.value("record", "") == "header")
+    if (number > 1 && j.contains("record") && j["record"].is_string() && j["record"] == "header")
       corrupted(path, number, "a second header (two recordings joined?)");
     if (number == 1) {
       if (j.value("record", "") != "header")

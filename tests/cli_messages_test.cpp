@@ -90,6 +90,28 @@ TEST_F(CliMessages, AHandlePointOffTheSurfaceNamesTheNearestOneInLifeSizeMetres)
             std::string::npos)
       << life_size.output;
   EXPECT_FALSE(fs::exists(path("o.off")));
+  // A point a million model sizes away (its squared distances overflow): refused as such, not as a mesh
+  // "with no non-degenerate triangle".
+  const CommandResult far = run_pushpull("deform " + kHemisphere.string() +
+                                         " --handle-at 1e160 0 0 --handle-radius 0.1 --roi-radius 1 "
+                                         "--displacement 0 0 0.1 --out " +
+                                         path("o.off") + " --metrics " + path("m.json"));
+  EXPECT_NE(far.status, 0);
+  EXPECT_NE(
+      far.output.find("--handle-at 1e+160 0 0 is 1e+160 m from the model's bounding box, over a million "
+                      "times its size"),
+      std::string::npos)
+      << far.output;
+  // render draws the handle around the nearest point, and says so.
+  const CommandResult drawn =
+      run_pushpull("render " + kHemisphere.string() +
+                   " --handle-at 0 0 3 --handle-radius 0.1 --size 16 16 --out " + path("h.png"));
+  EXPECT_EQ(drawn.status, 0) << drawn.output;
+  EXPECT_NE(
+      drawn.output.find("warning: --handle-at is 2 m from the surface, farther than --handle-radius 0.1 "
+                        "m: the handle drawn is around the nearest surface point (0 0 1)"),
+      std::string::npos)
+      << drawn.output;
 }
 
 // Options that would start a review doomed to fail (every pull refused) or write NaN into the recording are
@@ -346,6 +368,14 @@ TEST_F(CliMessages, DeformWarnsOfPullsThatAreNotAPushPull) {
          "steep: |d| is 10x the handle radius, a spike rather than a bulge");
   warned("--handle-at 0 0 1 --handle-radius 0.2 --roi-radius 0 --displacement 0 0 0.1",
          "only the handle moves, torn from the surface around it");
+  // Fixed vertices right around the handle, nothing free between: the handle steps out alone.
+  {
+    const pd::Mesh mesh = pd::read_mesh(kHemisphere);
+    std::ofstream handle(path("cap.txt")), fixed(path("ring.txt"));
+    for (Eigen::Index i = 0; i < mesh.V.rows(); ++i) (mesh.V(i, 2) > 0.95 ? handle : fixed) << i << "\n";
+  }
+  warned("--handle " + path("cap.txt") + " --fixed " + path("ring.txt") + " --displacement 0 0 0.1",
+         "only the handle moves: no free vertex lies between it and the fixed ones");
   warned("--handle-at 0 0 1 --handle-radius 0.2 --roi-radius 10 --displacement 0 0 0.1",
          "the whole part moves: the region covers its connected part and no border holds it");
   warned("--handle-at 0 0 1 --handle-radius 0.2 --roi-radius 0.8 --displacement 0 0 0.1 --iterations 2",

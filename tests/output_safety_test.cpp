@@ -83,6 +83,15 @@ TEST_F(OutputSafety, DeformRefusesOutputsThatWouldReplaceItsInputs) {
   EXPECT_FALSE(fs::exists(path("x.off")));
   EXPECT_FALSE(fs::exists(path("m.json")));
   EXPECT_FALSE(fs::exists(path("car.glb")));
+  // A hard link to the model is another name of its bytes: a result written over that name (a temporary
+  // renamed over it) leaves the model as it was, so it is not refused.
+  fs::create_hard_link(model, path("hard.off"));
+  const std::string before = bytes_of(model);
+  const CommandResult hard =
+      run_pushpull("deform " + model + kPull + " --out " + path("hard.off") + " --metrics " + path("m.json"));
+  EXPECT_EQ(hard.status, 0) << hard.output;
+  EXPECT_EQ(bytes_of(model), before);
+  EXPECT_NE(bytes_of(path("hard.off")), before);
 }
 
 TEST_F(OutputSafety, RenderAndReviewRefuseOutputsOverTheModelsFiles) {
@@ -122,6 +131,34 @@ TEST_F(OutputSafety, AReplayRefusesAnOutFolderThatHoldsItsInputsUnderItsNames) {
   expect_refused("replay " + bundled.string() + " --model " + path("car/final.gltf") + " --out " +
                      path("car") + " --no-pictures",
                  path("car/final.gltf"), path("car/final.gltf"), "under a name the replay writes or clears");
+  // The model's own buffer under a name the replay clears, in --out: refused too (it was deleted before the
+  // model was read).
+  fs::rename(path("car/vehicle_example.bin"), path("car/final.bin"));
+  {
+    std::ifstream in(path("car/final.gltf"));
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::size_t at = text.find("vehicle_example.bin");
+    ASSERT_NE(at, std::string::npos);
+    text.replace(at, std::string("vehicle_example.bin").size(), "final.bin");
+    std::ofstream(path("car/model.gltf")) << text;
+  }
+  // (The recording names the model by its SHA-256: a copy made for the edited model.)
+  const CommandResult sum = run_command("sha256sum " + path("car/model.gltf"));
+  ASSERT_EQ(sum.status, 0) << sum.output;
+  std::string recording = bytes_of(bundled);
+  const std::size_t key = recording.find("\"model_sha256\":\"");
+  ASSERT_NE(key, std::string::npos);
+  recording.replace(key + 16, 64, sum.output.substr(0, 64));
+  fs::create_directories(path("rec"));
+  std::ofstream(path("rec/session.jsonl")) << recording;
+  const CommandResult buffer =
+      run_pushpull("replay " + path("rec/session.jsonl") + " --model " + path("car/model.gltf") + " --out " +
+                   path("car") + " --no-pictures");
+  EXPECT_NE(buffer.status, 0);
+  EXPECT_NE(buffer.output.find(path("car/final.bin") + ": a file the model reads lies in --out"),
+            std::string::npos)
+      << buffer.output;
+  EXPECT_TRUE(fs::exists(path("car/final.bin")));
   const CommandResult empty = run_pushpull("replay " + bundled.string() + " --out ''");
   EXPECT_NE(empty.status, 0);
   EXPECT_NE(empty.output.find("--out: an empty folder name"), std::string::npos) << empty.output;

@@ -99,6 +99,9 @@ TEST_F(RecordingChecks, DamagedLinesAreNamedByFileAndLine) {
         j["options"]["up"] = {0, 0, 0};
       },
       "header option \"up\" must be a finite, non-zero direction");
+  expect_named(
+      first_line(lines_, is_record("profile")), [&](json& j) { j = json::parse(lines_[0]); },
+      "a second header");
   const std::size_t input = first_line(lines_, [](const json& j) { return j.contains("t"); });
   expect_named(
       input, [](json& j) { j["t"] = 1e300; }, "\"t\" 1e+300 s on the first input line");

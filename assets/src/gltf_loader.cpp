@@ -432,11 +432,23 @@ void load_gltf(std::span<const std::uint8_t> bytes, const std::string& name, con
   source->json = parse_json_limited(json_text, name, limits.max_json_depth);
   const json& document = source->json;
   check_uris(document, name);
+  // What makes it glTF 2.0 (tinygltf says "JSON string too short." of an object without it).
+  if (!document.is_object() || !document.contains("asset") || !document["asset"].is_object() ||
+      !document["asset"].contains("version") || !document["asset"]["version"].is_string())
+    throw AssetError(name + ": not a glTF 2.0 file: no \"asset\" object with its \"version\"");
   // tinygltf indexes these arrays without checking their types: make sure they are arrays.
   for (const char* key : {"meshes", "nodes", "accessors", "bufferViews", "buffers", "materials", "textures",
                           "images", "samplers", "scenes"})
     if (document.contains(key) && !document[key].is_array())
       throw AssetError(name + ": malformed glTF: '" + key + "' is not an array");
+  // The scene shown: one that is not there is damage, not a reason to show another one silently.
+  if (document.contains("scene")) {
+    const json& scene = document["scene"];
+    const std::size_t scenes = document.contains("scenes") ? document["scenes"].size() : 0;
+    if (!scene.is_number_unsigned() || scene.get<std::uint64_t>() >= scenes)
+      throw AssetError(name + ": malformed glTF: \"scene\" " + scene.dump() + " names none of its " +
+                       std::to_string(scenes) + " scene(s)");
+  }
 
   model.report.extensions_used = string_list(document, "extensionsUsed");
   model.report.extensions_required = string_list(document, "extensionsRequired");

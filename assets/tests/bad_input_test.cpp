@@ -83,10 +83,37 @@ TEST(AssetsBadInput, AModelOfZeroAreaTrianglesIsNamedDegenerate) {
     EXPECT_NE(std::string(e.what()).find("same.off: every triangle (1) has zero area"), std::string::npos)
         << e.what();
   }
+  // A coordinate beyond the 32-bit floats the model is drawn in: named with its vertex.
+  const std::string far_text = "OFF\n3 1 0\n0 0 0\n1e150 0 0\n0 1 0\n3 0 1 2\n";
+  try {
+    (void)load_model_from_memory(std::vector<std::uint8_t>(far_text.begin(), far_text.end()), "far.off", {});
+    ADD_FAILURE() << "1e150 loaded";
+  } catch (const AssetError& e) {
+    EXPECT_NE(
+        std::string(e.what()).find("far.off: vertex 1 has the coordinate 1e+150, beyond the 32-bit floats"),
+        std::string::npos)
+        << e.what();
+  }
   const Model model = load_document(dir, triangle_gltf());
   ASSERT_EQ(model.source_files.size(), 2u);
   EXPECT_EQ(model.source_files[0], dir / "model.gltf");
   EXPECT_EQ(model.source_files[1].filename(), "tri.bin");
+}
+
+// JSON that is not glTF 2.0 (no "asset") and a "scene" naming none of the scenes are refused by name
+// (tinygltf said "JSON string too short." of the first; the second showed scene 0 silently).
+TEST(AssetsBadInput, NoAssetAndAMissingSceneAreNamed) {
+  ScratchDir dir;
+  expect_refused(dir, json::object(), "not a glTF 2.0 file: no \"asset\" object");
+  json no_version = triangle_gltf();
+  no_version["asset"].erase("version");
+  expect_refused(dir, no_version, "not a glTF 2.0 file");
+  json far = triangle_gltf();
+  far["scene"] = 3;
+  expect_refused(dir, far, "\"scene\" 3 names none of its 1 scene(s)");
+  json negative = triangle_gltf();
+  negative["scene"] = -1;
+  expect_refused(dir, negative, "\"scene\" -1 names none");
 }
 
 TEST(AssetsBadInput, UriPolicy) {

@@ -170,9 +170,21 @@ std::optional<int> descriptor_name(const fs::path& path) {
 // end, /dev/stdout leads to the file the shell opened (`>> log`), which a rename would replace.
 std::optional<int> inherited_descriptor(const fs::path& path) {
   fs::path p = path;
+  std::error_code error;
+  // The folder that lists this process's descriptors as the file system names it (/dev/fd and /proc/self/fd
+  // are links to /proc/<pid>/fd, which a link may name too).
+  const fs::path own_fd = fs::canonical("/proc/self/fd", error);
   for (int hops = 0; hops < 40; ++hops) {
+    // Matched as an absolute, normal path: a relative link (../../dev/fd/3) names one too.
+    p = fs::absolute(p, error).lexically_normal();
     if (const std::optional<int> fd = descriptor_name(p)) return fd;
-    std::error_code error;
+    if (!own_fd.empty() && p.has_parent_path()) {
+      std::error_code canonical_error;
+      const fs::path folder = fs::canonical(p.parent_path(), canonical_error);
+      if (!canonical_error && folder == own_fd) {
+        if (const std::optional<int> fd = descriptor_name(fs::path("/dev/fd") / p.filename())) return fd;
+      }
+    }
     if (!fs::is_symlink(fs::symlink_status(p, error))) return std::nullopt;
     const fs::path target = fs::read_symlink(p, error);
     if (error) return std::nullopt;
@@ -275,7 +287,9 @@ void write_file_atomically(const fs::path& path, std::string_view bytes) {
 
 std::string output_path_problem(const fs::path& requested, MissingFolder missing) {
   if (requested.empty()) return "an empty file name";
-  if (inherited_descriptor(requested)) return {};
+  if (const std::optional<int> fd = inherited_descriptor(requested))
+    return ::fcntl(*fd, F_GETFD) == -1 ? "names descriptor " + std::to_string(*fd) + ", which is not open"
+                                       : std::string();
   const fs::path path = followed(requested);
   struct stat existing {};
   if (::stat(path.c_str(), &existing) == 0) {

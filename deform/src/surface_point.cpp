@@ -35,20 +35,25 @@ SurfacePoint closest_surface_point(const Mesh& mesh, const Eigen::Vector3d& p) {
   if (!p.allFinite()) throw std::invalid_argument("closest surface point: the query point is not finite");
   SurfacePoint best;
   double best_distance2 = std::numeric_limits<double>::infinity();
+  bool any_triangle = false;
   for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
     const Eigen::Vector3d a = mesh.V.row(mesh.F(f, 0)), b = mesh.V.row(mesh.F(f, 1)),
                           c = mesh.V.row(mesh.F(f, 2));
     if (degenerate(a, b, c)) continue;
     const Eigen::Vector3d q = closest_point_on_triangle(p, a, b, c);
-    // (A point so far away that the squared distance overflows still gets a triangle, not "no triangle":
-    // callers refuse such points by their distance to the model first.)
     const double distance2 = (q - p).squaredNorm();
-    if (distance2 < best_distance2 || best.face < 0) {
+    any_triangle = true;
+    if (distance2 < best_distance2) {
       best_distance2 = distance2;
       best.face = static_cast<int>(f);
       best.point = q;
     }
   }
+  // (Every squared distance overflowed: a point some 1e154 model units away. Its nearest triangle cannot be
+  // told this way, and no caller means such a point.)
+  if (best.face < 0 && any_triangle)
+    throw std::invalid_argument(
+        "closest surface point: the point is too far from the mesh (1e154 or more away)");
   if (best.face < 0) {
     throw std::invalid_argument("closest surface point: the mesh has no non-degenerate triangle");
   }

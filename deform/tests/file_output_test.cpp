@@ -128,6 +128,23 @@ TEST(FileOutput, ALinkToADescriptorItHoldsIsWrittenThrough) {
   EXPECT_TRUE(fs::is_symlink(link));
   EXPECT_FALSE(pd::holds_descriptor(log));
   EXPECT_EQ(pd::output_path_problem(""), "an empty file name");
+  // A relative link (../../dev/fd/N from a folder) names it too, and one to a descriptor not open is refused
+  // before anything is written.
+  const int again = ::open(log.c_str(), O_WRONLY | O_APPEND);
+  ASSERT_GE(again, 0);
+  fs::path up;
+  for (const auto& part : fs::absolute(dir.path)) {
+    if (part != "/" && !part.empty()) up /= "..";
+  }
+  const fs::path relative = dir.path / "relative.json";
+  fs::create_symlink(up / "dev" / "fd" / std::to_string(again), relative);
+  EXPECT_TRUE(pd::holds_descriptor(relative)) << fs::read_symlink(relative);
+  pd::write_file_atomically(relative, "relative\n");
+  ::close(again);
+  EXPECT_EQ(read_all(log), "earlier\n{\"metrics\": 1}\nrelative\n");
+  const fs::path closed = dir.path / "closed.json";
+  fs::create_symlink("/dev/fd/987", closed);
+  EXPECT_EQ(pd::output_path_problem(closed), "names descriptor 987, which is not open");
 }
 
 TEST(FileOutput, AFifoIsWrittenInPlace) {
