@@ -18,6 +18,7 @@
 #include <cmath>
 #include <cstring>
 #include <map>
+#include <set>
 
 namespace pushpull::assets {
 
@@ -212,6 +213,51 @@ json write_primitive(GlbBuilder& glb, const Primitive& primitive, const Rebuilt&
 
 }  // namespace
 
+namespace {
+
+// What the written file leaves out of the source's meshes, said rather than dropped silently: the writer
+// writes the triangles it loaded (the shown scene's), so meshes only on nodes outside that scene, line and
+// point primitives, and morph targets with their weights do not reach it.
+void dropped_content_warnings(const Model& model, std::vector<std::string>& warnings) {
+  const json& source = model.source->json;
+  std::set<int> written_nodes;
+  for (const Primitive& primitive : model.primitives) written_nodes.insert(primitive.node);
+  std::size_t outside = 0;
+  if (source.contains("nodes") && source["nodes"].is_array())
+    for (std::size_t n = 0; n < source["nodes"].size(); ++n)
+      if (source["nodes"][n].is_object() && source["nodes"][n].contains("mesh") &&
+          !written_nodes.count(static_cast<int>(n)))
+        ++outside;
+  if (outside > 0)
+    warnings.push_back(
+        std::to_string(outside) +
+        " node(s) outside the scene shown carry meshes that are not written (their nodes stay, "
+        "without the mesh)");
+  std::size_t lines_or_points = 0, morphed = 0;
+  if (source.contains("meshes") && source["meshes"].is_array())
+    for (const json& mesh : source["meshes"]) {
+      if (!mesh.is_object() || !mesh.contains("primitives") || !mesh["primitives"].is_array()) continue;
+      bool targets = mesh.contains("weights");
+      for (const json& primitive : mesh["primitives"]) {
+        if (!primitive.is_object()) continue;
+        const int mode = primitive.contains("mode") && primitive["mode"].is_number_integer()
+                             ? primitive["mode"].get<int>()
+                             : 4;
+        if (mode < 4) ++lines_or_points;
+        targets = targets || primitive.contains("targets");
+      }
+      morphed += targets ? 1 : 0;
+    }
+  if (lines_or_points > 0)
+    warnings.push_back(std::to_string(lines_or_points) + " line or point primitive(s) are not written");
+  if (morphed > 0)
+    warnings.push_back(
+        std::to_string(morphed) +
+        " mesh(es) with morph targets are written without them (the deformed base shape only)");
+}
+
+}  // namespace
+
 std::vector<std::uint8_t> encode_glb(const Model& model, const Eigen::MatrixXd& deformed_V,
                                      const WriteOptions& options, std::vector<std::string>* warnings_out) {
   std::vector<std::string> warnings;
@@ -228,6 +274,7 @@ std::vector<std::uint8_t> encode_glb(const Model& model, const Eigen::MatrixXd& 
     document.erase(key);
   if (model.source && (model.source->json.contains("skins") || model.source->json.contains("animations")))
     warnings.push_back("skins and animations are not written");
+  if (model.source) dropped_content_warnings(model, warnings);
   document["asset"]["version"] = "2.0";
   document["asset"]["generator"] = "pushpull";
   document["asset"].erase("minVersion");
@@ -273,8 +320,10 @@ std::vector<std::uint8_t> encode_glb(const Model& model, const Eigen::MatrixXd& 
     if (model.source && first.mesh >= 0) {
       const json& source_meshes = model.source->json["meshes"];
       if (source_meshes.is_array() && first.mesh < static_cast<int>(source_meshes.size()) &&
-          source_meshes[static_cast<std::size_t>(first.mesh)].contains("name"))
-        mesh["name"] = source_meshes[static_cast<std::size_t>(first.mesh)]["name"];
+          source_meshes[static_cast<std::size_t>(first.mesh)].is_object())
+        for (const char* key : {"name", "extras"})
+          if (source_meshes[static_cast<std::size_t>(first.mesh)].contains(key))
+            mesh[key] = source_meshes[static_cast<std::size_t>(first.mesh)][key];
     }
     for (std::size_t p : members) {
       const Primitive& primitive = model.primitives[p];

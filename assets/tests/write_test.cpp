@@ -6,6 +6,10 @@
 
 #include <Eigen/Geometry>
 
+#include <cstring>
+#include <string>
+#include <vector>
+
 namespace pushpull::assets {
 namespace {
 
@@ -105,6 +109,45 @@ TEST(AssetsWrite, FailedWriteLeavesThePreviousFileIntact) {
   int files = 0;
   for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator(dir.path())) ++files;
   EXPECT_EQ(files, 1);
+}
+
+// What the written file leaves out of the source's meshes is said: a mesh only on a node outside the scene
+// shown, a line primitive, morph targets and their weights (each was dropped silently).
+TEST(AssetsWrite, ContentTheWrittenFileLeavesOutIsSaid) {
+  ScratchDir dir;
+  const float positions[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  const std::uint16_t indices[4] = {0, 1, 2, 0};
+  std::vector<std::uint8_t> bin(44);
+  std::memcpy(bin.data(), positions, 36);
+  std::memcpy(bin.data() + 36, indices, 8);
+  testing::write_bytes(dir / "tri.bin", bin);
+  testing::write_text(dir / "model.gltf", R"({
+    "asset": {"version": "2.0"},
+    "scene": 0, "scenes": [{"nodes": [0]}, {"nodes": [1]}],
+    "nodes": [{"mesh": 0}, {"mesh": 1}],
+    "meshes": [
+      {"primitives": [{"attributes": {"POSITION": 0}, "indices": 1, "targets": [{"POSITION": 0}]},
+                      {"attributes": {"POSITION": 0}, "mode": 1}],
+       "weights": [0.5], "extras": {"k": 1}},
+      {"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
+    "accessors": [
+      {"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0,0,0], "max": [1,1,0]},
+      {"bufferView": 1, "componentType": 5123, "count": 3, "type": "SCALAR"}],
+    "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 6}],
+    "buffers": [{"byteLength": 44, "uri": "tri.bin"}]
+  })");
+  const Model model = load_model(dir / "model.gltf");
+  const std::vector<std::string> warnings = write_glb(model, model.deform_mesh.V, dir / "out.glb");
+  std::string all;
+  for (const std::string& w : warnings) all += w + "\n";
+  for (const char* said : {"1 node(s) outside the scene shown carry meshes that are not written",
+                           "1 line or point primitive(s) are not written",
+                           "1 mesh(es) with morph targets are written without them"})
+    EXPECT_NE(all.find(said), std::string::npos) << said << "\n" << all;
+  EXPECT_NE(testing::read_bytes(dir / "out.glb").size(), 0u);
+  const std::vector<std::uint8_t> written = testing::read_bytes(dir / "out.glb");
+  const std::string text(written.begin(), written.end());
+  EXPECT_NE(text.find("\"extras\":{\"k\":1}"), std::string::npos);  // the mesh's extras are kept
 }
 
 TEST(AssetsWrite, ValidatorIsInstalledAndRejectsBrokenFiles) {
