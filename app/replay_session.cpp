@@ -229,6 +229,17 @@ void run_replay(const ReplayOptions& o) {
   review.model = model_path;
   review.method = o.method.empty() ? h.at("method").get<std::string>() : o.method;
   review.fixed_method = !o.method.empty();
+  // A review whose headset did not come back after a loss (no "resumed" record after its last "lost" one)
+  // ended there: so does the replay, instead of its runtime coming back and saying "the headset is back".
+  {
+    bool lost_for_good = false;
+    for (const json& r : rec.records) {
+      const std::string kind = r.value("record", "");
+      if (kind == "lost") lost_for_good = true;
+      if (kind == "resumed") lost_for_good = false;
+    }
+    if (lost_for_good) review.reconnect_s = 0.0;
+  }
   if (o.method.empty()) review.method_changes = rec.method_changes;  // with --method: that one throughout
   review.colour_changes = rec.colour_changes;
   review.size_changes = rec.size_changes;

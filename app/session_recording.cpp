@@ -125,6 +125,13 @@ SessionRecording read_lines(const std::string& path, const std::string& text, st
         corrupted(path, 1, "the header lacks \"model\" or \"model_sha256\"");
       if (j.contains("model_relative") && !j["model_relative"].is_string())
         corrupted(path, 1, "the header's \"model_relative\" is not a path");
+      // The scale the replay's metrics and lengths are given at (metres per model unit).
+      if (j.contains("life_size_scale") &&
+          !(j["life_size_scale"].is_number() && std::isfinite(j["life_size_scale"].get<double>()) &&
+            j["life_size_scale"].get<double>() > 0.0))
+        corrupted(path, 1,
+                  "the header's \"life_size_scale\" must be a finite number > 0, got " +
+                      j["life_size_scale"].dump());
       // What `pushpull replay` sets the review up from.
       const nlohmann::json* options = j.contains("options") && j["options"].is_object() ? &j["options"] : nullptr;
       if (options == nullptr) corrupted(path, 1, "the header lacks the review's \"options\"");

@@ -94,6 +94,9 @@ TEST_F(RecordingChecks, DamagedLinesAreNamedByFileAndLine) {
   expect_named(
       0, [](json& j) { j["model_relative"] = 5; }, "the header's \"model_relative\" is not a path");
   expect_named(
+      0, [](json& j) { j["life_size_scale"] = -1; },
+      "the header's \"life_size_scale\" must be a finite number > 0, got -1");
+  expect_named(
       0,
       [](json& j) {
         j["options"]["up"] = {0, 0, 0};

@@ -744,6 +744,32 @@ TEST(ReviewXr, CtrlCWhileWaitingForALostHeadsetEndsTheReviewAtOnce) {
   EXPECT_GT(largest_move_from_hood(dir / "out.off"), 0.05);
 }
 
+// A headset that never comes back (xr/sim's stays-lost): the review ends after --reconnect, and so does its
+// replay, with the push/pull committed before the loss (the replay's runtime came back and it said "the
+// headset is back; the review goes on" where the review had ended).
+TEST(ReviewXr, AReviewWhoseHeadsetStayedLostReplaysToItsEnd) {
+  const fs::path dir = test_dir();
+  const std::string script =
+      script_start() + R"({"t":1.4,"path":"/user/hand/right/input/trigger/value","value":0.0}
+{"t":2.0,"event":"loss"}
+{"t":3.0,"event":"exit"}
+)";
+  const fs::path recording = dir / "session.jsonl";
+  const ReviewRun run = run_review(dir, script, "--reconnect 0.5 --record " + recording.string(),
+                                   "PUSHPULL_XR_SIM_QUIRKS=stays-lost");
+  ASSERT_EQ(run.result.status, 0) << run.result.output;
+  EXPECT_NE(run.result.output.find("the headset did not come back; ending the review"), std::string::npos)
+      << run.result.output;
+  const auto replay =
+      run_command(pushpull::testing::xr_sim_environment() + " " + PUSHPULL_EXECUTABLE + " replay " +
+                  recording.string() + " --out " + (dir / "replay").string() + " --no-pictures");
+  ASSERT_EQ(replay.status, 0) << replay.output;
+  EXPECT_NE(replay.output.find("1 commit(s) replayed of 1 recorded; all checks passed"), std::string::npos)
+      << replay.output;
+  EXPECT_EQ(replay.output.find("the headset is back"), std::string::npos) << replay.output;
+  EXPECT_TRUE(recording_records(dir / "replay" / "replay-session.jsonl", "resumed").empty());
+}
+
 // A runtime that does not end the session when asked to (xr/sim's ignores-exit): after Ctrl-C the review ends
 // on its own within 3 s, with the committed work in --out, rather than running on until a second Ctrl-C kills
 // it.
