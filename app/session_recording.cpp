@@ -15,6 +15,7 @@
 #include <fstream>
 #include <map>
 #include <optional>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 #include <string_view>
@@ -91,6 +92,7 @@ SessionRecording read_lines(const std::string& path, const std::string& text, st
   r.path = path;
   bool ended = false;
   std::size_t last_input_line = 0;  // the line of the latest input time so far
+  std::set<std::uint64_t> committed_requests;  // the requests of the committed releases so far
   // Desktop recordings before format 4 pressed the left menu button for the colour key (a replay's headset
   // loop would open its panel): read as "colour" records instead, cycling from the header's colour map.
   bool legacy_desktop = false;
@@ -237,9 +239,25 @@ SessionRecording read_lines(const std::string& path, const std::string& text, st
       if (j.contains("time") && !(j["time"].is_number() && std::isfinite(j["time"].get<double>())))
         corrupted(path, number, "a record's \"time\" is not a finite number");
       if (kind == "commit") {
-        if (!j.contains("hash") || !j["hash"].is_string() || !j.contains("index"))
+        if (!j.contains("hash") || !j["hash"].is_string() || !j.contains("index") ||
+            !j["index"].is_number_unsigned())
           corrupted(path, number, "a commit record needs \"index\" and \"hash\"");
+        // Commits are numbered in order (a line written twice made the replay compare one commit with
+        // another's hash).
+        if (!r.commits.empty() &&
+            !(j["index"].get<std::uint64_t>() > r.commits.back().record["index"].get<std::uint64_t>()))
+          corrupted(path, number,
+                    "commit index " + j["index"].dump() + " after commit " +
+                        r.commits.back().record["index"].dump() + " (line " +
+                        std::to_string(r.commits.back().line) + "): a commit repeated or out of order");
         r.commits.push_back({number, j});
+      } else if (kind == "release" && j.value("committed", false) && j.contains("request") &&
+                 j["request"].is_number_unsigned()) {
+        // Each committed release is its own request (a line written twice paired commits with the wrong
+        // ones).
+        if (!committed_requests.insert(j["request"].get<std::uint64_t>()).second)
+          corrupted(path, number,
+                    "a committed release of request " + j["request"].dump() + " again (a release repeated)");
       } else if (kind == "method") {
         const bool valid = j.contains("method") && j["method"].is_string() && j.contains("time") &&
                            j["time"].is_number() && is_method_name(j["method"].get<std::string>());

@@ -110,6 +110,30 @@ TEST_F(RecordingChecks, DamagedLinesAreNamedByFileAndLine) {
       input, [](json& j) { j["t"] = 1e300; }, "\"t\" 1e+300 s on the first input line");
 }
 
+// A commit or a committed release written twice (the replay then compared one commit with another's hash):
+// the second copy is named.
+TEST_F(RecordingChecks, ARepeatedCommitOrReleaseIsNamed) {
+  for (const char* kind : {"commit", "release"}) {
+    const std::size_t at = first_line(lines_, [&](const json& j) { return j.value("record", "") == kind; });
+    std::vector<std::string> lines = lines_;
+    lines.insert(lines.begin() + static_cast<std::ptrdiff_t>(at) + 1, lines[at]);
+    const fs::path file = dir_ / "twice.jsonl";
+    {
+      std::ofstream out(file);
+      for (const std::string& line : lines) out << line << "\n";
+    }
+    const CommandResult r = run_pushpull("replay " + file.string() + " --out " + (dir_ / "out").string());
+    EXPECT_NE(r.status, 0) << r.output;
+    EXPECT_NE(r.output.find(file.string() + ":" + std::to_string(at + 2) + ": corrupted line: "),
+              std::string::npos)
+        << kind << ": " << r.output;
+    EXPECT_NE(r.output.find(std::string(kind) == "commit" ? "a commit repeated or out of order"
+                                                          : "(a release repeated)"),
+              std::string::npos)
+        << r.output;
+  }
+}
+
 TEST_F(RecordingChecks, AnUnknownEventAndAFolderAreNamed) {
   std::vector<std::string> lines = lines_;
   lines.insert(lines.begin() + 250, R"({"t": 2.5, "event": "explode"})");
