@@ -450,9 +450,10 @@ void run_deform(DeformCommandOptions o) {
     record.result.warnings.insert(record.result.warnings.begin(), note);
   // What the load noticed (an unsupported extension the file requires, parts it ignored): said here too, as
   // `pushpull info` says it.
-  for (auto it = model.scene.report.warnings.rbegin(); it != model.scene.report.warnings.rend(); ++it)
-    record.result.warnings.insert(record.result.warnings.begin(),
-                                  it->rfind(o.mesh + ":", 0) == 0 ? *it : o.mesh + ": " + *it);
+  {
+    const std::vector<std::string> load_warnings = assets::warnings_naming_the_file(model.scene);
+    record.result.warnings.insert(record.result.warnings.begin(), load_warnings.begin(), load_warnings.end());
+  }
   // The review's readout says it of a pull over kSteepPull handle radii; so does deform.
   if (!o.handle_at.empty() && d.norm() > kSteepPull * o.handle_radius) {
     char text[160];

@@ -65,9 +65,8 @@ void run_render(RenderCommandOptions options) {
   const LifeSize life(options.life_size, model.bounds, options.model);
   convert_to_file_units(options, life);
   auto render = std::make_shared<const RenderModel>(build_render_model(model));
-  for (const std::string& w : model.report.warnings)
-    std::fprintf(stderr, "pushpull render: warning: %s%s\n",
-                 w.rfind(options.model + ":", 0) == 0 ? "" : (options.model + ": ").c_str(), w.c_str());
+  for (const std::string& w : assets::warnings_naming_the_file(model))
+    std::fprintf(stderr, "pushpull render: warning: %s\n", w.c_str());
   for (const auto& w : render->warnings) std::fprintf(stderr, "pushpull render: warning: %s\n", w.c_str());
   if (render->mesh.indices.empty())
     throw CommandError(options.model + ": the model has no triangles to draw");

@@ -19,13 +19,13 @@ std::vector<InputFile> model_inputs(const std::vector<fs::path>& source_files) {
 void refuse_output_over_inputs(const std::string& option, const std::string& output,
                                const std::vector<InputFile>& inputs) {
   if (output.empty() || deform::holds_descriptor(output)) return;
+  std::error_code error;
+  const fs::path out_path = fs::absolute(output, error);
   for (const InputFile& input : inputs) {
     if (input.path.empty()) continue;
     // The same path after links, or the same entry of the same folder reached another way (a bind mount):
     // a temporary renamed over it replaces the input. (A hard link to the input is another entry: renaming
     // over it leaves the input's bytes as they were, so it is not refused.)
-    std::error_code error;
-    const fs::path out_path = fs::absolute(output, error);
     const bool same =
         deform::same_output_file(output, input.path) ||
         (out_path.filename() == input.path.filename() &&

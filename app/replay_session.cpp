@@ -141,8 +141,8 @@ std::vector<fs::path> external_files(const fs::path& model) {
 
 // A file the replay reads (the recording, the model) lying in --out under a name the replay writes or clears
 // would be lost (a model renamed final.gltf was deleted before it was read): refused.
-void refuse_out_over_inputs(const fs::path& out,
-                            const std::vector<std::pair<fs::path, const char*>>& inputs) {
+void refuse_inputs_in_out_folder(const fs::path& out,
+                                 const std::vector<std::pair<fs::path, const char*>>& inputs) {
   std::error_code ec;
   const fs::path folder = fs::weakly_canonical(fs::absolute(out, ec), ec);
   for (const auto& [input, role] : inputs) {
@@ -192,7 +192,7 @@ void run_replay(const ReplayOptions& o) {
                                                          {model_path, "the model"}};
     for (const fs::path& file : external_files(model_path))
       inputs.emplace_back(file, "a file the model reads");
-    refuse_out_over_inputs(out, inputs);
+    refuse_inputs_in_out_folder(out, inputs);
   }
   std::error_code ec;
   fs::create_directories(out / "eyes", ec);

@@ -60,12 +60,12 @@ ReviewSetup prepare_review(const ReviewCommandOptions& o) {
     throw CommandError(e.what());
   }
   if (!o.quiet)
-    for (const std::string& w : s.model.report.warnings)
-      std::fprintf(stderr, "pushpull review: warning: %s%s\n",
-                   w.rfind(o.model + ":", 0) == 0 ? "" : (o.model + ": ").c_str(), w.c_str());
+    for (const std::string& w : assets::warnings_naming_the_file(s.model))
+      std::fprintf(stderr, "pushpull review: warning: %s\n", w.c_str());
+  const std::vector<InputFile> inputs = model_inputs(s.model.source_files);
   for (const auto& [option, path] :
        {std::pair{"--out", &o.out}, std::pair{"--record", &o.record}, std::pair{"--events", &o.events}})
-    refuse_output_over_inputs(option, *path, model_inputs(s.model.source_files));
+    refuse_output_over_inputs(option, *path, inputs);
   if (!o.out.empty()) {  // found out now, not after the session (its folder is made as --record's is)
     const fs::path folder = fs::path(o.out).parent_path();
     if (!folder.empty() && !fs::is_directory(folder, ec)) {

@@ -113,6 +113,14 @@ void load_plain_mesh(std::span<const std::uint8_t> bytes, const std::string& nam
 
 }  // namespace
 
+std::vector<std::string> warnings_naming_the_file(const Model& model) {
+  const std::string name = model.source_path.string() + ":";
+  std::vector<std::string> named;
+  for (const std::string& warning : model.report.warnings)
+    named.push_back(warning.rfind(name, 0) == 0 ? warning : name + " " + warning);
+  return named;
+}
+
 bool is_supported_model_path(const fs::path& path) {
   const std::string e = lower_extension(path);
   return e == ".gltf" || e == ".glb" || e == ".drc" || e == ".off" || e == ".obj" || e == ".ply";

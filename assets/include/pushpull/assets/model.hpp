@@ -110,4 +110,9 @@ Model model_from_mesh(const deform::Mesh& mesh, const std::string& name = "mesh"
 // Whether load_model can read this path's extension.
 bool is_supported_model_path(const std::filesystem::path& path);
 
+// The load's warnings (model.report.warnings), each naming the file: "<source_path>: " put before those that
+// do not start with it already (some name a mesh or primitive after it, some only the problem). For commands
+// that print them beside their own.
+[[nodiscard]] std::vector<std::string> warnings_naming_the_file(const Model& model);
+
 }  // namespace pushpull::assets
