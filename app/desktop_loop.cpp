@@ -28,6 +28,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <deque>
 #include <optional>
 
 #include <nlohmann/json.hpp>
@@ -50,12 +51,15 @@ std::pair<Eigen::Vector3d, Eigen::Vector3d> cursor_ray(const renderer::View& vie
   return {to_eigen(camera), to_eigen(glm::normalize(glm::vec3(far) - glm::vec3(near)))};
 }
 
-// The point of the line p0 + s n closest to the ray o + t r (both directions unit).
-Eigen::Vector3d closest_on_line(const Eigen::Vector3d& p0, const Eigen::Vector3d& n, const Eigen::Vector3d& o,
-                                const Eigen::Vector3d& r) {
+// The point of the line p0 + s n closest to the ray o + t r (both directions unit); none where the ray is
+// within 15 degrees of the line: a pixel there moves the point by 1 / sin^2 of that angle times its size
+// (centimetres a pixel, metres a drag, and back and forth with the cursor's jitter).
+std::optional<Eigen::Vector3d> closest_on_line(const Eigen::Vector3d& p0, const Eigen::Vector3d& n,
+                                               const Eigen::Vector3d& o, const Eigen::Vector3d& r) {
   const Eigen::Vector3d w = p0 - o;
   const double b = n.dot(r), d = n.dot(w), e = r.dot(w), denom = 1.0 - b * b;
-  if (denom < 1e-9) return p0;  // looking along the normal: no depth cue
+  constexpr double kSin15Squared = 0.0669872981;  // sin^2(15 deg)
+  if (denom < kSin15Squared) return std::nullopt;
   return p0 + ((b * e - d) / denom) * n;
 }
 
@@ -157,6 +161,12 @@ void run_desktop(const ReviewCommandOptions& given, const ReviewSetup& setup) {
     renderer::OrbitCamera orbit = start_view;
     renderer::MirrorWindow::Pointer last{};
     long held_frames = 0;  // frames the left button's press has been held back while the service solves
+    // U and R presses not yet acted on, in order: each is a button press of the recorded controller, one a
+    // frame, with a released frame between two of the same button (a replay reads two pressed frames in a
+    // row as one press). Several presses within one frame (a slow renderer, a quick double tap) all act.
+    std::deque<HistoryStep> queued_steps;
+    bool said_along_normal = false;  // this drag's Shift pull was held for a view along the normal
+    std::optional<HistoryStep> stepped_last_frame;
     bool dragging = false;
     Eigen::Vector3d p0_stage = Eigen::Vector3d::Zero(), normal_stage = Eigen::Vector3d::UnitY();
     Eigen::Vector3d plane_normal = Eigen::Vector3d::UnitZ();
@@ -168,6 +178,15 @@ void run_desktop(const ReviewCommandOptions& given, const ReviewSetup& setup) {
     // Ctrl-C or SIGTERM: the review ends as with Esc (the committed work is written); a second one ends it at
     // once.
     const InterruptRequests interrupts;
+    window.on_connection_lost([&] {
+      finish_review_on_lost_display(
+          [&] {
+            if (const auto e = interaction.cancel()) record_interaction(*e);
+            service.wait_idle();
+            take_commits();
+          },
+          recorder, log, t, service, o.out, setup.model);
+    });
     FrameStats stats;  // --benchmark
     stats.span = "window events .. present, CPU";
     while (!window.should_close() && (o.frames <= 0 || frames < o.frames)) {
@@ -182,7 +201,8 @@ void run_desktop(const ReviewCommandOptions& given, const ReviewSetup& setup) {
         if (window.lost()) break;  // its pointer and size would be garbage this frame
         t = double(std::llround(double(loop_frames++) * 1e9 / kRecordingRate)) *
             1e-9;  // as xr/sim's script_time
-        bool quit = false, undo = false, redo = false, colour = false, method = false;
+        bool quit = false;
+        int colour_steps = 0, method_steps = 0;  // C and M presses this frame: each steps once
         for (int key : window.take_key_presses()) {
           // Back to the first view (not mid-drag: the drag's plane would jump with the camera).
           if ((key == 'F' || key == 268 /* GLFW_KEY_HOME */) && !interaction.dragging()) orbit = start_view;
@@ -203,17 +223,43 @@ void run_desktop(const ReviewCommandOptions& given, const ReviewSetup& setup) {
             }
           }
           quit = quit || key == 256 /* GLFW_KEY_ESCAPE */;
-          undo = undo || key == 'U';
-          redo = redo || key == 'R';
-          colour = colour || key == 'C';
-          method = method || key == 'M';
+          if (key == 'U' || key == 'R') {
+            // Mid-drag: refused, unless the button went up in this frame too (the release, read after the
+            // keys, ends the drag first; the undo then steps back over it).
+            if (interaction.dragging() && window.pointer().left)
+              say("undo and redo act between drags");
+            else
+              queued_steps.push_back(key == 'U' ? HistoryStep::Undo : HistoryStep::Redo);
+          }
+          colour_steps += key == 'C';
+          method_steps += key == 'M';
         }
         if (quit) break;
         const auto frame = window.acquire();
         const VkExtent2D extent = window.extent();
         const float aspect = float(std::max(1u, extent.width)) / float(std::max(1u, extent.height));
         const renderer::MirrorWindow::Pointer p = window.pointer();
+        // The wheel zooms towards the surface point under the cursor (it stays under the cursor), not the
+        // model box's centre, which may lie behind the surface (a bonnet's): zoomed in, the surface was gone.
+        std::optional<Eigen::Vector3d> zoom_towards;
+        if (p.scroll > 0.0 && !interaction.dragging()) {
+          const auto [zoom_origin, zoom_direction] =
+              cursor_ray(renderer::frame_bounds(bounds, orbit, aspect), p);
+          if (const auto hit = interaction.hit(zoom_origin, zoom_direction))
+            zoom_towards = setup.placement.to_stage_point(hit->point);
+        }
+        const float scale_before = orbit.distance_scale;
         orbit_with_pointer(orbit, p, last, p.right && last.right);
+        if (zoom_towards) {
+          const glm::vec3 target = bounds.centre() + orbit.target_offset;
+          const float kept = orbit.distance_scale / scale_before;  // the distance's ratio, at most 1
+          orbit.target_offset +=
+              (1.0f - kept) *
+              (glm::vec3(float(zoom_towards->x()), float(zoom_towards->y()), float(zoom_towards->z())) -
+               target);
+        } else if (p.scroll < 0.0 && orbit.distance_scale > scale_before) {  // out: back towards the centre
+          orbit.target_offset *= scale_before / orbit.distance_scale;
+        }
         const renderer::View view = renderer::frame_bounds(bounds, orbit, aspect);
         const auto [origin, direction] = cursor_ray(view, p);
         // The mouse as a controller: outside a drag the cursor ray; during a drag the ray of the press moved
@@ -246,12 +292,19 @@ void run_desktop(const ReviewCommandOptions& given, const ReviewSetup& setup) {
             plane_normal = (p0_stage - origin).normalized();  // the view plane through p0
             press_origin = origin;
             press_direction = direction;
+            said_along_normal = false;
           }
         }
         if (interaction.dragging() && p.left) {
           Eigen::Vector3d p1 = p0_stage;
           if (p.shift) {
-            p1 = closest_on_line(p0_stage, normal_stage, origin, direction);
+            if (const auto on_normal = closest_on_line(p0_stage, normal_stage, origin, direction)) {
+              p1 = *on_normal;
+            } else {  // looking along the normal: the pull stays where it was
+              p1 = p0_stage + (hand_origin - press_origin);
+              if (!said_along_normal) say("looking along the normal: turn the view to pull along it");
+              said_along_normal = true;
+            }
           } else if (std::abs(plane_normal.dot(direction)) > 1e-9) {
             p1 = origin + (plane_normal.dot(p0_stage - origin) / plane_normal.dot(direction)) * direction;
           }
@@ -267,28 +320,41 @@ void run_desktop(const ReviewCommandOptions& given, const ReviewSetup& setup) {
         std::array<xr::HandInput, 2> hands_in;
         hands_in[1].T_stage_aim = pointer_pose(hand_origin, hand_direction);
         hands_in[1].trigger = p.left && held_frames == 0 ? 1.0f : 0.0f;
-        hands_in[1].undo_pressed = undo && !interaction.dragging();
-        hands_in[1].redo_pressed = redo && !interaction.dragging();
-        if ((undo || redo) && interaction.dragging()) say("undo and redo act between drags");
+        std::optional<HistoryStep> step_now;
+        if (!interaction.dragging() && !queued_steps.empty() && queued_steps.front() != stepped_last_frame) {
+          step_now = queued_steps.front();
+          queued_steps.pop_front();
+        }
+        stepped_last_frame = step_now;
+        hands_in[1].undo_pressed = step_now == HistoryStep::Undo;
+        hands_in[1].redo_pressed = step_now == HistoryStep::Redo;
         recorder.write_frame_input(t, camera_pose(view), hands_in, kDesktopProfile);
         for (const InteractionEvent& e :
              interaction.update({hand_sample(hands_in[0]), hand_sample(hands_in[1])}))
           record_interaction(e);
         if (interaction.dragging()) recorder.write_drag(t, interaction.current_d());
         dragging = interaction.dragging();
+        if (dragging && !queued_steps.empty()) {  // a drag begun first: undoing it next would surprise
+          say("undo and redo act between drags");
+          queued_steps.clear();
+        }
         if (!dragging) {  // in the headset loop's order: after the gesture
           for (const auto& [pressed, step] : {std::pair{hands_in[1].undo_pressed, HistoryStep::Undo},
                                               std::pair{hands_in[1].redo_pressed, HistoryStep::Redo}})
             if (pressed) ask_history_step(step);
         }
-        if (colour) {  // a "colour" record, which a replay applies at this frame
-          scene.set_colour(next_colour(scene.colour()));
+        if (colour_steps > 0) {  // a "colour" record, which a replay applies at this frame
+          ReviewColour colour = scene.colour();
+          for (int i = 0; i < colour_steps; ++i) colour = next_colour(colour);
+          scene.set_colour(colour);
           recorder.write_colour(t, scene.colour());
         }
         scene.set_highlight(interaction.hover_handle(1));
-        if (method && dragging && !o.fixed_method) say("the method changes between drags");
-        if (method && !dragging && !o.fixed_method) {
-          interaction.set_method(next_method(interaction.method()));
+        if (method_steps > 0 && dragging && !o.fixed_method) say("the method changes between drags");
+        if (method_steps > 0 && !dragging && !o.fixed_method) {
+          deform::Method next = interaction.method();
+          for (int i = 0; i < method_steps; ++i) next = next_method(next);
+          interaction.set_method(next);
           recorder.write_method(t, interaction.method());
         }
         last = p;
@@ -356,7 +422,7 @@ void run_desktop(const ReviewCommandOptions& given, const ReviewSetup& setup) {
               if (bottom + dy > 0.98) dy = 0.98 - bottom;
               at += dx / x_per_m * right - dy / y_per_m * up;
             }
-            cursor_label.place(at, camera, line / 0.02);
+            cursor_label.place_on_image_plane(at, right, up, line / 0.02);
             if (const auto d = cursor_label.draw()) draws.push_back(*d);
           }
           hud.place_top_left(view, 0.03);

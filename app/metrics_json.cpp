@@ -129,8 +129,9 @@ std::string metrics_json(const DeformRunRecord& record) {
            {"flat_rule",
             "|K| * reference_length^2 <= flat_band (reference_length: bounding-box diagonal of the "
             "model); sign_flips counts every change, sign_reversals only + to - and - to +; "
-            "reversals_by_band: the reversals again with flat_band raised to band (curvature radius below "
-            "radius_below), among the vertices signed under it before"}};
+            "reversals_by_band: the reversals again among the vertices signed before the pull with "
+            "flat_band raised to band (curvature radius below radius_below: compared), signed the other way "
+            "after it under flat_band; vertices on the mesh boundary or a non-manifold edge are left out"}};
   json sections = json::array();
   for (const deform::Section& section : metrics.sections) {
     sections.push_back(json{

@@ -62,8 +62,11 @@ renderer::View MirrorView::update(const std::array<xr::EyeView, 2>& eyes, double
                     left.T_stage_eye.orientation.z);
   const auto& p0 = eyes[0].T_stage_eye.position;
   const auto& p1 = eyes[1].T_stage_eye.position;
+  // The head looks between the eyes: displays may be canted outwards, each eye turned by a few degrees.
+  const auto& r = eyes[1].T_stage_eye.orientation;
+  const glm::quat head_q = glm::slerp(q, glm::quat(r.w, r.x, r.y, r.z), 0.5f);
   {
-    const glm::vec3 f = q * glm::vec3(0.0f, 0.0f, -1.0f);
+    const glm::vec3 f = head_q * glm::vec3(0.0f, 0.0f, -1.0f);
     head_yaw_ = std::atan2(-double(f.x), -double(f.z));
   }
   if (mode_ == MirrorMode::FreeOrbit) return renderer::frame_bounds(bounds_, orbit_, aspect);
@@ -77,7 +80,7 @@ renderer::View MirrorView::update(const std::array<xr::EyeView, 2>& eyes, double
     return view;
   }
   const glm::dvec3 head(0.5 * (double(p0.x) + p1.x), 0.5 * (double(p0.y) + p1.y), 0.5 * (double(p0.z) + p1.z));
-  const glm::dvec3 forward = glm::dvec3(q * glm::vec3(0.0f, 0.0f, -1.0f));
+  const glm::dvec3 forward = glm::dvec3(head_q * glm::vec3(0.0f, 0.0f, -1.0f));
   const double yaw = std::atan2(-forward.x, -forward.z);  // 0 = looking down -Z
   const double pitch = std::asin(std::clamp(forward.y, -1.0, 1.0));
   const double alpha = 1.0 - std::exp(-std::max(dt_s, 0.0) / 0.5);

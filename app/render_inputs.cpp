@@ -44,7 +44,7 @@ RenderInputs prepare_render_inputs(std::shared_ptr<const RenderModel> render, co
         deform::flat_curvature_threshold(deform::curvature_reference_length(V0), options.dead_band);
     std::vector<std::int8_t> signs = deform::curvature_signs(after, threshold);
     for (size_t i = 0; i < signs.size(); ++i)
-      if (after.boundary[i]) signs[i] = 0;  // the boundary's turn is not surface curvature
+      if (!after.defined_at(i)) signs[i] = 0;  // the boundary's turn, sheets meeting: not surface curvature
     inputs.scalars = curvature_signs_on_render_vertices(model, V, signs);
   }
 

@@ -8,8 +8,10 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 #include <sstream>
 
 namespace pushpull::app {
@@ -36,19 +38,39 @@ std::string number(double v, const char* format = "%.3g") {
 }
 
 // The section curves of one plane (perpendicular to d) before (grey) and after (red), in the plane's own 2D
-// axes (u, v), life-size millimetres, one scale for both.
-std::string section_svg(const deform::Section& section, const Eigen::Vector3d& d, double scale) {
+// axes (u, v): v the model's up where d is not along it, life-size millimetres, one scale for both. The
+// caption gives the curves' largest extent in the plane ("across"; within 0.1% of it: the widest of 64
+// directions).
+std::string section_svg(const deform::Section& section, const Eigen::Vector3d& d, const Eigen::Vector3d& up,
+                        double scale) {
   const Eigen::Vector3d n = d.normalized();
-  const Eigen::Vector3d helper = std::abs(n.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
-  const Eigen::Vector3d u = n.cross(helper).normalized(), v = n.cross(u);
+  Eigen::Vector3d v = up - up.dot(n) * n;
+  if (!(v.norm() > 0.1 * up.norm())) {  // pulled along the up axis: any axis in the plane
+    const Eigen::Vector3d helper =
+        std::abs(n.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+    v = n.cross(helper);
+  }
+  v.normalize();
+  const Eigen::Vector3d u = v.cross(n);
   double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
+  constexpr int kDirections = 64;
+  std::array<std::pair<double, double>, kDirections> spans;
+  spans.fill({1e300, -1e300});
   for (const auto* curves : {&section.before, &section.after})
     for (const deform::SectionCurve& c : *curves)
       for (const Eigen::Vector3d& p : c.points) {
-        x0 = std::min(x0, p.dot(u)), x1 = std::max(x1, p.dot(u));
-        y0 = std::min(y0, p.dot(v)), y1 = std::max(y1, p.dot(v));
+        const double x = p.dot(u), y = p.dot(v);
+        x0 = std::min(x0, x), x1 = std::max(x1, x);
+        y0 = std::min(y0, y), y1 = std::max(y1, y);
+        for (int k = 0; k < kDirections; ++k) {
+          const double angle = std::numbers::pi * k / kDirections;
+          const double s = x * std::cos(angle) + y * std::sin(angle);
+          spans[k] = {std::min(spans[k].first, s), std::max(spans[k].second, s)};
+        }
       }
   if (!(x1 >= x0)) return "";
+  double across = 0.0;
+  for (const auto& [lo, hi] : spans) across = std::max(across, hi - lo);
   const double W = 360, H = 220, margin = 10;
   const double k = std::min((W - 2 * margin) / std::max(x1 - x0, 1e-12), (H - 2 * margin) / std::max(y1 - y0, 1e-12));
   std::ostringstream svg;
@@ -67,7 +89,7 @@ std::string section_svg(const deform::Section& section, const Eigen::Vector3d& d
   for (const deform::SectionCurve& c : section.before) polyline(c, "#888");
   for (const deform::SectionCurve& c : section.after) polyline(c, "#d00");
   svg << "</svg><figcaption>section at " << number(section.offset * scale * 1000.0, "%.0f")
-      << " mm along d: before grey, after red (" << number((x1 - x0) * scale * 1000.0, "%.0f") << " mm wide)"
+      << " mm along d: before grey, after red (" << number(across * scale * 1000.0, "%.0f") << " mm across)"
       << "</figcaption></figure>\n";
   return svg.str();
 }
@@ -138,7 +160,7 @@ void write_replay_report(const std::string& path, const ReportSession& s, const 
     h << "<tr><th>files</th><td><a href=\"" << escape(c.model_file) << "\">" << escape(c.model_file)
       << "</a>, <a href=\"" << escape(c.metrics_file) << "\">" << escape(c.metrics_file) << "</a></td></tr>\n";
     h << "</table>\n";
-    for (const deform::Section& section : m.sections) h << section_svg(section, c.d, c.scale);
+    for (const deform::Section& section : m.sections) h << section_svg(section, c.d, c.up, c.scale);
     h << "<br>\n";
     for (const auto& [caption, file] : c.pictures)
       h << "<figure><img src=\"" << escape(file) << "\" alt=\"" << escape(caption) << "\"><figcaption>"

@@ -30,6 +30,8 @@ struct ReportCommit {
   deform::DeformationMetrics metrics;  // with sections (plotted before / after)
   Eigen::Vector3d d = Eigen::Vector3d::Zero();  // model units: the sections' planes are perpendicular to it
   double scale = 1.0;  // metres per model unit (metrics lengths are model units)
+  // The model's up axis (model frame): the sections are drawn with it up where d is not along it.
+  Eigen::Vector3d up = Eigen::Vector3d::UnitY();
   std::string hash, recorded_hash;  // recorded_hash "" when not compared
   std::string check;                 // "match", "mismatch: ...", "not compared: ..."
   std::string model_file, metrics_file;

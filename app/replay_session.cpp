@@ -64,9 +64,8 @@ std::vector<std::string> write_model(const fs::path& path, const assets::Model& 
 }
 
 std::string two_digits(std::size_t i) {
-  char text[16];
-  std::snprintf(text, sizeof text, "%02zu", i);
-  return text;
+  const std::string digits = std::to_string(i);
+  return digits.size() < 2 ? "0" + digits : digits;
 }
 
 // The simulated runtime beside this executable (build/pushpull -> build/xr/sim/pushpull_xr_sim.json).
@@ -466,7 +465,22 @@ void run_replay(const ReplayOptions& o) {
       std::sort(roi.begin(), roi.end());
     }
     DeformRunRecord record;
+    // The file holding the shape this commit was solved from (so that `pushpull deform` on it repeats the
+    // commit from its metrics): the model for the first commit (or after undoing every one), else the latest
+    // earlier commit's file with the same positions (its hash), else one written for it, commit-NN-before.
     record.input = model_path;
+    if (c.before) {
+      const std::uint64_t before_hash = deform::position_hash(c.before->V);
+      std::string found;
+      for (const CommitRecord& earlier : commits)
+        if (earlier.index < c.index && earlier.hash == before_hash)
+          found = "commit-" + two_digits(earlier.index) + ext;
+      if (found.empty() && before_hash != deform::position_hash(model.deform_mesh.V)) {
+        found = stem + "-before" + ext;
+        if (!pictures) (void)write_model(out / found, model, c.before->V);  // (with pictures: written below)
+      }
+      if (!found.empty()) record.input = found;
+    }
     record.output = stem + ext;
     record.options.method = s.method;
     record.options.mu = review.mu;
@@ -562,6 +576,7 @@ void run_replay(const ReplayOptions& o) {
     rc.metrics = record.metrics;
     rc.d = s.d;
     rc.scale = scale;
+    if (review.up.size() == 3) rc.up = Eigen::Vector3d(review.up[0], review.up[1], review.up[2]);
     rc.hash = hash_text(c.hash);
     if (const auto pair = pairs.at(c.index - 1)) rc.recorded_hash = rec.commits[*pair].record.at("hash");
     rc.check = checks.at(c.index - 1);

@@ -34,4 +34,16 @@ void finish_review(std::optional<std::string>& failure, SessionRecorder& recorde
     throw CommandError("the review ended on an error: " + *failure + kept_work_note(out, recorder));
 }
 
+void finish_review_on_lost_display(const std::function<void()>& wind_down, SessionRecorder& recorder,
+                                   EventLog& log, double t, const deform::Service& service,
+                                   const std::string& out, const assets::Model& model) {
+  std::optional<std::string> failure = "the connection to the X display was lost";
+  guarded(failure, wind_down);
+  try {
+    finish_review(failure, recorder, log, t, service, out, model, /*print_out=*/true);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "pushpull: error: %s\n", e.what());
+  }
+}
+
 }  // namespace pushpull::app

@@ -15,6 +15,7 @@
 #include "pushpull/deform/service.hpp"
 
 #include <exception>
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -37,5 +38,13 @@ void guarded(std::optional<std::string>& failure, Step&& step) {
 void finish_review(std::optional<std::string>& failure, SessionRecorder& recorder, EventLog& log, double t,
                    const deform::Service& service, const std::string& out, const assets::Model& model,
                    bool print_out);
+
+// The last words of a review whose window's X display connection broke (MirrorWindow::on_connection_lost:
+// the process ends right after): `wind_down` (cancel the drag in progress, wait for the service, take its
+// commits; guarded), then finish_review with that failure, whose message (where the work is) is printed on
+// stderr instead of thrown.
+void finish_review_on_lost_display(const std::function<void()>& wind_down, SessionRecorder& recorder,
+                                   EventLog& log, double t, const deform::Service& service,
+                                   const std::string& out, const assets::Model& model);
 
 }  // namespace pushpull::app

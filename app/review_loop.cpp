@@ -309,6 +309,22 @@ void run_review(const ReviewCommandOptions& o) {
     std::optional<InterruptRequests> interrupts;
     if (o.end_on_interrupt) interrupts.emplace();
     auto interrupted = [&] { return interrupts && interrupts->requested(); };
+    // The mirror's X display gone: Xlib ends the process (the headset's session with it) once this returns.
+    if (mirror)
+      mirror->on_connection_lost([&] {
+        std::fprintf(stderr,
+                     "pushpull review: the mirror window's display is gone; ending the review (the "
+                     "committed work is kept)\n");
+        finish_review_on_lost_display(
+            [&] {
+              if (interaction.dragging())
+                if (const auto e = interaction.cancel()) log_event(*e);
+              end_hold();
+              service.wait_idle();
+              take_commits();
+            },
+            recorder, log, t, service, o.out, model);
+      });
     // The session was lost (headset unplugged, runtime restarted): the drag in progress is cancelled (the
     // model stays as it was before it); the committed work stays, and with --reconnect the review goes on
     // when the headset is back. Returns whether it is back.
@@ -358,8 +374,10 @@ void run_review(const ReviewCommandOptions& o) {
     // Whether the review asked to end (Esc, the window, Ctrl-C): otherwise an exit is the runtime's (the
     // reviewer quit from its menu), recorded as xr/sim's exit event so that a replay ends there too.
     bool asked_to_exit = false;
+    std::optional<Clock::time_point> exit_asked_at;  // the first request
     auto ask_exit = [&] {
       asked_to_exit = true;
+      if (!exit_asked_at) exit_asked_at = Clock::now();
       xr.request_exit();
     };
     while (!xr.exit_requested() || xr.lost() || session_lost) {
@@ -370,9 +388,15 @@ void run_review(const ReviewCommandOptions& o) {
         guarded(failure, ask_exit);
         if (session_lost || xr.lost() || failure) break;  // nothing to end gracefully
       }
-      // A runtime that does not end the session within 3 s of the request: the review ends without it (the
-      // session is destroyed in any state), rather than the second Ctrl-C losing the work.
-      if (interrupted_at && Clock::now() - *interrupted_at > std::chrono::seconds(3)) break;
+      // A runtime that does not end the session within 3 s of the request (Ctrl-C, Esc, the window closed):
+      // the review ends without it (the session is destroyed in any state), rather than a second Ctrl-C or a
+      // kill losing the work.
+      if (exit_asked_at && Clock::now() - *exit_asked_at > std::chrono::seconds(3)) {
+        std::printf(
+            "pushpull review: the OpenXR runtime did not end the session within 3 s of the request; "
+            "ending without it\n");
+        break;
+      }
       if (session_lost || xr.lost()) {
         bool back = false;
         try {
@@ -417,16 +441,20 @@ void run_review(const ReviewCommandOptions& o) {
         if (o.on_frame) o.on_frame(t);
         {
           std::optional<XrPosef> head;
-          if (frame.should_render) {  // the head: between the eyes, looking as the left eye
+          if (frame.should_render) {
+            // The head: between the eyes, looking between them (displays may be canted outwards, each eye
+            // turned by a few degrees; on a display that is not, both eyes share the head's orientation).
             const XrPosef& l = frame.eyes[0].T_stage_eye;
             const XrPosef& r = frame.eyes[1].T_stage_eye;
-            head = XrPosef{l.orientation,
+            const Eigen::Quaterniond between =
+                Eigen::Quaterniond(l.orientation.w, l.orientation.x, l.orientation.y, l.orientation.z)
+                    .slerp(0.5, Eigen::Quaterniond(r.orientation.w, r.orientation.x, r.orientation.y,
+                                                   r.orientation.z));
+            head = XrPosef{{float(between.x()), float(between.y()), float(between.z()), float(between.w())},
                            {(l.position.x + r.position.x) * 0.5f, (l.position.y + r.position.y) * 0.5f,
                             (l.position.z + r.position.z) * 0.5f}};
             head_position = Eigen::Vector3d(head->position.x, head->position.y, head->position.z);
-            head_forward =
-                Eigen::Quaterniond(l.orientation.w, l.orientation.x, l.orientation.y, l.orientation.z) *
-                Eigen::Vector3d(0.0, 0.0, -1.0);
+            head_forward = between * Eigen::Vector3d(0.0, 0.0, -1.0);
           }
           const std::string profile = input->current_profile(xr::Hand::Right);
           trackpad_steps = format_7 && profile == kTrackpadProfile;
@@ -437,18 +465,9 @@ void run_review(const ReviewCommandOptions& o) {
           // is), or at the recorded frame (replay).
           if (!anchor_schedule.done()) {
             std::optional<Eigen::Vector3d> located;
-            Eigen::Vector3d between_eyes = head_forward;
-            if (head && frame.position_valid) {
-              located = head_position;
-              // The heading between the eyes (displays may be canted outwards, each eye by a few degrees).
-              const XrQuaternionf& l = frame.eyes[0].T_stage_eye.orientation;
-              const XrQuaternionf& r = frame.eyes[1].T_stage_eye.orientation;
-              between_eyes =
-                  Eigen::Quaterniond(l.w, l.x, l.y, l.z).slerp(0.5, Eigen::Quaterniond(r.w, r.x, r.y, r.z)) *
-                  Eigen::Vector3d(0.0, 0.0, -1.0);
-            }
+            if (head && frame.position_valid) located = head_position;
             if (const auto anchor =
-                    anchor_schedule.take(t, 0.5 / double(recording_rate_hz), located, between_eyes)) {
+                    anchor_schedule.take(t, 0.5 / double(recording_rate_hz), located, head_forward)) {
               // A gesture begun before the head was located aimed at the model where it stood then.
               if (interaction.dragging())
                 if (const auto e = interaction.cancel()) log_event(*e);
@@ -729,6 +748,16 @@ void run_review(const ReviewCommandOptions& o) {
     });
     guarded(failure, end_hold);  // a press still held back when the review ended never went through
     guarded(failure, [&] { renderer.wait_idle(); });
+    // A push/pull still solving: the work committed before it is written first (finish_review writes it again
+    // with that one), for a runtime that kills its applications a few seconds after its own exit (SteamVR on
+    // Linux) while a large region solves.
+    if (!o.out.empty() && !service.idle()) {
+      try {
+        const auto history = service.history();
+        write_review_model(o.out, model, history.at(service.history_position()).state->V);
+      } catch (const std::exception&) {  // said by finish_review's write, which fails the same way
+      }
+    }
     service.wait_idle();
     guarded(failure, take_commits);
     finish_review(failure, recorder, log, t, service, o.out, model, !o.quiet);

@@ -134,7 +134,7 @@ SnapshotVertices convert_snapshot(const RenderModel& render, const Eigen::Matrix
                                                               deform::kDefaultFlatBand);
     std::vector<std::int8_t> signs = deform::curvature_signs(K, threshold);
     for (size_t i = 0; i < signs.size(); ++i)
-      if (K.boundary[i]) signs[i] = 0;
+      if (!K.defined_at(i)) signs[i] = 0;
     out.scalars = curvature_signs_on_render_vertices(render, V, signs);
   } else {
     out.scalars.assign(out.positions.size() / 3, 0.0f);

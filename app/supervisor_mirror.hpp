@@ -19,8 +19,10 @@
 #include <array>
 #include <chrono>
 #include <cstddef>
+#include <functional>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace pushpull::app {
@@ -37,6 +39,10 @@ class SupervisorMirror {
   [[nodiscard]] bool should_close() const { return window_.should_close(); }
   // The window was destroyed from outside (renderer::MirrorWindow::lost).
   [[nodiscard]] bool lost() const { return window_.lost(); }
+  // renderer::MirrorWindow::on_connection_lost: the X display's connection broke, and the process ends.
+  void on_connection_lost(std::function<void()> last_words) {
+    window_.on_connection_lost(std::move(last_words));
+  }
   void set_orbit_bounds(const renderer::Bounds& bounds) { view_.set_orbit_bounds(bounds); }
   [[nodiscard]] MirrorMode mode() const { return view_.mode(); }
   // The mode's name for the HUD and the title; "headset eye (drawn)" when the last frame could not copy the

@@ -53,6 +53,19 @@ void WorldLabel::place(const Eigen::Vector3d& anchor, const Eigen::Vector3d& vie
   T_stage_label_ = T;
 }
 
+void WorldLabel::place_on_image_plane(const Eigen::Vector3d& anchor, const Eigen::Vector3d& right,
+                                      const Eigen::Vector3d& up, double scale) {
+  const Eigen::Vector3d toward_viewer = right.cross(up);
+  glm::mat4 T(1.0f);
+  for (int r = 0; r < 3; ++r) {
+    T[0][r] = float(scale * right[r]);
+    T[1][r] = float(scale * up[r]);
+    T[2][r] = float(scale * toward_viewer[r]);
+    T[3][r] = float(anchor[r]);
+  }
+  T_stage_label_ = T;
+}
+
 void WorldLabel::place_top_left(const renderer::View& view, double line_fraction) {
   // The projection of renderer/camera.cpp: eye looking down -Z, +Y up; p[1][1] = -1 / tan(fov_y / 2),
   // p[0][0] = 1 / (aspect tan(fov_y / 2)), depth from p[2][2] = -f / (f - n) and p[3][2] = -f n / (f - n).

@@ -27,6 +27,12 @@ class WorldLabel {
   // Places the panel: its bottom centre at `anchor`, facing `viewer`, its text lines horizontal, `scale` times
   // its line height (a desktop camera far away: larger, to stay readable).
   void place(const Eigen::Vector3d& anchor, const Eigen::Vector3d& viewer, double scale = 1.0);
+  // Places the panel parallel to a camera's image plane: its bottom centre at `anchor`, its text along the
+  // camera's `right`, its lines stacked along the camera's `up` (unit, orthogonal; stage frame), `scale`
+  // times its line height. A window's readout: upright on the screen however the camera looks (straight down
+  // too).
+  void place_on_image_plane(const Eigen::Vector3d& anchor, const Eigen::Vector3d& right,
+                            const Eigen::Vector3d& up, double scale);
   // Pins the panel to the top-left corner of `view`'s image (a window's heads-up display): parallel to the
   // image plane, inside the view's depth range, a line `line_fraction` of the image height tall, half a line
   // from the edges. Call per frame with the frame's view.

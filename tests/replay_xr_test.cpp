@@ -184,10 +184,15 @@ TEST(ReplayXr, ReplayReproducesEveryCommitHashAndTheSameMeshesTwice) {
   EXPECT_NEAR(double(metrics.at("max_displacement")), 0.1, 1e-3);
   const auto metrics2 = nlohmann::json::parse(file_bytes(dir / "replay1" / "commit-02.metrics.json"));
   EXPECT_NEAR(double(metrics2.at("max_displacement")), std::abs(double(recorded[1].at("d").at(2))), 0.02);
+  // Each commit's input is the file its shape was solved from: the model, then commit 1's (it named the
+  // model for every commit, and a deform run repeated from commit 2's metrics solved another problem).
+  EXPECT_EQ(metrics.at("input"), kHood);
+  EXPECT_EQ(metrics2.at("input"), "commit-01.off");
   const std::string report = file_bytes(dir / "replay1" / "report.html");
   EXPECT_NE(report.find("Push/pull 2"), std::string::npos);
   EXPECT_NE(report.find("100.0 mm"), std::string::npos);
   EXPECT_NE(report.find("<polyline"), std::string::npos);  // the section curves
+  EXPECT_NE(report.find(" mm across)"), std::string::npos);  // their largest extent in the plane
   // The committed model moved 100 mm at most, where the hand pulled.
   const auto rest = pushpull::deform::read_mesh(kHood);
   const auto one = pushpull::deform::read_mesh(dir / "replay1" / "commit-01.off");

@@ -663,14 +663,17 @@ TEST(ReviewXr, EyesTakeTheRuntimesFirstSrgbFormatAndLookTheSame) {
 }
 
 // Rules of other runtimes that the spec allows (xr/sim's quirks): eyes recommended at different sizes, the
-// graphics requirements asked for before every session (SteamVR), haptics that fail. Both eyes are made at
-// the larger size, the review goes on without haptics (said once per session), comes back after a lost
+// graphics requirements asked for before every session (SteamVR), haptics that fail, swapchain waits that
+// time out (XR_TIMEOUT_EXPIRED, a success code: the image was drawn into and released unready, which the
+// runtime refused with XR_ERROR_CALL_ORDER_INVALID). Both eyes are made at the larger size, each image is
+// waited for again, the review goes on without haptics (said once per session), comes back after a lost
 // session and commits.
 TEST(ReviewXr, ARuntimeWithOtherRulesStillReviewsAndReconnects) {
   const fs::path dir = test_dir();
   const std::string script = drag_broken_by("loss");
   const ReviewRun run =
-      run_review(dir, script, "", "PUSHPULL_XR_SIM_QUIRKS=eyes-differ,requirements-per-session,haptics-fail");
+      run_review(dir, script, "",
+                 "PUSHPULL_XR_SIM_QUIRKS=eyes-differ,requirements-per-session,haptics-fail,wait-timeout");
   ASSERT_EQ(run.result.status, 0) << run.result.output;
   EXPECT_NE(run.result.output.find("272x264 per eye"), std::string::npos) << run.result.output;
   EXPECT_NE(run.result.output.find("the headset is back"), std::string::npos) << run.result.output;
@@ -768,6 +771,38 @@ TEST(ReviewXr, AReviewWhoseHeadsetStayedLostReplaysToItsEnd) {
       << replay.output;
   EXPECT_EQ(replay.output.find("the headset is back"), std::string::npos) << replay.output;
   EXPECT_TRUE(recording_records(dir / "replay" / "replay-session.jsonl", "resumed").empty());
+}
+
+// A display whose panels are canted (xr/sim's canted: each eye turned 10 deg outwards, its field of view
+// turned back): the recorded head looks between the eyes, as on a display that is not canted (it was the left
+// eye's orientation, 10 deg off, which a replay then played as the head's), the same push/pull commits, and
+// the recording replays.
+TEST(ReviewXr, ACantedDisplayRecordsTheHeadLookingBetweenItsEyes) {
+  const fs::path dir = test_dir();
+  const std::string script =
+      script_start() + R"({"t":1.4,"path":"/user/hand/right/input/trigger/value","value":0.0}
+{"t":2.0,"event":"exit"}
+)";
+  const fs::path plain_recording = dir / "plain.jsonl", canted_recording = dir / "canted.jsonl";
+  const ReviewRun plain = run_review(dir, script, "--record " + plain_recording.string());
+  const ReviewRun canted =
+      run_review(dir, script, "--record " + canted_recording.string(), "PUSHPULL_XR_SIM_QUIRKS=canted");
+  ASSERT_EQ(plain.result.status, 0) << plain.result.output;
+  ASSERT_EQ(canted.result.status, 0) << canted.result.output;
+  ASSERT_EQ(plain.of("commit").size(), 1u) << plain.result.output;
+  ASSERT_EQ(canted.of("commit").size(), 1u) << canted.result.output;
+  const std::vector<double> plain_d = plain.of("commit")[0].at("d"),
+                            canted_d = canted.of("commit")[0].at("d");
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(plain_d[i], canted_d[i], 1e-5) << i;
+  const auto plain_heads = lines_where(plain_recording, "path", "/user/head");
+  const auto canted_heads = lines_where(canted_recording, "path", "/user/head");
+  ASSERT_EQ(plain_heads.size(), canted_heads.size());
+  ASSERT_FALSE(plain_heads.empty());
+  for (std::size_t i = 0; i < plain_heads.size(); ++i) {
+    const std::vector<double> a = plain_heads[i].at("pose").at("q"), b = canted_heads[i].at("pose").at("q");
+    for (int k = 0; k < 4; ++k) ASSERT_NEAR(a[k], b[k], 1e-5) << "frame " << i << " component " << k;
+  }
+  expect_replays_with_commits(canted_recording);
 }
 
 // A runtime that does not end the session when asked to (xr/sim's ignores-exit): after Ctrl-C the review ends
@@ -1621,6 +1656,37 @@ xdotool mousemove --window $wid 200 150; xdotool key Escape; wait $pid
   EXPECT_GT(desktop_light, 100);
 }
 
+// Esc in the mirror window with a runtime that does not end the session when asked (xr/sim's ignores-exit):
+// the review ends on its own 3 s later and says why, as after Ctrl-C (it asked again every frame for ever).
+TEST(ReviewXrWindow, EscInTheMirrorEndsTheReviewEvenWhenTheRuntimeIgnoresTheExitRequest) {
+  if (std::getenv("DISPLAY") == nullptr) GTEST_SKIP() << "no DISPLAY (ctest runs this under xvfb-run)";
+  ASSERT_EQ(run_command("command -v xdotool").status, 0) << "xdotool is missing (scripts/setup installs it)";
+  const fs::path dir = test_dir();
+  std::ofstream(dir / "input.jsonl") << script_start() << R"({"t":60.0,"event":"exit"}
+)";
+  const std::string env =
+      pushpull::testing::xr_sim_environment() + " PUSHPULL_XR_SIM_INPUT=" + (dir / "input.jsonl").string() +
+      " PUSHPULL_XR_SIM_WIDTH=128 PUSHPULL_XR_SIM_HEIGHT=128 PUSHPULL_XR_SIM_RATE=30 PUSHPULL_XR_SIM_PACE=1"
+      " PUSHPULL_XR_SIM_QUIRKS=ignores-exit "
+      "PUSHPULL_XR_SIM_PROFILE=/interaction_profiles/oculus/touch_controller";
+  std::ofstream(dir / "drive.sh") << "set -e\n"
+                                  << env << " " << PUSHPULL_EXECUTABLE << " review " << kHood << kPlacement
+                                  << " --mirror --mirror-size 320 240 --out " << (dir / "out.off").string()
+                                  << " 2>&1 &\n"
+                                  << R"SH(pid=$!
+trap 'kill $pid 2>/dev/null || true' EXIT
+wid=$(timeout 60 xdotool search --sync --onlyvisible --name "pushpull review" | head -1)
+sleep 1; xdotool mousemove --window $wid 160 120; xdotool key Escape
+start=$(date +%s); set +e; wait $pid; echo "review exit status $? after $(( $(date +%s) - start )) s"
+)SH";
+  const auto driven = run_drive_script(dir);
+  ASSERT_EQ(driven.status, 0) << driven.output;
+  EXPECT_NE(driven.output.find("review exit status 0"), std::string::npos) << driven.output;
+  EXPECT_NE(driven.output.find("did not end the session within 3 s of the request"), std::string::npos)
+      << driven.output;
+  EXPECT_TRUE(fs::exists(dir / "out.off")) << driven.output;
+}
+
 // The start of an xdotool script driving `pushpull review --desktop ... --record RECORDING &`: the window id
 // in $wid, and `await KIND N`, which waits (up to 60 s) until the recording holds N records of KIND, so the
 // script goes on when the loop has seen an input, not after a fixed sleep that a loaded machine outlasts;
@@ -1722,6 +1788,33 @@ wait $pid
   EXPECT_GT((desktop_model.V - rest.V).cwiseAbs().maxCoeff(), 0.05);  // commit 1 moved the bonnet
 }
 
+// Keys pressed faster than the window draws (three U and two M 5 ms apart: within a frame or two): each acts,
+// in order, and the recording replays with them (a frame's presses were taken as one: one undo of three, one
+// method step of two; and presses in consecutive frames were recorded as one held button). (Not 0 ms apart:
+// GLFW drops a second press of a key with the first's X timestamp, XIM's duplicate.)
+TEST(ReviewXrWindow, DesktopKeysPressedWithinOneFrameEachAct) {
+  if (std::getenv("DISPLAY") == nullptr) GTEST_SKIP() << "no DISPLAY (ctest runs this under xvfb-run)";
+  ASSERT_EQ(run_command("command -v xdotool").status, 0) << "xdotool is missing (scripts/setup installs it)";
+  const fs::path dir = test_dir();
+  const fs::path recording = dir / "desktop.jsonl", out = dir / "desktop.off";
+  std::ofstream(dir / "drive.sh") << desktop_hood_review_script(dir, recording, out) << R"SH(
+drag 200 150 3 0 1; drag 150 170 0 -3 2; drag 250 130 3 0 3; await commit 3
+xdotool key --delay 5 u u u; await undo 3
+xdotool key --delay 5 m m; await method 1; sleep 0.5
+xdotool key Escape
+wait $pid
+)SH";
+  const auto driven = run_drive_script(dir);
+  ASSERT_EQ(driven.status, 0) << driven.output;
+  auto count = [&](const std::string& kind) { return recording_records(recording, kind).size(); };
+  ASSERT_EQ(count("commit"), 3u) << driven.output;
+  EXPECT_EQ(count("undo"), 3u) << driven.output;
+  ASSERT_GE(count("method"), 1u);
+  EXPECT_EQ(recording_records(recording, "method").back().at("method"), "arap-sr");  // asan, two steps on
+  EXPECT_EQ(largest_move_from_hood(out), 0.0);                                       // every push/pull undone
+  expect_replays_with_commits(recording, 3);
+}
+
 // A window destroyed from outside (xdotool windowclose: XDestroyWindow, as a crashed window manager or a
 // kill leaves it) ends the review as Esc does: the committed push/pull is written to --out and the exit
 // status is 0. Xlib's default error handler used to exit with 1 on the next request on the window
@@ -1744,6 +1837,32 @@ set +e; wait $pid; echo "review exit status $?"
   EXPECT_EQ(driven.output.find("SURFACE_LOST"), std::string::npos) << driven.output;
   ASSERT_TRUE(fs::exists(out)) << driven.output;
   EXPECT_GT(largest_move_from_hood(out), 0.0);  // the committed push/pull is in the written model
+}
+
+// The window's client killed by the X server (xdotool windowkill: XKillClient, as xkill or a window manager's
+// force quit do; the display gone is the same): Xlib ends the process, but first the committed push/pull is
+// written to --out and the recording ended, and the exit status says it failed (it exited with 1 at once,
+// nothing written, only Xlib's "X connection to :N broken").
+TEST(ReviewXrWindow, ADesktopReviewWhoseDisplayConnectionBreaksKeepsTheWork) {
+  if (std::getenv("DISPLAY") == nullptr) GTEST_SKIP() << "no DISPLAY (ctest runs this under xvfb-run)";
+  ASSERT_EQ(run_command("command -v xdotool").status, 0) << "xdotool is missing (scripts/setup installs it)";
+  const fs::path dir = test_dir();
+  const fs::path recording = dir / "desktop.jsonl", out = dir / "desktop.off";
+  std::ofstream(dir / "drive.sh") << desktop_hood_review_script(dir, recording, out) << R"SH(
+drag 200 150 3 0 1; await commit 1
+xdotool windowkill $wid
+set +e; wait $pid; echo "review exit status $?"
+)SH";
+  const auto driven = run_drive_script(dir);
+  ASSERT_EQ(driven.status, 0) << driven.output;
+  EXPECT_NE(driven.output.find("review exit status 1"), std::string::npos) << driven.output;
+  EXPECT_NE(driven.output.find("the connection to the X display was lost"), std::string::npos)
+      << driven.output;
+  ASSERT_TRUE(fs::exists(out)) << driven.output;
+  EXPECT_GT(largest_move_from_hood(out), 0.0);  // the committed push/pull is in the written model
+  const auto end = recording_records(recording, "end");
+  ASSERT_EQ(end.size(), 1u) << driven.output;
+  EXPECT_EQ(end[0].at("commits"), 1);
 }
 
 // Desktop mode: a click while the last commit is still solving is held back (the window keeps drawing) and

@@ -291,20 +291,32 @@ std::string output_path_problem(const fs::path& requested, MissingFolder missing
     return ::fcntl(*fd, F_GETFD) == -1 ? "names descriptor " + std::to_string(*fd) + ", which is not open"
                                        : std::string();
   const fs::path path = followed(requested);
+  // The file is written as a temporary in its folder renamed over it: the folder (or, where it will be made,
+  // the nearest one that exists) must take new files. Said now, not after the work that makes the file.
+  auto unwritable = [](const fs::path& folder) -> std::string {
+    const fs::path named = folder.empty() ? fs::path(".") : folder;
+    if (::access(named.c_str(), W_OK | X_OK) == 0) return {};
+    return "the folder " + named.string() + " does not take new files (" + std::strerror(errno) + ")";
+  };
   struct stat existing {};
   if (::stat(path.c_str(), &existing) == 0) {
     if (S_ISDIR(existing.st_mode)) return "is a folder, not a file";
     if (S_ISREG(existing.st_mode) && (existing.st_mode & 0222) == 0)
       return "is read-only (mode " + mode_text(existing.st_mode) + "); not overwritten";
+    if (S_ISREG(existing.st_mode)) return unwritable(path.parent_path());
     return {};
   }
-  const fs::path folder = path.parent_path();
+  fs::path folder = path.parent_path();
   std::error_code error;
-  if (!folder.empty() && !fs::is_directory(folder, error))
-    return fs::exists(folder, error)              ? folder.string() + " is a file, not a folder"
-           : missing == MissingFolder::WillBeMade ? std::string()
-                                                  : "the folder " + folder.string() + " does not exist";
-  return {};
+  if (!folder.empty() && !fs::is_directory(folder, error)) {
+    if (fs::exists(folder, error)) return folder.string() + " is a file, not a folder";
+    if (missing != MissingFolder::WillBeMade) return "the folder " + folder.string() + " does not exist";
+    while (!folder.empty() && folder != folder.parent_path() && !fs::exists(folder, error))
+      folder = folder.parent_path();
+    if (folder.empty()) folder = ".";
+    if (!fs::is_directory(folder, error)) return {};  // a file up the path: making the folder says so
+  }
+  return unwritable(folder);
 }
 
 bool holds_descriptor(const fs::path& path) {

@@ -62,6 +62,18 @@ class BodyReader {
   [[nodiscard]] std::size_t line() const { return encoding_ == Encoding::ascii ? line_ : 0; }
   [[nodiscard]] std::size_t bytes_left() const { return body_.size() - pos_; }
 
+  // ASCII: the next token after the elements read, if any (data the header does not declare), and its line.
+  [[nodiscard]] std::string_view ascii_leftover() {
+    while (pos_ < body_.size() && (detail::is_space(body_[pos_]) || body_[pos_] == '\n')) {
+      if (body_[pos_] == '\n') ++line_;
+      ++pos_;
+    }
+    const std::size_t start = pos_;
+    std::size_t end = start;
+    while (end < body_.size() && !detail::is_space(body_[end]) && body_[end] != '\n') ++end;
+    return body_.substr(start, end - start);
+  }
+
  private:
   template <typename T>
   static double decode(const unsigned char* bytes) {
@@ -192,6 +204,16 @@ Mesh parse_ply(std::string_view contents, const std::string& name) {
         }
       }
       if (is_vertex) builder.add_vertex(xyz[0], xyz[1], xyz[2], reader.line());
+    }
+  }
+  // ASCII data after the declared elements: a count too small would drop faces unseen. (Binary files may
+  // carry padding after their data; it is not read.)
+  if (encoding == Encoding::ascii) {
+    const std::string_view leftover = reader.ascii_leftover();
+    if (!leftover.empty()) {
+      fail(name, reader.line(),
+           "more data after the elements the header declares ('" + detail::printable(leftover) +
+               "'): is an element count in the header too small, or a property missing?");
     }
   }
   return builder.finish();

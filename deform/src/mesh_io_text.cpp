@@ -129,6 +129,15 @@ Mesh parse_off(std::string_view contents, const std::string& name) {
     }
     builder.add_polygon(polygon, cursor.line_number());  // trailing colour values are ignored
   }
+  // Records after the declared faces: a header count too small would drop them unseen (holes in the surface).
+  if (next_content_line(cursor, line)) {
+    detail::Tokens tokens(line);
+    std::string_view token;
+    tokens.next(token);
+    fail(name, cursor.line_number(),
+         "more data after the " + std::to_string(face_count) + " faces the header declares ('" +
+             detail::printable(token) + "'): is the header's vertex or face count too small?");
+  }
   return builder.finish();
 }
 

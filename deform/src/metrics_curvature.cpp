@@ -16,8 +16,9 @@ namespace {
 
 using detail::edge_key;
 
-// Vertices on an edge that belongs to exactly one face.
-std::vector<bool> boundary_vertices(const Eigen::MatrixXi& F, Eigen::Index vertex_count) {
+// Vertices on an edge of exactly one face (boundary), and on an edge of three or more (non-manifold).
+void mark_edge_vertices(const Eigen::MatrixXi& F, Eigen::Index vertex_count, std::vector<bool>* boundary,
+                        std::vector<bool>* non_manifold) {
   std::vector<std::uint64_t> edges;
   edges.reserve(static_cast<std::size_t>(3 * F.rows()));
   for (Eigen::Index f = 0; f < F.rows(); ++f) {
@@ -28,17 +29,18 @@ std::vector<bool> boundary_vertices(const Eigen::MatrixXi& F, Eigen::Index verte
     }
   }
   std::sort(edges.begin(), edges.end());
-  std::vector<bool> boundary(static_cast<std::size_t>(vertex_count), false);
+  boundary->assign(static_cast<std::size_t>(vertex_count), false);
+  non_manifold->assign(static_cast<std::size_t>(vertex_count), false);
   for (std::size_t i = 0; i < edges.size();) {
     std::size_t j = i;
     while (j < edges.size() && edges[j] == edges[i]) ++j;
-    if (j - i == 1) {
-      boundary[static_cast<std::size_t>(edges[i] >> 32)] = true;
-      boundary[static_cast<std::size_t>(edges[i] & 0xffffffffu)] = true;
+    if (j - i != 2) {
+      std::vector<bool>& marked = j - i == 1 ? *boundary : *non_manifold;
+      marked[static_cast<std::size_t>(edges[i] >> 32)] = true;
+      marked[static_cast<std::size_t>(edges[i] & 0xffffffffu)] = true;
     }
     i = j;
   }
-  return boundary;
 }
 
 }  // namespace
@@ -52,7 +54,7 @@ GaussianCurvature gaussian_curvature(const Eigen::MatrixXd& V, const Eigen::Matr
   }
   const Eigen::Index n = V.rows();
   GaussianCurvature result;
-  result.boundary = boundary_vertices(F, n);
+  mark_edge_vertices(F, n, &result.boundary, &result.non_manifold);
   Eigen::VectorXd angle_sum = Eigen::VectorXd::Zero(n);
   result.area = Eigen::VectorXd::Zero(n);
 

@@ -93,7 +93,7 @@ DeformationMetrics evaluate_deformation(const Mesh& before, const Eigen::MatrixX
   const std::vector<std::int8_t> sign_after = curvature_signs(k_after, metrics.curvature_threshold);
   for (const int i : vertices) {
     const auto v = static_cast<std::size_t>(i);
-    if (k_before.boundary[v]) continue;
+    if (!k_before.defined_at(v)) continue;
     ++metrics.curvature_vertices;
     metrics.positive_before += sign_before[v] > 0;
     metrics.negative_before += sign_before[v] < 0;
@@ -113,12 +113,11 @@ DeformationMetrics evaluate_deformation(const Mesh& before, const Eigen::MatrixX
     counted.radius_below = metrics.reference_length / std::sqrt(band);
     const double threshold = flat_curvature_threshold(metrics.reference_length, band);
     const std::vector<std::int8_t> before_signs = curvature_signs(k_before, threshold);
-    const std::vector<std::int8_t> after_signs = curvature_signs(k_after, threshold);
     for (const int i : vertices) {
       const auto v = static_cast<std::size_t>(i);
-      if (k_before.boundary[v] || before_signs[v] == 0) continue;
+      if (!k_before.defined_at(v) || before_signs[v] == 0) continue;
       ++counted.compared;
-      counted.reversals += before_signs[v] * after_signs[v] < 0;
+      counted.reversals += before_signs[v] * sign_after[v] < 0;  // after: the sign rule's own band
     }
     metrics.reversals_by_band.push_back(counted);
   }

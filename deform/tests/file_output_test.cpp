@@ -187,6 +187,25 @@ TEST(FileOutput, AReadOnlyFileAndAFolderAreRefusedAndLeftAlone) {
   EXPECT_EQ(pd::output_path_problem(dir.path / "new.off"), "");
   EXPECT_NE(pd::output_path_problem(read_only / "m.json").find("ro.off is a file, not a folder"),
             std::string::npos);
+  // A folder that takes no new files (read-only to this user, or on a read-only file system: /proc/sys even
+  // for root) is said before the work whose result would be lost at the end; also where the folder will be
+  // made inside it.
+  if (::access("/proc/sys", W_OK) != 0) {
+    EXPECT_NE(
+        pd::output_path_problem("/proc/sys/out.glb").find("the folder /proc/sys does not take new files"),
+        std::string::npos)
+        << pd::output_path_problem("/proc/sys/out.glb");
+    EXPECT_NE(pd::output_path_problem("/proc/sys/a/b/out.glb", pd::MissingFolder::WillBeMade)
+                  .find("the folder /proc/sys does not take new files"),
+              std::string::npos);
+  }
+  if (::geteuid() != 0) {  // root writes into a mode-0555 folder
+    const fs::path locked = dir.path / "locked";
+    fs::create_directory(locked);
+    fs::permissions(locked, fs::perms::owner_read | fs::perms::owner_exec);
+    EXPECT_NE(pd::output_path_problem(locked / "out.off").find("does not take new files"), std::string::npos);
+    fs::permissions(locked, fs::perms::owner_all);
+  }
 }
 
 // A child process interrupted (SIGINT, default action) while it writes a large file: it ends by the signal,

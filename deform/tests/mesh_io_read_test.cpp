@@ -241,3 +241,21 @@ TEST(MeshIoRead, AByteOrderMarkIsSkipped) {
   EXPECT_EQ(ply.V(1, 0), 1.0);
   EXPECT_EQ(ply.F.rows(), 1);
 }
+
+// A header count smaller than the records that follow would drop faces unseen (holes, parts left behind):
+// refused at the first record not declared. Trailing blank lines and comments stay fine.
+TEST(MeshIoRead, DataAfterTheDeclaredRecordsIsRefused) {
+  const std::string off = error_of(
+      [] { (void)pd::parse_off("OFF\n4 1 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n3 0 1 2\n3 1 3 2\n", "o.off"); });
+  EXPECT_NE(off.find("o.off:8: more data after the 1 faces the header declares ('3')"), std::string::npos)
+      << off;
+  EXPECT_EQ(
+      pd::parse_off("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2 255 0 0\n\n# end\n  \n", "c.off").F.rows(), 1);
+  const std::string ply_header =
+      "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+      "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n";
+  const std::string ply = error_of([&] { (void)pd::parse_ply(ply_header + "3 0 1 2\n3 1 3 2\n", "p.ply"); });
+  EXPECT_NE(ply.find("p.ply:15: more data after the elements the header declares ('3')"), std::string::npos)
+      << ply;
+  EXPECT_EQ(pd::parse_ply(ply_header + "3 0 1 2\n\n  \n", "ok.ply").F.rows(), 1);
+}

@@ -122,6 +122,11 @@ TEST(MetricsSignRule, ReversalsByBandTellGentleFromClearlyCurved) {
   EXPECT_LE(strong.reversals_by_band[1].reversals, strong.reversals_by_band[1].compared);
   EXPECT_GT(strong.reversals_by_band[1].reversals, 0u);
   EXPECT_EQ(strong.reversals_by_band[2].compared, 0u);
+  // A clearly curved dome turned into a gentle saddle: every vertex signed under band 0.1 before has
+  // reversed, though the saddle is too gentle to be signed under 0.1 (the sign after is the rule's own).
+  const pd::DeformationMetrics softened = pd::evaluate_deformation(dome(0.3), saddle(0.05).V, d, {});
+  EXPECT_EQ(softened.reversals_by_band[0].compared, interior);
+  EXPECT_EQ(softened.reversals_by_band[0].reversals, interior);
 
   // A dome left as it is reverses nowhere, under any band; the bands are the caller's.
   pd::MetricsOptions options;

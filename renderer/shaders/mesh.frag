@@ -123,13 +123,17 @@ void main() {
   if (mapped && frame.colour_params.w > 0.5) {
     // Review overlays: ROI tinted light, fixed vertices blue, handle red (the paper's Fig. 12 top row); fixed and
     // handle together: the handle a press would grab, magenta, a colour no colour map uses (red would vanish on
-    // the displacement map's top).
+    // the displacement map's top). On the displacement map the dragged handle is magenta too (red there reads
+    // as the legend's largest move).
     if (in_aux.y > 0.5) base.rgb = mix(base.rgb, vec3(0.55, 0.95, 0.55), mode == 0u ? 0.45 : 0.0);
     if (in_aux.z > 0.5 && in_aux.w > 0.5) {
       base.rgb = vec3(0.90, 0.15, 0.95); metallic = 0.0; roughness = 0.5;
     } else {
       if (in_aux.z > 0.5) { base.rgb = vec3(0.10, 0.25, 0.95); metallic = 0.0; roughness = 0.5; }
-      if (in_aux.w > 0.5) { base.rgb = vec3(0.95, 0.08, 0.06); metallic = 0.0; roughness = 0.5; }
+      if (in_aux.w > 0.5) {
+        base.rgb = mode == 1u ? vec3(0.90, 0.15, 0.95) : vec3(0.95, 0.08, 0.06);
+        metallic = 0.0; roughness = 0.5;
+      }
     }
   }
 

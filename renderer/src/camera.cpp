@@ -69,12 +69,14 @@ View frame_bounds(const Bounds& bounds, const OrbitCamera& camera, float aspect)
     fit = std::max(fit, towards + 1.05f * std::abs(glm::dot(rel, cam_up)) / tan_y);
   }
   const float distance = camera.distance_scale * std::max(fit, 1e-6f);
-  const glm::vec3 eye = bounds.centre() + dir * distance;
+  const glm::vec3 target = bounds.centre() + camera.target_offset;
+  const glm::vec3 eye = target + dir * distance;
 
   View view;
-  view.view = glm::lookAt(eye, bounds.centre(), up);
-  const float z_near = std::max(distance - radius * 1.5f, distance * 0.01f);
-  const float z_far = distance + radius * 1.5f;
+  view.view = glm::lookAt(eye, target, up);
+  const float reach = radius * 1.5f + glm::length(camera.target_offset);  // the box from the target
+  const float z_near = std::max(distance - reach, distance * 0.01f);
+  const float z_far = distance + reach;
   view.projection = perspective(fov_y, aspect, z_near, z_far);
   return view;
 }

@@ -163,7 +163,8 @@ MirrorWindow::MirrorWindow(const Context& context, uint32_t width, uint32_t heig
   detail::install_x11_error_guard();
   glfwSetWindowUserPointer(impl_->window, impl_.get());
   glfwSetKeyCallback(impl_->window, [](GLFWwindow* window, int key, int, int action, int) {
-    if (action == GLFW_PRESS)
+    // A key held down repeats (GLFW_REPEAT), as in an editor; so do presses X delivers with one timestamp.
+    if (action == GLFW_PRESS || action == GLFW_REPEAT)
       static_cast<Impl*>(glfwGetWindowUserPointer(window))->key_presses.push_back(key);
   });
   glfwSetScrollCallback(impl_->window, [](GLFWwindow* window, double, double dy) {
@@ -174,11 +175,16 @@ MirrorWindow::MirrorWindow(const Context& context, uint32_t width, uint32_t heig
 }
 
 MirrorWindow::~MirrorWindow() {
+  detail::set_x11_connection_lost({});
   vkDeviceWaitIdle(impl_->context.device());
   impl_->destroy_swapchain();
   if (impl_->surface != VK_NULL_HANDLE)
     vkDestroySurfaceKHR(impl_->context.instance(), impl_->surface, nullptr);
   if (impl_->window != nullptr) glfwDestroyWindow(impl_->window);
+}
+
+void MirrorWindow::on_connection_lost(std::function<void()> last_words) {
+  detail::set_x11_connection_lost(std::move(last_words));
 }
 
 std::optional<MirrorWindow::Frame> MirrorWindow::acquire(uint64_t timeout_ns) {

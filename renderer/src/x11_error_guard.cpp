@@ -5,6 +5,9 @@
 
 #include <atomic>
 #include <cstdio>
+#include <exception>
+#include <functional>
+#include <utility>
 
 namespace pushpull::renderer::detail {
 namespace {
@@ -32,10 +35,41 @@ int on_x11_error(Display* display, XErrorEvent* event) {
   return 0;
 }
 
+std::function<void()>& last_words() {
+  static std::function<void()> words;
+  return words;
+}
+std::atomic<bool> g_connection_lost{false};
+
+int on_x11_io_error(Display*) {
+  if (g_connection_lost.exchange(true)) return 0;  // a second X call from the last words: exit now
+  std::fprintf(
+      stderr,
+      "pushpull: the connection to the X display was lost (the X server went away, or the window was "
+      "force-quit: xkill, a window manager); the process must end\n");
+  std::fflush(stderr);
+  if (const std::function<void()> words = std::exchange(last_words(), {})) {
+    try {
+      words();
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "pushpull: error: %s\n", e.what());
+    } catch (...) {
+    }
+  }
+  std::fflush(stdout);
+  std::fflush(stderr);
+  return 0;  // Xlib then exits with status 1
+}
+
 }  // namespace
 
 void install_x11_error_guard() {
   XSetErrorHandler(on_x11_error);
+  XSetIOErrorHandler(on_x11_io_error);
+}
+
+void set_x11_connection_lost(std::function<void()> words) {
+  last_words() = std::move(words);
 }
 
 void watch_x11_window(GLFWwindow* window) {

@@ -212,6 +212,15 @@ TEST(Renderer, AHoverHighlightIsMagentaOnTheDisplacementMapsRed) {
     EXPECT_GT(hover.b, hover.g + 80) << "magenta";
     const auto map = pixel(image, kSize / 2 + kSize / 4, kSize / 2);
     EXPECT_GT(map.r, map.b + 80) << "the map's red";
+    // The dragged handle (handle alone) on the displacement map: magenta too, not the red that reads as the
+    // legend's largest move.
+    RenderMesh dragged = sheet;
+    for (auto& overlay : dragged.overlays) overlay.fixed = 0.0f;
+    const TextureRGBA8 drag_image =
+        sheet_image(context, renderer, renderer.add_mesh(dragged), unlit_displacement());
+    const auto handle = pixel(drag_image, kSize / 2, kSize / 2);
+    EXPECT_GT(handle.r, handle.g + 80) << "magenta";
+    EXPECT_GT(handle.b, handle.g + 80) << "magenta";
   }
   EXPECT_EQ(context.validation_message_count(), 0u);
 }

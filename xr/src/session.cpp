@@ -706,6 +706,17 @@ void Session::poll_events() {
         if (change.session == s.session && change.referenceSpaceType == used) s.space_changed = true;
         break;
       }
+      case XR_TYPE_EVENT_DATA_EVENTS_LOST: {
+        // The runtime's queue overflowed: a state change may be among the dropped events, and core OpenXR
+        // has no call to ask for the state again. Said, so that a review stuck waiting is explained.
+        const auto& dropped = reinterpret_cast<const XrEventDataEventsLost&>(event);
+        std::fprintf(
+            stderr,
+            "pushpull review: the OpenXR runtime dropped %u event(s) (its event queue overflowed); a "
+            "session state change may have been missed\n",
+            dropped.lostEventCount);
+        break;
+      }
       default:
         break;  // interaction profile changes: Input queries them
     }

@@ -69,9 +69,24 @@ uint32_t Swapchain::acquire() {
   uint32_t index = 0;
   XrSwapchainImageAcquireInfo acquire_info{XR_TYPE_SWAPCHAIN_IMAGE_ACQUIRE_INFO};
   PUSHPULL_XR_CHECK(impl_->instance, xrAcquireSwapchainImage(impl_->swapchain, &acquire_info, &index));
+  // XR_TIMEOUT_EXPIRED is a success code, but the image is not ready: it may not be drawn into or released
+  // until a wait says XR_SUCCESS. Runtimes may time out even an infinite wait; give them 10 tries.
   XrSwapchainImageWaitInfo wait_info{XR_TYPE_SWAPCHAIN_IMAGE_WAIT_INFO};
   wait_info.timeout = XR_INFINITE_DURATION;
-  PUSHPULL_XR_CHECK(impl_->instance, xrWaitSwapchainImage(impl_->swapchain, &wait_info));
+  constexpr int kWaits = 10;
+  for (int attempt = 1;; ++attempt) {
+    const XrResult waited =
+        PUSHPULL_XR_CHECK(impl_->instance, xrWaitSwapchainImage(impl_->swapchain, &wait_info));
+    if (waited != XR_TIMEOUT_EXPIRED) break;
+    if (attempt == kWaits) {
+      throw XrError(std::string(__FILE__) + ":" + std::to_string(__LINE__) +
+                        ": xrWaitSwapchainImage(impl_->swapchain, &wait_info) returned XR_TIMEOUT_EXPIRED " +
+                        std::to_string(kWaits) +
+                        " times in a row (an infinite wait): the runtime never hands "
+                        "over the swapchain image",
+                    XR_TIMEOUT_EXPIRED);
+    }
+  }
   impl_->acquired = true;  // release() needs a waited image (an unwaited one: XR_ERROR_CALL_ORDER_INVALID)
   return index;
 }

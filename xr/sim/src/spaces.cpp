@@ -204,12 +204,16 @@ XrResult XRAPI_CALL locate_views(XrSession handle, const XrViewLocateInfo* info,
     const float side = i == 0 ? -1.f : 1.f;
     XrPosef eye_in_head = pose_identity();
     eye_in_head.position = {side * half_ipd, 0.f, 0.f};
+    // canted: each eye turned outwards by 10 deg about the head's +Y, its field of view turned back so that
+    // both still see what an uncanted display shows (Pimax, Index, Reverb).
+    const float cant = s->instance->config.canted ? -side * 0.17453293f : 0.f;
+    eye_in_head.orientation = {0.f, std::sin(cant * 0.5f), 0.f, std::cos(cant * 0.5f)};
     const XrPosef eye = pose_mul(head, eye_in_head);
     views[i].pose = base_pose ? pose_mul(pose_inverse(*base_pose), eye) : pose_identity();
     // Wider towards the temple (54 deg) than the nose (45 deg), 50 deg up, 54 deg down.
     const float outer = 0.9424778f, inner = 0.7853982f;
-    views[i].fov.angleLeft = i == 0 ? -outer : -inner;
-    views[i].fov.angleRight = i == 0 ? inner : outer;
+    views[i].fov.angleLeft = (i == 0 ? -outer : -inner) + cant;
+    views[i].fov.angleRight = (i == 0 ? inner : outer) + cant;
     views[i].fov.angleUp = 0.8726646f;
     views[i].fov.angleDown = -0.9424778f;
   });

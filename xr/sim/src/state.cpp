@@ -66,6 +66,8 @@ Config Config::from_env() {
   c.position_late = quirk("position-late");
   c.stays_lost = quirk("stays-lost");
   c.ignores_exit = quirk("ignores-exit");
+  c.wait_timeout = quirk("wait-timeout");
+  c.canted = quirk("canted");
   c.vulkan1_only = quirk("vulkan1-only");
   c.no_vulkan = quirk("no-vulkan");
   c.no_controller_extensions = quirk("no-controller-extensions");

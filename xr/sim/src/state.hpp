@@ -78,7 +78,11 @@ constexpr XrSystemId kSystemId = 1;
 //                                     that finds the room after start-up), stays-lost (after a scripted
 //                                     "loss" the headset never comes back: xrGetSystem says
 //                                     XR_ERROR_FORM_FACTOR_UNAVAILABLE), ignores-exit
-//                                     (xrRequestExitSession succeeds but the session goes on),
+//                                     (xrRequestExitSession succeeds but the session goes on), wait-timeout
+//                                     (the first xrWaitSwapchainImage of each acquired image returns
+//                                     XR_TIMEOUT_EXPIRED, a success code, though the wait was infinite),
+//                                     canted (each eye's view turned outwards by 10 deg about the head's
+//                                     +Y, its field of view turned back: a display with canted panels),
 //                                     vulkan1-only (XR_KHR_vulkan_enable2 is neither listed nor accepted:
 //                                     a runtime with only the first Vulkan binding, which names Vulkan
 //                                     extensions the application must enable, and refuses a session whose
@@ -122,6 +126,9 @@ struct Config {
   bool position_late = false;
   bool stays_lost = false;
   bool ignores_exit = false;
+  bool wait_timeout = false;
+  bool canted = false;  // each eye's view turned outwards by 10 deg (its field of view turned back)  // the
+                        // first xrWaitSwapchainImage of each acquired image: XR_TIMEOUT_EXPIRED
   bool vulkan1_only = false;
   bool no_vulkan = false;
   bool no_controller_extensions = false;     // offers none of the controller-profile extensions
@@ -306,6 +313,7 @@ struct Swapchain {
   std::vector<VkImage> images;
   std::vector<VkDeviceMemory> memory;
   std::deque<uint32_t> acquired;  // acquired, not yet released, in acquire order
+  bool wait_timed_out = false;    // quirk wait-timeout: this acquire's first wait returned XR_TIMEOUT_EXPIRED
   bool waited = false;            // acquired.front() has been waited on
   uint32_t next_index = 0;
   int64_t last_released = -1;

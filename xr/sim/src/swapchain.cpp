@@ -256,6 +256,12 @@ XrResult XRAPI_CALL wait_image(XrSwapchain handle, const XrSwapchainImageWaitInf
   if (const XrResult r = get_swapchain(handle, &sc); XR_FAILED(r)) return r;
   if (info == nullptr || info->type != XR_TYPE_SWAPCHAIN_IMAGE_WAIT_INFO) return XR_ERROR_VALIDATION_FAILURE;
   if (sc->acquired.empty() || sc->waited) return XR_ERROR_CALL_ORDER_INVALID;
+  if (sc->session->instance->config.wait_timeout && !sc->wait_timed_out) {
+    sc->wait_timed_out =
+        true;  // quirk: the first wait for each acquired image times out (the spec allows it)
+    return XR_TIMEOUT_EXPIRED;
+  }
+  sc->wait_timed_out = false;
   sc->waited = true;  // the compositor never holds an image: it is ready at once
   return sc->session->loss_pending ? XR_SESSION_LOSS_PENDING : XR_SUCCESS;
 }

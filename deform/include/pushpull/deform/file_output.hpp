@@ -32,7 +32,7 @@ enum class MissingFolder { Refused, WillBeMade };
 
 // Why `path` cannot be written as above, or "" when it can (as far as one can tell before writing): its
 // name is empty, its folder does not exist (unless it will be made) or is a file, it is a folder, it has no
-// write permission.
+// write permission, its folder (or the nearest existing one above a folder to be made) takes no new files.
 // For checking every output of a command before writing any of them.
 [[nodiscard]] std::string output_path_problem(const std::filesystem::path& path,
                                               MissingFolder missing = MissingFolder::Refused);

@@ -5,6 +5,8 @@
 //    triangle area for obtuse ones). Interior vertex: defect 2 pi - sum of incident angles. Boundary vertex
 //    (on an edge used by one face): defect pi - sum of angles (the discrete geodesic-curvature turn);
 //    it is reported but excluded from sign statistics, since it measures the boundary curve, not the surface.
+//    So is a vertex on a non-manifold edge (three or more faces: sheets of tessellated CAD meeting), whose
+//    angles do not close one disc.
 //  - Its sign, one rule for every consumer (deform's metrics, `pushpull render`, the headset): a vertex is
 //    flat (sign 0) when |K| L^2 <= flat_band, with L = curvature_reference_length(V), the diagonal of the
 //    model's bounding box, and flat_band dimensionless (kDefaultFlatBand = 1e-2: flatter than a sphere of
@@ -26,12 +28,12 @@
 //    flat-panel face (display_curvature_signs). Statistics keep the vertex signs.
 //  - Sign changes are reported apart: strict reversals (+ to -, - to +) are what the paper's "sign flips"
 //    mean (surface collapse); moves into or out of flat are counted separately (into_flat, out_of_flat).
-//  - Reversals by band: the same strict reversals counted again with the sign rule's band raised
-//    (MetricsOptions::reversal_bands, default 0.1, 1 and 10: curvature radius below L / sqrt(band), on a
-//    4.4 m car 14 m, 4.4 m and 1.4 m), among the vertices signed under the raised band before the pull
-//    (the "compared" count) and signed the other way under it after. They tell where a method's reversals
-//    lie: on gently curved surface (a bonnet: the demo's region of examples/hood.off has |K| L^2 between
-//    0.1 and 1, where ARAP-s&r reverses 456 vertices under band 0.1 and ASAN none), on clearly curved
+//  - Reversals by band: the same strict reversals counted again among the vertices clearly curved before
+//    the pull, signed under the sign rule's band raised (MetricsOptions::reversal_bands, default 0.1, 1 and
+//    10: curvature radius below L / sqrt(band), on a 4.4 m car 14 m, 4.4 m and 1.4 m; the "compared"
+//    count), and signed the other way after it under the sign rule's own band (a clearly curved vertex
+//    that turns gently curved the other way has reversed). They tell where a method's reversals lie: on
+//    gently curved surface, on clearly curved
 //    surface, or where the surface is nearly developable and the sign least stable (the paper's section 7
 //    names areas of null Gaussian curvature as its criterion's weak spot). The README gives the bundled car's
 //    session's figures.
@@ -64,6 +66,11 @@ struct GaussianCurvature {
   Eigen::VectorXd area;          // #V, mixed Voronoi area
   Eigen::VectorXd K;             // #V, angle_defect / area (0 where the area is 0)
   std::vector<bool> boundary;    // #V, true on a boundary edge (an edge of exactly one face)
+  // #V, true on an edge of three or more faces (sheets meeting, as in tessellated CAD): the angles around
+  // such a vertex do not close one disc, so its angle defect (2 pi - their sum) is not a curvature.
+  std::vector<bool> non_manifold;
+  // Whether vertex i has a surface curvature: neither on the boundary nor on a non-manifold edge.
+  [[nodiscard]] bool defined_at(std::size_t i) const { return !boundary[i] && !non_manifold[i]; }
 };
 
 // Angle defect and mixed area per vertex. Degenerate faces contribute nothing. Throws std::invalid_argument
@@ -157,18 +164,18 @@ struct MetricsOptions {
   Eigen::Vector3d section_origin = Eigen::Vector3d::Zero();
 };
 
-// Strict sign reversals under a raised band (see the header comment).
+// Strict sign reversals among the vertices signed under a raised band before the pull (the header comment).
 struct BandReversals {
   double band = 0.0;          // |K| L^2 <= band counts as flat (dimensionless)
   double radius_below = 0.0;  // L / sqrt(band): the curvature radius the band admits (model units)
   std::size_t compared = 0;   // interior vertices of S signed (not flat) under this band before the pull
-  std::size_t reversals = 0;  // of those, signed the other way after it under the same band
+  std::size_t reversals = 0;  // of those, signed the other way after it (under MetricsOptions::flat_band)
 };
 
 // Everything the paper evaluates for one push/pull, over a vertex set S (the region of interest).
 struct DeformationMetrics {
   std::size_t evaluated_vertices = 0;   // |S|
-  std::size_t curvature_vertices = 0;   // S minus mesh-boundary vertices: where signs are compared
+  std::size_t curvature_vertices = 0;   // S minus mesh-boundary and non-manifold vertices: signs compared
   double reference_length = 0.0;        // L of the sign rule: bounding-box diagonal of `before` (model units)
   double curvature_threshold = 0.0;     // flat_band / L^2, 1/length^2: |K| at most this is flat
   std::size_t sign_flips = 0;           // vertices whose sign changed (any of +,-,0 to another)

@@ -36,10 +36,12 @@ struct OrbitCamera {
   float fov_y_deg = 30.0f;
   float distance_scale = 1.0f;  // 1 = the bounding box just fits the view (5% margin); < 1 zooms in
   glm::vec3 up{0.0f, 1.0f, 0.0f};
+  glm::vec3 target_offset{0.0f};  // the point looked at: the box's centre plus this (world units)
 };
 
-// A view looking at the centre of `bounds` from direction (azimuth, elevation), at the smallest
-// distance where all 8 box corners are inside the view (aspect = width / height).
+// A view looking at the centre of `bounds` (plus camera.target_offset) from direction (azimuth, elevation),
+// at distance_scale times the smallest distance where all 8 box corners are inside the view when looking at
+// the centre (aspect = width / height).
 View frame_bounds(const Bounds& bounds, const OrbitCamera& camera, float aspect);
 
 // Stereo pair around a mono view: eyes offset by +-ipd/2 along the view's x axis, same projection.

@@ -20,6 +20,7 @@
 #include "pushpull/renderer/context.hpp"
 #include "pushpull/renderer/renderer.hpp"
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -55,8 +56,14 @@ class MirrorWindow {
   // from then on and the loop should end as on a close. X errors no longer end the process
   // (src/x11_error_guard.hpp).
   [[nodiscard]] bool lost() const;
+  // What to do when the connection to the X display breaks (the X server gone, the window force-quit with
+  // xkill): Xlib then ends the process with status 1 as soon as `last_words` returns, so they are the last
+  // chance to keep the user's work. Called once, on the main thread, inside poll_events() or another window
+  // call; they must not use this window. Cleared by the destructor. Nothing happens without X11.
+  void on_connection_lost(std::function<void()> last_words);
   void poll_events();
-  // Keys pressed since the last call, in order, as GLFW key codes (letters and digits are their ASCII
+  // Keys pressed since the last call, in order, a key held down once per repeat, as GLFW key codes (letters
+  // and digits are their ASCII
   // upper-case characters, e.g. 'C'; GLFW_KEY_ESCAPE = 256). Filled by poll_events().
   std::vector<int> take_key_presses();
   void set_title(const std::string& title);
