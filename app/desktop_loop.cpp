@@ -356,6 +356,7 @@ void run_desktop(const ReviewCommandOptions& given, const ReviewSetup& setup) {
           for (int i = 0; i < method_steps; ++i) next = next_method(next);
           interaction.set_method(next);
           recorder.write_method(t, interaction.method());
+          log.write_method(interaction.method());
         }
         last = p;
         take_commits();

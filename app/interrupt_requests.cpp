@@ -1,6 +1,9 @@
 #include "interrupt_requests.hpp"
 
 #include <atomic>
+#include <csignal>
+
+#include <unistd.h>
 
 namespace pushpull::app {
 namespace {
@@ -8,8 +11,16 @@ namespace {
 std::atomic<bool> g_requested{false};
 static_assert(std::atomic<bool>::is_always_lock_free, "the signal handler needs a lock-free flag");
 
-extern "C" void on_interrupt(int) {
-  g_requested.store(true, std::memory_order_relaxed);
+extern "C" void on_interrupt(int signal_number) {
+  if (!g_requested.exchange(true, std::memory_order_relaxed)) return;
+  // The second: the process ends at once by the signal's default action, said first (write is
+  // async-signal-safe; a failed write changes nothing).
+  static constexpr char kSaid[] =
+      "\npushpull: quitting at once; the committed model is not written (`pushpull replay` of the session "
+      "recording rebuilds it)\n";
+  [[maybe_unused]] const ssize_t written = ::write(STDERR_FILENO, kSaid, sizeof kSaid - 1);
+  std::signal(signal_number, SIG_DFL);
+  std::raise(signal_number);
 }
 
 }  // namespace
@@ -19,7 +30,7 @@ InterruptRequests::InterruptRequests() {
   struct sigaction action {};
   action.sa_handler = on_interrupt;
   sigemptyset(&action.sa_mask);
-  action.sa_flags = SA_RESETHAND;  // the second signal takes the default action: the process ends
+  action.sa_flags = 0;  // the second signal: on_interrupt says so, then the default action ends the process
   sigaction(SIGINT, &action, &previous_int_);
   sigaction(SIGTERM, &action, &previous_term_);
 }

@@ -174,6 +174,7 @@ std::optional<InteractionEvent> ReviewInteraction::begin_drag(int hand, const de
   p0_ = {hit.face, hit.point};
   InteractionEvent out;
   out.kind = InteractionEvent::Kind::Pressed;
+  out.method = method();
   out.hand = hand;
   out.face = p0_.face;
   out.p0 = p0_.point;
@@ -182,6 +183,7 @@ std::optional<InteractionEvent> ReviewInteraction::begin_drag(int hand, const de
 
 InteractionEvent ReviewInteraction::finish(bool commit) {
   InteractionEvent out;
+  out.method = method();
   out.hand = drag_hand_;
   out.face = p0_.face;
   out.p0 = p0_.point;

@@ -54,6 +54,7 @@ struct InteractionEvent {
   Eigen::Vector3d p0 = Eigen::Vector3d::Zero();  // model space
   Eigen::Vector3d d = Eigen::Vector3d::Zero();   // model space (the last one submitted)
   std::uint64_t request = 0;                     // Committed: the committed request (Service::commit)
+  deform::Method method = deform::Method::Asan;  // the drag's method (it does not change mid-drag)
 };
 
 class ReviewInteraction;

@@ -269,8 +269,15 @@ void run_review(const ReviewCommandOptions& o) {
     input.emplace(xr.instance(), xr.handle(), xr.stage_space(), xr.enabled_extensions());
     FrameStats stats;
     SizeSteering sizes;
+    bool stick_said = false;    // this drag's stick push was said to change nothing
+    std::string profile_said;   // the interaction profile last said on stdout
+    bool stick_pushed = false;  // the right stick was pushed (beyond half way) last frame
     const bool format_6 = o.behaviour_of_format >= 6;
     const bool format_7 = o.behaviour_of_format >= 7;
+    const bool format_8 = o.behaviour_of_format >= 8;
+    // A grip squeezed during a drag (a reviewer clenching the controller while pulling) or held through a
+    // lost session grabs the model only once let go and squeezed again (format 8), per hand.
+    std::array<bool, 2> grip_needs_release{false, false};
     bool trackpad_steps = false;  // the right hand's "thumbstick" is a trackpad (size_steering.hpp; format 7)
     GrabPlacement grab(placement, /*scale_on_floor=*/format_6);
     AnchorSchedule anchor_schedule(o.recorded_anchor);  // when the model moves in front of the reviewer
@@ -288,7 +295,9 @@ void run_review(const ReviewCommandOptions& o) {
     auto change_method = [&](deform::Method method) {
       const deform::Method before = interaction.method();
       interaction.set_method(method);
-      if (interaction.method() != before) recorder.write_method(t, interaction.method());
+      if (interaction.method() == before) return;
+      recorder.write_method(t, interaction.method());
+      log.write_method(interaction.method());
     };
     // Likewise a colour-map change is a "colour" record (the panel's are replayed through its input too).
     auto change_colour = [&](ReviewColour c) {
@@ -298,10 +307,20 @@ void run_review(const ReviewCommandOptions& o) {
     };
     std::size_t next_colour_change = 0;  // into o.colour_changes
     std::size_t next_size_change = 0;    // into o.size_changes
+    // A pull longer than the whole model (a tracking jump at the release, a hand thrown): committed as asked,
+    // and said, with the way back.
+    const double model_size =
+        rest->V.rows() > 0 ? (rest->V.colwise().maxCoeff() - rest->V.colwise().minCoeff()).norm() : 0.0;
     auto log_event = [&](const InteractionEvent& e) {
       if (e.kind == InteractionEvent::Kind::Committed) commits.expect_commit(e.request);
       log.write_interaction(e, life);
       recorder.write_interaction(t, e, interaction.handle_radius(), interaction.roi_radius());
+      if (e.kind == InteractionEvent::Kind::Committed && model_size > 0.0 && e.d.norm() > model_size)
+        std::fprintf(
+            stderr,
+            "pushpull review: warning: a pull of %.2f m, %.1f times the model's size (a tracking jump "
+            "at the release?); undo takes it back\n",
+            life.scale() * e.d.norm(), e.d.norm() / model_size);
     };
 
     // Ctrl-C or SIGTERM: the review ends as with Esc (the committed work is written); a second one ends it at
@@ -355,6 +374,7 @@ void run_review(const ReviewCommandOptions& o) {
       // read no release across the loss and did not press, but its replay, whose runtime loses the session
       // through LOSS_PENDING, read the last frame's inputs as released and pressed again at once.
       interaction.require_release();
+      if (format_8) grip_needs_release = {true, true};  // likewise a grip still squeezed
       log.write({{"event", "session recreated"}});
       recorder.write_record("resumed", t);
       std::printf("pushpull review: the headset is back; the review goes on\n");
@@ -457,6 +477,17 @@ void run_review(const ReviewCommandOptions& o) {
             head_forward = between * Eigen::Vector3d(0.0, 0.0, -1.0);
           }
           const std::string profile = input->current_profile(xr::Hand::Right);
+          // Which controllers the runtime bound (a profile without a grip or stick limits what a reviewer
+          // can do, and buttons that do nothing are otherwise unexplained).
+          if (profile != profile_said && !profile.empty()) {
+            profile_said = profile;
+            if (!o.quiet)
+              std::printf(
+                  "pushpull review: controllers: %s%s\n", profile.c_str(),
+                  profile == "/interaction_profiles/khr/simple_controller"
+                      ? " (select: push/pull; left menu: undo, right menu: redo; no grip, sizes or panel)"
+                      : "");
+          }
           trackpad_steps = format_7 && profile == kTrackpadProfile;
           recorder.write_frame_input(t, head, {input->hand(xr::Hand::Left), input->hand(xr::Hand::Right)},
                                      profile);
@@ -502,10 +533,18 @@ void run_review(const ReviewCommandOptions& o) {
         std::array<HandSample, 2> hands{hold_untracked(input->hand(xr::Hand::Left), last_tracked_hand[0]),
                                         hold_untracked(input->hand(xr::Hand::Right), last_tracked_hand[1])};
         // Grip (between drags): grab and move the model; both grips also scale it.
+        for (int h = 0; h < 2; ++h) {
+          const bool squeezed = input->hand(xr::Hand(h)).grip > 0.5f;
+          if (!squeezed)
+            grip_needs_release[size_t(h)] = false;
+          else if (interaction.dragging() && format_8)
+            grip_needs_release[size_t(h)] = true;
+        }
         if (!interaction.dragging()) {
           std::array<std::optional<GrabHand>, 2> grabbing;
           for (int h = 0; h < 2; ++h)
-            if (input->hand(xr::Hand(h)).grip > 0.5f && hands[size_t(h)].tracked)
+            if (input->hand(xr::Hand(h)).grip > 0.5f && hands[size_t(h)].tracked &&
+                !grip_needs_release[size_t(h)])
               grabbing[size_t(h)] = GrabHand{hands[size_t(h)].origin_stage, heading(hands[size_t(h)])};
           const bool was_grabbing = grab.grabbing();
           if (grab.update(grabbing)) place_model(grab.placement());
@@ -524,7 +563,14 @@ void run_review(const ReviewCommandOptions& o) {
         }
         // The method and colour-map panel (menu button): opens in front of the reviewer; while open the right
         // stick chooses, the trigger applies, and nothing is pushed or pulled.
-        // A trackpad's click on its rim steps the sizes instead (size_steering.hpp).
+        // A trackpad's click on its rim steps the sizes instead (size_steering.hpp). Mid-drag: said, not
+        // done.
+        for (int h = 0; h < 2 && interaction.dragging(); ++h)
+          if (input->hand(xr::Hand(h)).menu_pressed)
+            announce(notice,
+                     trackpad_steps && h == int(xr::Hand::Right) ? "sizes change between drags"
+                                                                 : "the panel opens between drags",
+                     t, !o.quiet);
         for (int h = 0; h < 2 && !interaction.dragging(); ++h) {
           const xr::HandInput& pressed = input->hand(xr::Hand(h));
           if (!pressed.menu_pressed) continue;
@@ -608,6 +654,11 @@ void run_review(const ReviewCommandOptions& o) {
           }
           if (in.redo_pressed) ask_history_step(HistoryStep::Redo);
         }
+        for (int h = 0; h < 2 && interaction.dragging(); ++h) {
+          const xr::HandInput& in = input->hand(xr::Hand(h));
+          if (in.undo_pressed || in.redo_pressed)
+            announce(notice, "undo and redo act between drags", t, !o.quiet);
+        }
         // Replay: the method changes the recording made with a key, at the frames it made them.
         apply_due(o.method_changes, next_method_change, due_until,
                   [&](const auto& change) { change_method(deform::parse_method(change.second)); });
@@ -634,6 +685,15 @@ void run_review(const ReviewCommandOptions& o) {
           const XrVector2f stick = input->hand(xr::Hand::Right).thumbstick;
           sizes.frame(interaction, stick.x, stick.y, recording_frame_period_s(double(recording_rate_hz)),
                       !menu.is_open() && !trackpad_steps, log, life, !o.quiet);
+          // Pushed from rest mid-drag: said once a drag (the drag keeps the sizes it grabbed with).
+          const bool pushed = std::hypot(double(stick.x), double(stick.y)) > 0.5 && !trackpad_steps;
+          if (!interaction.dragging()) {
+            stick_said = false;
+          } else if (pushed && !stick_pushed && !stick_said && !menu.is_open()) {
+            announce(notice, "sizes change between drags", t, !o.quiet);
+            stick_said = true;
+          }
+          stick_pushed = pushed;
         }
         // Replay: a frame that is kept shows the solver's settled state, not whichever preview timing left.
         if (o.settle_drawn_frames && frame.should_render && o.draw_frame && o.draw_frame(t))

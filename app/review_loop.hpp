@@ -73,8 +73,9 @@ struct ReviewCommandOptions {
   std::function<void(const CommitRecord&)> on_commit;
   // A replay: the format of its recording (session_recorder.hpp), whose review's behaviour it reproduces.
   // Before format 6 two-grip scaling was about the hands' midpoint, and a trigger the grip or the menu panel
-  // gave back still pulled could press at once; before format 7 a trackpad steered the sizes while touched.
-  int behaviour_of_format = 7;
+  // gave back still pulled could press at once; before format 7 a trackpad steered the sizes while touched;
+  // before format 8 a grip squeezed during a drag grabbed the model when the drag ended.
+  int behaviour_of_format = 8;
   // Called like on_commit for every push/pull the service could not commit (the model stayed as it was).
   std::function<void(const FailedCommit&)> on_failed_commit;
   // Headset loop: called once per frame with the recording's time of the frame (s), after its input was read

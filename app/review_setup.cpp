@@ -149,10 +149,20 @@ void EventLog::write_start(const ReviewCommandOptions& o, const ReviewSetup& s, 
   write(header);
 }
 
+void EventLog::write_method(deform::Method method) {
+  const std::string name(deform::method_name(method));
+  write({{"event", "method"}, {"method", name}});
+  if (print_) std::printf("pushpull review: method %s for the next push/pulls\n", name.c_str());
+}
+
 void EventLog::write_interaction(const InteractionEvent& e, const LifeSize& life) {
   static const char* names[] = {"press", "commit", "cancel"};
-  nlohmann::json line{{"event", names[int(e.kind)]}, {"hand", e.hand == 0 ? "left" : "right"},
-                      {"face", e.face}, {"p0", to_json(e.p0)}, {"d", to_json(e.d)}};
+  nlohmann::json line{{"event", names[int(e.kind)]},
+                      {"hand", e.hand == 0 ? "left" : "right"},
+                      {"face", e.face},
+                      {"p0", to_json(e.p0)},
+                      {"d", to_json(e.d)},
+                      {"method", std::string(deform::method_name(e.method))}};
   if (e.kind == InteractionEvent::Kind::Committed) line["request"] = e.request;
   write(line);
   if (print_)

@@ -46,6 +46,9 @@ class EventLog {
   void write_start(const ReviewCommandOptions& options, const ReviewSetup& setup, const std::string& runtime);
   // press / commit / cancel, with p0, face and d in model units; also printed with |d| in life-size mm.
   void write_interaction(const InteractionEvent& event, const LifeSize& life);
+  // {"event": "method", "method": NAME}: the method of the push/pulls from here on; printed ("method NAME for
+  // the next push/pulls") unless quiet.
+  void write_method(deform::Method method);
 
  private:
   std::ofstream file_;

@@ -52,15 +52,17 @@
 
 namespace pushpull::app {
 
-// The format this version writes ("pushpull-session-7") and the newest `pushpull replay` knows. Format 6:
+// The format this version writes ("pushpull-session-8") and the newest `pushpull replay` knows. Format 6:
 // two-grip scaling keeps the model on its floor (grab_placement.hpp), and a trigger the grip or the menu
 // panel gives back still pulled must be let go before it presses; a replay of format 1-5 scales about the
 // hands' midpoint and lets such a trigger press at once, as those reviews did. Format 7: the right trackpad
 // (htc/vive) steps the sizes by clicks on its rim instead of steering them while touched
-// (size_steering.hpp); a replay of format 1-6 steers them as those reviews did. The header's
-// "behaviour_format" says which behaviour the recorded review had (a replay of an older recording writes
-// the older number), and a replay follows it.
-inline constexpr int kNewestRecordingFormat = 7;
+// (size_steering.hpp); a replay of format 1-6 steers them as those reviews did. Format 8: a grip squeezed
+// during a drag, or held through a lost session, must be let go before it grabs the model (it grabbed at
+// the trigger's release); a replay of format 1-7 lets it grab at once. The header's "behaviour_format" says
+// which behaviour the recorded review had (a replay of an older recording writes the older number), and a
+// replay follows it.
+inline constexpr int kNewestRecordingFormat = 8;
 
 struct ReviewCommandOptions;
 struct ReviewSetup;

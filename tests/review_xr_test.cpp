@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -689,12 +690,14 @@ TEST(ReviewXr, ARuntimeWithOtherRulesStillReviewsAndReconnects) {
 
 // Ctrl-C in the terminal ends the review as Esc does: the push/pull committed before it is written to --out
 // and the recording gets its end record (the script has no exit: the review would run on).
-// A review (paced, 64 px eyes, script dir/input.jsonl, recording dir/session.jsonl) sent one SIGINT once its
-// recording holds a record of kind `after` (up to 60 s: a loaded machine starts slowly), plus 0.5 s. The
-// signal goes to the review alone (timeout(1) would signal its whole process group, twice for the child).
+// A review (paced, 64 px eyes, script dir/input.jsonl, recording dir/session.jsonl) sent SIGINT (`interrupts`
+// times, 0.5 s apart) once its recording holds a record of kind `after` (up to 60 s: a loaded machine starts
+// slowly), plus 0.5 s. The signal goes to the review alone (timeout(1) would signal its whole process group,
+// twice for the child).
 pushpull::testing::CommandResult review_interrupted_after(const fs::path& dir, const std::string& after,
                                                           const std::string& arguments,
-                                                          const std::string& extra_env = "") {
+                                                          const std::string& extra_env = "",
+                                                          int interrupts = 1) {
   const std::string recording = (dir / "session.jsonl").string();
   std::ofstream(dir / "interrupt.sh")
       << pushpull::testing::xr_sim_environment()
@@ -705,9 +708,26 @@ pushpull::testing::CommandResult review_interrupted_after(const fs::path& dir, c
       << recording << " " << arguments << " &\npid=$!\n"
       << "for i in $(seq 600); do grep -q '\"record\":\"" << after << "\"' " << recording
       << " 2>/dev/null && break; sleep 0.1; done\nsleep 0.5\nkill -INT $pid\n"
+      << (interrupts > 1 ? "sleep 0.5\nkill -INT $pid\n" : "")
       << "for i in $(seq 600); do kill -0 $pid 2>/dev/null || break; sleep 0.1; done\n"  // at most 60 s
       << "kill -KILL $pid 2>/dev/null\nwait $pid\n";
   return run_command("bash " + (dir / "interrupt.sh").string());
+}
+
+// A second Ctrl-C before the review has ended (a runtime slow to end its session: xr/sim's ignores-exit)
+// quits at once, by the signal, saying that the committed model is not written (it ended without a word).
+TEST(ReviewXr, ASecondCtrlCQuitsAtOnceAndSaysTheModelIsNotWritten) {
+  const fs::path dir = test_dir();
+  std::ofstream(dir / "input.jsonl") << script_start()
+                                     << R"({"t":1.4,"path":"/user/hand/right/input/trigger/value","value":0.0}
+)";
+  const auto run = review_interrupted_after(dir, "commit", "--out " + (dir / "out.off").string(),
+                                            "PUSHPULL_XR_SIM_QUIRKS=ignores-exit", /*interrupts=*/2);
+  EXPECT_EQ(run.status, 128 + SIGINT) << run.output;
+  EXPECT_NE(run.output.find("pushpull: quitting at once; the committed model is not written"),
+            std::string::npos)
+      << run.output;
+  EXPECT_FALSE(fs::exists(dir / "out.off")) << run.output;
 }
 
 TEST(ReviewXr, CtrlCEndsTheReviewAndKeepsTheCommittedWork) {
@@ -1216,6 +1236,95 @@ TEST(ReviewXr, ATriggerStillPulledWhenTheGripIsLetGoDoesNotPushOrPull) {
   EXPECT_NEAR(std::hypot(d[0], d[1]), 0.0, 1e-5);
 }
 
+// A grip squeezed during a drag (a reviewer clenching the controller while pulling) does not grab the model
+// when the trigger is released: it must be let go and squeezed again (format 8; the car followed the hand
+// at once). The release commits the pull; the second squeeze then moves the model.
+TEST(ReviewXr, AGripSqueezedDuringADragGrabsOnlyWhenSqueezedAgain) {
+  const fs::path dir = test_dir();
+  const std::string &trigger = kRightTrigger, &grip = kRightGrip;
+  auto pose = [](double t, double x) { return right_aim_down(t, 0.5, -0.65 + x); };
+  const auto value = input_value;
+  const std::string script =
+      R"({"t":0.0,"path":"/user/head","pose":{"p":[0,1.0,0],"q":[-0.32557,0,0,0.94552]}}
+)" + pose(0.0, 0.0) +
+      value(0.0, trigger, 0.0) + value(0.0, grip, 0.0) + pose(0.5, 0.0) + value(0.5, trigger, 1.0) +
+      value(0.8, grip, 1.0) + pose(1.0, 0.1) + value(1.4, trigger, 0.0) + pose(1.5, 0.1) + pose(1.8, 0.3) +
+      value(1.9, grip, 0.0) + value(2.1, grip, 1.0) + pose(2.1, 0.3) + pose(2.5, 0.5) +
+      value(2.6, grip, 0.0) +
+      R"({"t":3.2,"event":"exit"}
+)";
+  const fs::path recording = dir / "session.jsonl";
+  const ReviewRun run = run_review(dir, script, "--record " + recording.string());
+  ASSERT_EQ(run.result.status, 0) << run.result.output;
+  ASSERT_EQ(run.of("commit").size(), 1u) << run.result.output;
+  const std::string moved = "pushpull review: model moved";
+  const auto first = run.result.output.find(moved);
+  ASSERT_NE(first, std::string::npos) << run.result.output;  // the second squeeze
+  EXPECT_EQ(run.result.output.find(moved, first + 1), std::string::npos) << run.result.output;
+  // Moved by the second squeeze's 0.2 m, not the 0.4 m since the release.
+  const auto placements = run.of("placement");
+  ASSERT_EQ(placements.size(), 1u) << run.result.output;
+  const std::vector<double> T = placements[0].at("T_stage_model");
+  EXPECT_NEAR(T[11], -0.6 + 0.2, 1e-4) << "the translation's z";
+  expect_replays_with_commits(recording);
+}
+
+// In the headset, buttons that do nothing mid-drag say so (undo, the panel's menu button, the sizes' stick),
+// as the desktop's keys do; the drag commits as if they had not been pressed.
+TEST(ReviewXr, ButtonsThatDoNothingMidDragSaySo) {
+  const fs::path dir = test_dir();
+  const std::string script = script_start() + R"({"t":0.7,"path":"/user/hand/left/input/x/click","value":true}
+{"t":0.8,"path":"/user/hand/left/input/x/click","value":false}
+{"t":0.9,"path":"/user/hand/right/input/thumbstick","value":[0.0,1.0]}
+{"t":1.1,"path":"/user/hand/right/input/thumbstick","value":[0.0,0.0]}
+{"t":1.2,"path":"/user/hand/left/input/menu/click","value":true}
+{"t":1.3,"path":"/user/hand/left/input/menu/click","value":false}
+{"t":1.4,"path":"/user/hand/right/input/trigger/value","value":0.0}
+{"t":2.0,"event":"exit"}
+)";
+  const fs::path recording = dir / "session.jsonl";
+  const ReviewRun run = run_review(dir, script, "--record " + recording.string());
+  ASSERT_EQ(run.result.status, 0) << run.result.output;
+  ASSERT_EQ(run.of("commit").size(), 1u) << run.result.output;
+  EXPECT_TRUE(run.of("undo").empty()) << run.result.output;
+  for (const char* said :
+       {"undo and redo act between drags", "sizes change between drags", "the panel opens between drags"})
+    EXPECT_NE(run.result.output.find(said), std::string::npos) << said << "\n" << run.result.output;
+  // Which controllers the runtime bound is said.
+  EXPECT_NE(
+      run.result.output.find("pushpull review: controllers: /interaction_profiles/oculus/touch_controller"),
+      std::string::npos)
+      << run.result.output;
+  expect_replays_with_commits(recording);
+}
+
+// A pull longer than the whole model (a tracking jump at the release) commits as asked and is warned of; a
+// profile the runtime is asked for but cannot make current is said by xr/sim.
+TEST(ReviewXr, APullLongerThanTheModelIsWarnedOf) {
+  const fs::path dir = test_dir();
+  const std::string script =
+      script_start() +
+      R"({"t":1.1,"path":"/user/hand/right/input/aim/pose","pose":{"p":[0.0123,1000,5000],"q":[-0.70710678,0,0,0.70710678]}}
+{"t":1.2,"path":"/user/hand/right/input/trigger/value","value":0.0}
+{"t":2.0,"event":"exit"}
+)";
+  const ReviewRun run = run_review(dir, script, "");
+  ASSERT_EQ(run.result.status, 0) << run.result.output;
+  ASSERT_EQ(run.of("commit").size(), 1u) << run.result.output;
+  EXPECT_NE(
+      run.result.output.find("times the model's size (a tracking jump at the release?); undo takes it back"),
+      std::string::npos)
+      << run.result.output;
+  const ReviewRun unknown =
+      run_review(dir, pull_released_then_exit(2.0), "",
+                 "PUSHPULL_XR_SIM_PROFILE=/interaction_profiles/bytedance/pico4_controller");
+  EXPECT_NE(
+      unknown.result.output.find("PUSHPULL_XR_SIM_PROFILE=/interaction_profiles/bytedance/pico4_controller "
+                                 "is not a profile the application suggested"),
+      std::string::npos)
+      << unknown.result.output;
+}
+
 // --out is settled before the session: its missing folder is made (as --record's is), a folder or an
 // unwritable place is refused at once instead of after the whole session.
 TEST(ReviewXr, TheOutFolderIsSettledBeforeTheSession) {
@@ -1369,6 +1478,13 @@ TEST(ReviewXr, MenuPanelChoosesTheMethodOfTheNextPushPullAndReadoutsShow) {
   const std::string above(pushpull::deform::method_name(*(asan - 1)));
   EXPECT_EQ(methods[0].at("method"), above);
   EXPECT_EQ(commits[0].at("method"), above);
+  // The --events log says the change and each commit's method (`pushpull deform --method` repeats it).
+  ASSERT_EQ(run.of("method").size(), 1u) << run.result.output;
+  EXPECT_EQ(run.of("method")[0].at("method"), above);
+  EXPECT_EQ(run.of("commit")[0].at("method"), above);
+  EXPECT_NE(run.result.output.find("pushpull review: method " + above + " for the next push/pulls"),
+            std::string::npos)
+      << run.result.output;
 
   // Frame 9 (t = 0.3): aiming, the handle-to-be is magenta on the blue (undisplaced) bonnet and the readout
   // panel (near black) floats by the hand; frame 33 (t = 1.1): the open panel covers much more of the view.
@@ -1597,6 +1713,19 @@ int coloured_pixels(const ScreenShot& screen, int x0, int y0, int x1, int y1) {
   return n;
 }
 
+// The environment of a review with a mirror window driven by xdotool: xr/sim with 128 x 128 eyes at 30 Hz
+// paced on the real clock (the window answers meanwhile), Touch controllers, and dir/input.jsonl (written
+// here) that starts as script_start() and ends the session after 60 s; `extra` appended (" NAME=VALUE ...").
+std::string paced_mirror_environment(const fs::path& dir, const std::string& extra = "") {
+  std::ofstream(dir / "input.jsonl") << script_start() << R"({"t":60.0,"event":"exit"}
+)";
+  return pushpull::testing::xr_sim_environment() +
+         " PUSHPULL_XR_SIM_INPUT=" + (dir / "input.jsonl").string() +
+         " PUSHPULL_XR_SIM_WIDTH=128 PUSHPULL_XR_SIM_HEIGHT=128 PUSHPULL_XR_SIM_RATE=30"
+         " PUSHPULL_XR_SIM_PACE=1 PUSHPULL_XR_SIM_PROFILE=/interaction_profiles/oculus/touch_controller" +
+         extra;
+}
+
 // The supervisor's mirror window shows a HUD (method, |d|, iterations, state, colour map, view, keys) in its
 // top-left corner, in its own views and over the copied eye, and so does the desktop window; the colour-map
 // legend is in its bottom-left corner in every view (its bar: the box 10..55 x 210..290 px of the 400 x 300
@@ -1606,12 +1735,7 @@ TEST(ReviewXrWindow, MirrorAndDesktopWindowsShowTheHudInTheirTopLeftCorner) {
   ASSERT_EQ(run_command("command -v xwd").status, 0) << "xwd is missing (scripts/setup installs x11-apps)";
   ASSERT_EQ(run_command("command -v xdotool").status, 0) << "xdotool is missing (scripts/setup installs it)";
   const fs::path dir = test_dir();
-  std::ofstream(dir / "input.jsonl") << script_start() << R"({"t":60.0,"event":"exit"}
-)";
-  const std::string env =
-      pushpull::testing::xr_sim_environment() + " PUSHPULL_XR_SIM_INPUT=" + (dir / "input.jsonl").string() +
-      " PUSHPULL_XR_SIM_WIDTH=128 PUSHPULL_XR_SIM_HEIGHT=128 PUSHPULL_XR_SIM_RATE=30"
-      " PUSHPULL_XR_SIM_PACE=1 PUSHPULL_XR_SIM_PROFILE=/interaction_profiles/oculus/touch_controller";
+  const std::string env = paced_mirror_environment(dir);
   // Headset eye (the default), then V twice: free orbit; then the desktop window.
   std::ofstream(dir / "drive.sh") << "set -e\n"
                                   << env << " " << PUSHPULL_EXECUTABLE << " review " << kHood << kPlacement
@@ -1662,13 +1786,7 @@ TEST(ReviewXrWindow, EscInTheMirrorEndsTheReviewEvenWhenTheRuntimeIgnoresTheExit
   if (std::getenv("DISPLAY") == nullptr) GTEST_SKIP() << "no DISPLAY (ctest runs this under xvfb-run)";
   ASSERT_EQ(run_command("command -v xdotool").status, 0) << "xdotool is missing (scripts/setup installs it)";
   const fs::path dir = test_dir();
-  std::ofstream(dir / "input.jsonl") << script_start() << R"({"t":60.0,"event":"exit"}
-)";
-  const std::string env =
-      pushpull::testing::xr_sim_environment() + " PUSHPULL_XR_SIM_INPUT=" + (dir / "input.jsonl").string() +
-      " PUSHPULL_XR_SIM_WIDTH=128 PUSHPULL_XR_SIM_HEIGHT=128 PUSHPULL_XR_SIM_RATE=30 PUSHPULL_XR_SIM_PACE=1"
-      " PUSHPULL_XR_SIM_QUIRKS=ignores-exit "
-      "PUSHPULL_XR_SIM_PROFILE=/interaction_profiles/oculus/touch_controller";
+  const std::string env = paced_mirror_environment(dir, " PUSHPULL_XR_SIM_QUIRKS=ignores-exit");
   std::ofstream(dir / "drive.sh") << "set -e\n"
                                   << env << " " << PUSHPULL_EXECUTABLE << " review " << kHood << kPlacement
                                   << " --mirror --mirror-size 320 240 --out " << (dir / "out.off").string()
@@ -1765,7 +1883,7 @@ wait $pid
     std::ifstream in(recording);
     std::ofstream o(legacy);
     for (std::string line; std::getline(in, line);) {
-      if (const auto at = line.find("pushpull-session-7"); at != std::string::npos) line[at + 17] = '3';
+      if (const auto at = line.find("\"pushpull-session-"); at != std::string::npos) line[at + 18] = '3';
       if (line.find("\"record\":\"colour\"") == std::string::npos) {
         o << line << "\n";
         continue;

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 
@@ -220,6 +221,14 @@ void choose_interaction_profile(Session& s) {
     s.profile = find_profile(instance.config.profile);
   for (const InteractionProfile& p : interaction_profiles())
     if (s.profile == nullptr && has_bindings(p.path)) s.profile = &p;
+  // A profile asked for that cannot be current (unknown here, or the application suggested no bindings for
+  // it): said, since the script's paths for it then read nothing.
+  if (!instance.config.profile.empty() &&
+      (s.profile == nullptr || instance.config.profile != s.profile->path))
+    std::fprintf(stderr,
+                 "pushpull xr/sim: PUSHPULL_XR_SIM_PROFILE=%s is not a profile the application suggested "
+                 "bindings for (or xr/sim knows); the controllers are %s\n",
+                 instance.config.profile.c_str(), s.profile != nullptr ? s.profile->path.c_str() : "unbound");
   for (ActionSet* set : s.attached)
     for (Action* a : set->actions) {
       a->bound.clear();
