@@ -187,6 +187,11 @@ void run_desktop(const ReviewCommandOptions& given, const ReviewSetup& setup) {
           },
           recorder, log, t, service, o.out, setup.model);
     });
+    // Unset before the locals the last words use go (the window, declared before them, would clear it last).
+    struct ForgetLastWords {
+      renderer::MirrorWindow& window;
+      ~ForgetLastWords() { window.on_connection_lost({}); }
+    } forget_last_words{window};
     FrameStats stats;  // --benchmark
     stats.span = "window events .. present, CPU";
     while (!window.should_close() && (o.frames <= 0 || frames < o.frames)) {
@@ -321,7 +326,10 @@ void run_desktop(const ReviewCommandOptions& given, const ReviewSetup& setup) {
         hands_in[1].T_stage_aim = pointer_pose(hand_origin, hand_direction);
         hands_in[1].trigger = p.left && held_frames == 0 ? 1.0f : 0.0f;
         std::optional<HistoryStep> step_now;
-        if (!interaction.dragging() && !queued_steps.empty() && queued_steps.front() != stepped_last_frame) {
+        // Not while the button is down outside a drag (a press may start one this frame and swallow the
+        // step).
+        if (!interaction.dragging() && !p.left && !queued_steps.empty() &&
+            queued_steps.front() != stepped_last_frame) {
           step_now = queued_steps.front();
           queued_steps.pop_front();
         }

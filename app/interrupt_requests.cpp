@@ -16,8 +16,9 @@ extern "C" void on_interrupt(int signal_number) {
   // The second: the process ends at once by the signal's default action, said first (write is
   // async-signal-safe; a failed write changes nothing).
   static constexpr char kSaid[] =
-      "\npushpull: quitting at once; the committed model is not written (`pushpull replay` of the session "
-      "recording rebuilds it)\n";
+      "\npushpull: quitting at once (a second interrupt): what was not yet written is lost (`pushpull "
+      "replay` "
+      "of the session recording rebuilds the committed model)\n";
   [[maybe_unused]] const ssize_t written = ::write(STDERR_FILENO, kSaid, sizeof kSaid - 1);
   std::signal(signal_number, SIG_DFL);
   std::raise(signal_number);

@@ -1,7 +1,7 @@
 // Ctrl-C (SIGINT) and SIGTERM during a review end it the way Esc does: the loop sees the request at its next
 // frame and ends normally, so the committed work is written to --out and the recording gets its end record.
 // A second signal while the first is being handled ends the process at once (the default action), after a
-// line on stderr saying that the committed model is not written.
+// line on stderr saying that what was not yet written is lost, and how the recording rebuilds it.
 //
 // Ownership: an InterruptRequests installs the handlers for its lifetime and restores the previous ones; one
 // at a time. Thread-safety: the handler sets a lock-free atomic flag (the second signal's writes its line);

@@ -468,7 +468,8 @@ void run_replay(const ReplayOptions& o) {
     // The file holding the shape this commit was solved from (so that `pushpull deform` on it repeats the
     // commit from its metrics): the model for the first commit (or after undoing every one), else the latest
     // earlier commit's file with the same positions (its hash), else one written for it, commit-NN-before.
-    record.input = model_path;
+    // (Absolute, as the model's, so that a deform run from any folder finds it.)
+    record.input = std::filesystem::absolute(model_path).string();
     if (c.before) {
       const std::uint64_t before_hash = deform::position_hash(c.before->V);
       std::string found;
@@ -479,7 +480,7 @@ void run_replay(const ReplayOptions& o) {
         found = stem + "-before" + ext;
         if (!pictures) (void)write_model(out / found, model, c.before->V);  // (with pictures: written below)
       }
-      if (!found.empty()) record.input = found;
+      if (!found.empty()) record.input = std::filesystem::absolute(out / found).string();
     }
     record.output = stem + ext;
     record.options.method = s.method;

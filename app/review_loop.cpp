@@ -25,6 +25,7 @@
 
 #include "pushpull/assets/model.hpp"
 #include "pushpull/deform/cpu_affinity.hpp"
+#include "pushpull/deform/file_output.hpp"
 #include "pushpull/deform/service.hpp"
 #include "pushpull/renderer/context.hpp"
 #include "pushpull/renderer/mirror_window.hpp"
@@ -42,6 +43,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <ctime>
+#include <filesystem>
 #include <numeric>
 #include <thread>
 
@@ -344,6 +346,13 @@ void run_review(const ReviewCommandOptions& o) {
             },
             recorder, log, t, service, o.out, model);
       });
+    // Unset before the locals the last words use go (the mirror, declared before them, would clear it last).
+    struct ForgetLastWords {
+      std::optional<SupervisorMirror>& mirror;
+      ~ForgetLastWords() {
+        if (mirror) mirror->on_connection_lost({});
+      }
+    } forget_last_words{mirror};
     // The session was lost (headset unplugged, runtime restarted): the drag in progress is cancelled (the
     // model stays as it was before it); the committed work stays, and with --reconnect the review goes on
     // when the headset is back. Returns whether it is back.
@@ -811,10 +820,13 @@ void run_review(const ReviewCommandOptions& o) {
     // A push/pull still solving: the work committed before it is written first (finish_review writes it again
     // with that one), for a runtime that kills its applications a few seconds after its own exit (SteamVR on
     // Linux) while a large region solves.
-    if (!o.out.empty() && !service.idle()) {
+    // (Only a file replaced whole: a stream, /dev/stdout or a pipe, would get two models.)
+    if (!o.out.empty() && !service.idle() && !deform::holds_descriptor(o.out) &&
+        (std::filesystem::is_regular_file(o.out) || !std::filesystem::exists(o.out))) {
       try {
         const auto history = service.history();
-        write_review_model(o.out, model, history.at(service.history_position()).state->V);
+        write_review_model(o.out, model, history.at(service.history_position()).state->V,
+                           /*say_warnings=*/false);
       } catch (const std::exception&) {  // said by finish_review's write, which fails the same way
       }
     }

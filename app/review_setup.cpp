@@ -43,7 +43,10 @@ ReviewSetup prepare_review(const ReviewCommandOptions& o) {
         {"--out", &o.out}, {"--record", &o.record}, {"--events", &o.events}};
     for (const auto& [option, path] : outputs) {
       if (path->empty()) continue;
-      const std::string problem = deform::output_path_problem(*path, deform::MissingFolder::WillBeMade);
+      // --out is written atomically; the recording and the log line by line into the file itself.
+      const std::string problem = deform::output_path_problem(
+          *path, deform::MissingFolder::WillBeMade,
+          path == &o.out ? deform::OutputWrite::Atomic : deform::OutputWrite::InPlace);
       if (!problem.empty()) throw CommandError(*path + ": " + option + " " + problem);
     }
     for (std::size_t a = 0; a < 3; ++a)
@@ -118,9 +121,10 @@ ReviewSetup prepare_review(const ReviewCommandOptions& o) {
   return s;
 }
 
-void write_review_model(const std::string& path, const assets::Model& model, const Eigen::MatrixXd& V) {
+void write_review_model(const std::string& path, const assets::Model& model, const Eigen::MatrixXd& V,
+                        bool say_warnings) {
   for (const std::string& w : write_deformed_model(path, model.source_path, model.deform_mesh, &model, V))
-    std::printf("  warning: %s\n", w.c_str());
+    if (say_warnings) std::printf("  warning: %s\n", w.c_str());
 }
 
 EventLog::EventLog(const std::string& path, bool print) : print_(print) {

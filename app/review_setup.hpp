@@ -33,8 +33,10 @@ struct ReviewSetup {
 ReviewSetup prepare_review(const ReviewCommandOptions& options);
 
 // The committed positions V (#V by 3) of setup.model as .glb (the scene with moved vertices) or OFF/OBJ/PLY
-// (the welded mesh). Throws CommandError naming the file.
-void write_review_model(const std::string& path, const assets::Model& model, const Eigen::MatrixXd& V);
+// (the welded mesh); what the file leaves out is printed as warnings when say_warnings. Throws CommandError
+// naming the file.
+void write_review_model(const std::string& path, const assets::Model& model, const Eigen::MatrixXd& V,
+                        bool say_warnings = true);
 
 // JSON Lines event log (--events); writes nothing when the path is empty. Each line is flushed.
 class EventLog {

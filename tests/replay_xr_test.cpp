@@ -187,7 +187,7 @@ TEST(ReplayXr, ReplayReproducesEveryCommitHashAndTheSameMeshesTwice) {
   // Each commit's input is the file its shape was solved from: the model, then commit 1's (it named the
   // model for every commit, and a deform run repeated from commit 2's metrics solved another problem).
   EXPECT_EQ(metrics.at("input"), kHood);
-  EXPECT_EQ(metrics2.at("input"), "commit-01.off");
+  EXPECT_EQ(metrics2.at("input"), (dir / "replay1" / "commit-01.off").string());
   const std::string report = file_bytes(dir / "replay1" / "report.html");
   EXPECT_NE(report.find("Push/pull 2"), std::string::npos);
   EXPECT_NE(report.find("100.0 mm"), std::string::npos);

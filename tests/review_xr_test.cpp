@@ -715,8 +715,8 @@ pushpull::testing::CommandResult review_interrupted_after(const fs::path& dir, c
 }
 
 // A second Ctrl-C before the review has ended (a runtime slow to end its session: xr/sim's ignores-exit)
-// quits at once, by the signal, saying that the committed model is not written (it ended without a word).
-TEST(ReviewXr, ASecondCtrlCQuitsAtOnceAndSaysTheModelIsNotWritten) {
+// quits at once, by the signal, saying that what was not yet written is lost (it ended without a word).
+TEST(ReviewXr, ASecondCtrlCQuitsAtOnceAndSaysWhatIsLost) {
   const fs::path dir = test_dir();
   std::ofstream(dir / "input.jsonl") << script_start()
                                      << R"({"t":1.4,"path":"/user/hand/right/input/trigger/value","value":0.0}
@@ -724,8 +724,9 @@ TEST(ReviewXr, ASecondCtrlCQuitsAtOnceAndSaysTheModelIsNotWritten) {
   const auto run = review_interrupted_after(dir, "commit", "--out " + (dir / "out.off").string(),
                                             "PUSHPULL_XR_SIM_QUIRKS=ignores-exit", /*interrupts=*/2);
   EXPECT_EQ(run.status, 128 + SIGINT) << run.output;
-  EXPECT_NE(run.output.find("pushpull: quitting at once; the committed model is not written"),
-            std::string::npos)
+  EXPECT_NE(
+      run.output.find("pushpull: quitting at once (a second interrupt): what was not yet written is lost"),
+      std::string::npos)
       << run.output;
   EXPECT_FALSE(fs::exists(dir / "out.off")) << run.output;
 }
@@ -841,6 +842,23 @@ TEST(ReviewXr, CtrlCEndsTheReviewEvenWhenTheRuntimeIgnoresTheExitRequest) {
   EXPECT_LT(seconds, 30.0) << run.output;
   EXPECT_TRUE(fs::exists(dir / "out.off")) << run.output;
   EXPECT_EQ(recording_records(dir / "session.jsonl", "end").size(), 1u);
+}
+
+// A runtime that never returns from xrDestroyInstance (xr/sim's hangs-on-destroy; SteamVR on Linux may not
+// return): the review, its work written, ends 10 s into the teardown with its own status, saying so (it
+// hung for ever).
+TEST(ReviewXr, ARuntimeThatNeverFinishesItsTeardownDoesNotKeepTheReviewAlive) {
+  const fs::path dir = test_dir();
+  const auto start = std::chrono::steady_clock::now();
+  const ReviewRun run = run_review(dir, pull_released_then_exit(2.0), "--out " + (dir / "out.off").string(),
+                                   "PUSHPULL_XR_SIM_QUIRKS=hangs-on-destroy");
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_EQ(run.result.status, 0) << run.result.output;
+  EXPECT_LT(seconds, 60.0);
+  EXPECT_NE(run.result.output.find("did not return from its teardown within 10 s; ending without it"),
+            std::string::npos)
+      << run.result.output;
+  EXPECT_GT(largest_move_from_hood(dir / "out.off"), 0.05);
 }
 
 // A commit the solver did not converge for is said on stderr once the drag is over (the readout by the hand
@@ -1805,6 +1823,39 @@ start=$(date +%s); set +e; wait $pid; echo "review exit status $? after $(( $(da
   EXPECT_TRUE(fs::exists(dir / "out.off")) << driven.output;
 }
 
+// The mirror window's X connection broken in the headset (xdotool windowkill): Xlib ends the process, but
+// first the push/pull committed before is written to --out and the recording ended (it exited with 1 at
+// once, nothing written).
+TEST(ReviewXrWindow, AMirrorWhoseDisplayConnectionBreaksKeepsTheWork) {
+  if (std::getenv("DISPLAY") == nullptr) GTEST_SKIP() << "no DISPLAY (ctest runs this under xvfb-run)";
+  ASSERT_EQ(run_command("command -v xdotool").status, 0) << "xdotool is missing (scripts/setup installs it)";
+  const fs::path dir = test_dir();
+  const std::string env = paced_mirror_environment(dir);
+  std::ofstream(dir / "input.jsonl") << pull_released_then_exit(60.0);  // replaced: the pull, then 60 s on
+  const fs::path events = dir / "events.jsonl", recording = dir / "session.jsonl", out = dir / "out.off";
+  std::ofstream(dir / "drive.sh") << "set -e\n"
+                                  << env << " " << PUSHPULL_EXECUTABLE << " review " << kHood << kPlacement
+                                  << " --mirror --mirror-size 320 240 --out " << out.string() << " --events "
+                                  << events.string() << " --record " << recording.string() << " 2>&1 &\n"
+                                  << R"SH(pid=$!
+trap 'kill $pid 2>/dev/null || true' EXIT
+wid=$(timeout 60 xdotool search --sync --onlyvisible --name "pushpull review" | head -1)
+for i in $(seq 600); do grep -q '"commit"' )SH"
+                                  << events.string() << R"SH( 2>/dev/null && break; sleep 0.1; done
+xdotool windowkill $wid
+set +e; wait $pid; echo "review exit status $?"
+)SH";
+  const auto driven = run_drive_script(dir);
+  ASSERT_EQ(driven.status, 0) << driven.output;
+  EXPECT_NE(driven.output.find("review exit status 1"), std::string::npos) << driven.output;
+  EXPECT_NE(driven.output.find("the mirror window's display is gone"), std::string::npos) << driven.output;
+  ASSERT_TRUE(fs::exists(out)) << driven.output;
+  EXPECT_GT(largest_move_from_hood(out), 0.05);
+  const auto end = recording_records(recording, "end");
+  ASSERT_EQ(end.size(), 1u) << driven.output;
+  EXPECT_EQ(end[0].at("commits"), 1);
+}
+
 // The start of an xdotool script driving `pushpull review --desktop ... --record RECORDING &`: the window id
 // in $wid, and `await KIND N`, which waits (up to 60 s) until the recording holds N records of KIND, so the
 // script goes on when the loop has seen an input, not after a fixed sleep that a loaded machine outlasts;
@@ -1933,6 +1984,20 @@ wait $pid
   expect_replays_with_commits(recording, 3);
 }
 
+// A desktop review of the bonnet (desktop_hood_review_script) whose push/pull commits, then whose window
+// `xdotool_command` ends from outside ("windowclose", "windowkill"): the drive script's status and output,
+// ending with "review exit status N" and the review's log.
+pushpull::testing::CommandResult desktop_window_ended_by(const fs::path& dir, const fs::path& recording,
+                                                         const fs::path& out,
+                                                         const std::string& xdotool_command) {
+  std::ofstream(dir / "drive.sh") << desktop_hood_review_script(dir, recording, out) << R"SH(
+drag 200 150 3 0 1; await commit 1
+xdotool )SH" << xdotool_command << R"SH( $wid
+set +e; wait $pid; echo "review exit status $?"
+)SH";
+  return run_drive_script(dir);
+}
+
 // A window destroyed from outside (xdotool windowclose: XDestroyWindow, as a crashed window manager or a
 // kill leaves it) ends the review as Esc does: the committed push/pull is written to --out and the exit
 // status is 0. Xlib's default error handler used to exit with 1 on the next request on the window
@@ -1942,12 +2007,7 @@ TEST(ReviewXrWindow, ADesktopWindowClosedFromOutsideEndsTheReviewAndKeepsTheWork
   ASSERT_EQ(run_command("command -v xdotool").status, 0) << "xdotool is missing (scripts/setup installs it)";
   const fs::path dir = test_dir();
   const fs::path recording = dir / "desktop.jsonl", out = dir / "desktop.off";
-  std::ofstream(dir / "drive.sh") << desktop_hood_review_script(dir, recording, out) << R"SH(
-drag 200 150 3 0 1; await commit 1
-xdotool windowclose $wid
-set +e; wait $pid; echo "review exit status $?"
-)SH";
-  const auto driven = run_drive_script(dir);  // its output ends with the review's log
+  const auto driven = desktop_window_ended_by(dir, recording, out, "windowclose");
   ASSERT_EQ(driven.status, 0) << driven.output;
   EXPECT_NE(driven.output.find("review exit status 0"), std::string::npos) << driven.output;
   EXPECT_NE(driven.output.find("the window was closed from outside"), std::string::npos) << driven.output;
@@ -1966,12 +2026,7 @@ TEST(ReviewXrWindow, ADesktopReviewWhoseDisplayConnectionBreaksKeepsTheWork) {
   ASSERT_EQ(run_command("command -v xdotool").status, 0) << "xdotool is missing (scripts/setup installs it)";
   const fs::path dir = test_dir();
   const fs::path recording = dir / "desktop.jsonl", out = dir / "desktop.off";
-  std::ofstream(dir / "drive.sh") << desktop_hood_review_script(dir, recording, out) << R"SH(
-drag 200 150 3 0 1; await commit 1
-xdotool windowkill $wid
-set +e; wait $pid; echo "review exit status $?"
-)SH";
-  const auto driven = run_drive_script(dir);
+  const auto driven = desktop_window_ended_by(dir, recording, out, "windowkill");
   ASSERT_EQ(driven.status, 0) << driven.output;
   EXPECT_NE(driven.output.find("review exit status 1"), std::string::npos) << driven.output;
   EXPECT_NE(driven.output.find("the connection to the X display was lost"), std::string::npos)

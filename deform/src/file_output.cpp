@@ -285,7 +285,7 @@ void write_file_atomically(const fs::path& path, std::string_view bytes) {
   if (!problem.empty()) throw std::runtime_error(path.string() + ": " + problem);
 }
 
-std::string output_path_problem(const fs::path& requested, MissingFolder missing) {
+std::string output_path_problem(const fs::path& requested, MissingFolder missing, OutputWrite write) {
   if (requested.empty()) return "an empty file name";
   if (const std::optional<int> fd = inherited_descriptor(requested))
     return ::fcntl(*fd, F_GETFD) == -1 ? "names descriptor " + std::to_string(*fd) + ", which is not open"
@@ -303,7 +303,7 @@ std::string output_path_problem(const fs::path& requested, MissingFolder missing
     if (S_ISDIR(existing.st_mode)) return "is a folder, not a file";
     if (S_ISREG(existing.st_mode) && (existing.st_mode & 0222) == 0)
       return "is read-only (mode " + mode_text(existing.st_mode) + "); not overwritten";
-    if (S_ISREG(existing.st_mode)) return unwritable(path.parent_path());
+    if (S_ISREG(existing.st_mode) && write == OutputWrite::Atomic) return unwritable(path.parent_path());
     return {};
   }
   fs::path folder = path.parent_path();

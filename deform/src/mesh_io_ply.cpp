@@ -63,15 +63,22 @@ class BodyReader {
   [[nodiscard]] std::size_t bytes_left() const { return body_.size() - pos_; }
 
   // ASCII: the next token after the elements read, if any (data the header does not declare), and its line.
+  // Whitespace, NUL and DOS end-of-file bytes and "comment" lines are not data.
   [[nodiscard]] std::string_view ascii_leftover() {
-    while (pos_ < body_.size() && (detail::is_space(body_[pos_]) || body_[pos_] == '\n')) {
-      if (body_[pos_] == '\n') ++line_;
-      ++pos_;
+    for (;;) {
+      while (pos_ < body_.size() && (detail::is_space(body_[pos_]) || body_[pos_] == '\n' ||
+                                     body_[pos_] == '\0' || body_[pos_] == '\x1a')) {
+        if (body_[pos_] == '\n') ++line_;
+        ++pos_;
+      }
+      const std::size_t start = pos_;
+      std::size_t end = start;
+      while (end < body_.size() && !detail::is_space(body_[end]) && body_[end] != '\n' && body_[end] != '\0')
+        ++end;
+      const std::string_view token = body_.substr(start, end - start);
+      if (token != "comment") return token;
+      while (pos_ < body_.size() && body_[pos_] != '\n') ++pos_;  // the comment's line
     }
-    const std::size_t start = pos_;
-    std::size_t end = start;
-    while (end < body_.size() && !detail::is_space(body_[end]) && body_[end] != '\n') ++end;
-    return body_.substr(start, end - start);
   }
 
  private:

@@ -258,4 +258,6 @@ TEST(MeshIoRead, DataAfterTheDeclaredRecordsIsRefused) {
   EXPECT_NE(ply.find("p.ply:15: more data after the elements the header declares ('3')"), std::string::npos)
       << ply;
   EXPECT_EQ(pd::parse_ply(ply_header + "3 0 1 2\n\n  \n", "ok.ply").F.rows(), 1);
+  EXPECT_EQ(pd::parse_ply(ply_header + "3 0 1 2\ncomment written by a tool 3 4 5\n", "c.ply").F.rows(), 1);
+  EXPECT_EQ(pd::parse_ply(ply_header + "3 0 1 2\r\n" + std::string(1, '\0') + "\x1a", "z.ply").F.rows(), 1);
 }

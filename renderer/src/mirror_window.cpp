@@ -163,8 +163,7 @@ MirrorWindow::MirrorWindow(const Context& context, uint32_t width, uint32_t heig
   detail::install_x11_error_guard();
   glfwSetWindowUserPointer(impl_->window, impl_.get());
   glfwSetKeyCallback(impl_->window, [](GLFWwindow* window, int key, int, int action, int) {
-    // A key held down repeats (GLFW_REPEAT), as in an editor; so do presses X delivers with one timestamp.
-    if (action == GLFW_PRESS || action == GLFW_REPEAT)
+    if (action == GLFW_PRESS)
       static_cast<Impl*>(glfwGetWindowUserPointer(window))->key_presses.push_back(key);
   });
   glfwSetScrollCallback(impl_->window, [](GLFWwindow* window, double, double dy) {

@@ -7,7 +7,10 @@
 #include <cstdio>
 #include <exception>
 #include <functional>
+#include <thread>
 #include <utility>
+
+#include <unistd.h>
 
 namespace pushpull::renderer::detail {
 namespace {
@@ -40,8 +43,17 @@ std::function<void()>& last_words() {
   return words;
 }
 std::atomic<bool> g_connection_lost{false};
+// Whether last words are set, and the thread that set them (the window's: GLFW's main thread); atomics, as
+// another thread's handler reads them.
+std::atomic<bool> g_has_words{false};
+std::atomic<std::thread::id> g_words_thread{};
 
 int on_x11_io_error(Display*) {
+  // Another thread's connection (a driver's, a runtime's) found broken first: it waits, while the window's
+  // thread meets the error in its next X call and runs the last words; their exit ends this thread too. (The
+  // last words use the loop's objects, which only their own thread may touch.)
+  if (g_has_words.load() && std::this_thread::get_id() != g_words_thread.load())
+    for (;;) ::pause();
   if (g_connection_lost.exchange(true)) return 0;  // a second X call from the last words: exit now
   std::fprintf(
       stderr,
@@ -69,7 +81,10 @@ void install_x11_error_guard() {
 }
 
 void set_x11_connection_lost(std::function<void()> words) {
+  g_has_words.store(false);
+  g_words_thread.store(std::this_thread::get_id());
   last_words() = std::move(words);
+  g_has_words.store(static_cast<bool>(last_words()));
 }
 
 void watch_x11_window(GLFWwindow* window) {

@@ -3,11 +3,15 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <condition_variable>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <exception>
+#include <mutex>
 #include <optional>
 #include <string>
+#include <system_error>
 #include <thread>
 #include <vector>
 
@@ -256,12 +260,45 @@ struct Session::Impl {
   // objects of its own on our device until its instance is destroyed (SteamVR's command buffers,
   // semaphores and memory: ValveSoftware/openvr#1649, #1715), and a device destroyed under them is
   // undefined behaviour.
+  //
+  // A runtime that never returns from its teardown (SteamVR on Linux, in xrDestroyInstance as the loader
+  // unloads it: ValveSoftware/SteamVR-for-Linux#422, #567) would keep the process alive after the review
+  // has written everything: after kTeardownWait the process ends without it, with the status the review
+  // was ending with (1 while an exception unwinds through here, else 0), saying so.
+  static constexpr std::chrono::seconds kTeardownWait{10};
   ~Impl() {
-    const RuntimeCallScope runtime;  // the runtime may release its work on our device here
-    eyes.clear();
-    if (stage != XR_NULL_HANDLE) xrDestroySpace(stage);
-    if (session != XR_NULL_HANDLE) xrDestroySession(session);
-    if (instance != XR_NULL_HANDLE) xrDestroyInstance(instance);
+    const int status = std::uncaught_exceptions() > 0 ? 1 : 0;
+    std::mutex mutex;
+    std::condition_variable returned;
+    bool done = false;
+    std::optional<std::thread> watchdog;
+    try {
+      watchdog.emplace([&] {
+        std::unique_lock lock(mutex);
+        if (returned.wait_for(lock, kTeardownWait, [&] { return done; })) return;
+        std::fprintf(
+            stderr,
+            "pushpull: the OpenXR runtime (%s) did not return from its teardown within %lld s; ending "
+            "without it (the review's work was written before)\n",
+            runtime_name.c_str(), static_cast<long long>(kTeardownWait.count()));
+        std::fflush(nullptr);
+        std::_Exit(status);
+      });
+    } catch (const std::system_error&) {  // no thread to spare: the teardown goes unwatched
+    }
+    {
+      const RuntimeCallScope runtime;  // the runtime may release its work on our device here
+      eyes.clear();
+      if (stage != XR_NULL_HANDLE) xrDestroySpace(stage);
+      if (session != XR_NULL_HANDLE) xrDestroySession(session);
+      if (instance != XR_NULL_HANDLE) xrDestroyInstance(instance);
+    }
+    {
+      const std::lock_guard lock(mutex);
+      done = true;
+    }
+    returned.notify_one();
+    if (watchdog) watchdog->join();
     if (vk.device != VK_NULL_HANDLE) vkDestroyDevice(vk.device, nullptr);
     if (vk.instance != VK_NULL_HANDLE) vkDestroyInstance(vk.instance, nullptr);
   }

@@ -1,5 +1,9 @@
 #include "pushpull/xr/swapchain.hpp"
 
+#include <chrono>
+#include <string>
+#include <thread>
+
 namespace pushpull::xr {
 
 struct Swapchain::Impl {
@@ -70,22 +74,21 @@ uint32_t Swapchain::acquire() {
   XrSwapchainImageAcquireInfo acquire_info{XR_TYPE_SWAPCHAIN_IMAGE_ACQUIRE_INFO};
   PUSHPULL_XR_CHECK(impl_->instance, xrAcquireSwapchainImage(impl_->swapchain, &acquire_info, &index));
   // XR_TIMEOUT_EXPIRED is a success code, but the image is not ready: it may not be drawn into or released
-  // until a wait says XR_SUCCESS. Runtimes may time out even an infinite wait; give them 10 tries.
+  // until a wait says XR_SUCCESS. Runtimes may time out even an infinite wait: waited again for up to 2 s.
   XrSwapchainImageWaitInfo wait_info{XR_TYPE_SWAPCHAIN_IMAGE_WAIT_INFO};
   wait_info.timeout = XR_INFINITE_DURATION;
-  constexpr int kWaits = 10;
-  for (int attempt = 1;; ++attempt) {
-    const XrResult waited =
-        PUSHPULL_XR_CHECK(impl_->instance, xrWaitSwapchainImage(impl_->swapchain, &wait_info));
-    if (waited != XR_TIMEOUT_EXPIRED) break;
-    if (attempt == kWaits) {
-      throw XrError(std::string(__FILE__) + ":" + std::to_string(__LINE__) +
-                        ": xrWaitSwapchainImage(impl_->swapchain, &wait_info) returned XR_TIMEOUT_EXPIRED " +
-                        std::to_string(kWaits) +
-                        " times in a row (an infinite wait): the runtime never hands "
-                        "over the swapchain image",
-                    XR_TIMEOUT_EXPIRED);
+  constexpr std::chrono::seconds kWaitLimit{2};
+  const auto first = std::chrono::steady_clock::now();
+  while (PUSHPULL_XR_CHECK(impl_->instance, xrWaitSwapchainImage(impl_->swapchain, &wait_info)) ==
+         XR_TIMEOUT_EXPIRED) {
+    if (std::chrono::steady_clock::now() - first > kWaitLimit) {
+      throw XrError(
+          std::string(__FILE__) + ":" + std::to_string(__LINE__) +
+              ": xrWaitSwapchainImage(impl_->swapchain, &wait_info) kept returning XR_TIMEOUT_EXPIRED "
+              "for 2 s of an infinite wait: the runtime never hands over the swapchain image",
+          XR_TIMEOUT_EXPIRED);
     }
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
   }
   impl_->acquired = true;  // release() needs a waited image (an unwaited one: XR_ERROR_CALL_ORDER_INVALID)
   return index;

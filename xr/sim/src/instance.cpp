@@ -4,9 +4,11 @@
 
 #include <openxr/openxr_reflection.h>
 
+#include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <exception>
+#include <thread>
 
 namespace pushpull::xrsim {
 namespace {
@@ -104,6 +106,8 @@ XrResult XRAPI_CALL destroy_instance(XrInstance handle) {
   Lock lock(big_lock());
   Instance* instance = lookup<Instance>(handle);
   if (instance == nullptr) return XR_ERROR_HANDLE_INVALID;
+  if (instance->config.hangs_on_destroy)  // quirk: never returns, as SteamVR on Linux may not
+    for (;;) std::this_thread::sleep_for(std::chrono::hours(1));
   while (!instance->sessions.empty()) destroy_session(instance->sessions.back());
   while (!instance->action_sets.empty()) destroy_action_set(instance->action_sets.back());
   unregister_handle(instance);

@@ -68,6 +68,7 @@ Config Config::from_env() {
   c.ignores_exit = quirk("ignores-exit");
   c.wait_timeout = quirk("wait-timeout");
   c.canted = quirk("canted");
+  c.hangs_on_destroy = quirk("hangs-on-destroy");
   c.vulkan1_only = quirk("vulkan1-only");
   c.no_vulkan = quirk("no-vulkan");
   c.no_controller_extensions = quirk("no-controller-extensions");

@@ -83,6 +83,8 @@ constexpr XrSystemId kSystemId = 1;
 //                                     XR_TIMEOUT_EXPIRED, a success code, though the wait was infinite),
 //                                     canted (each eye's view turned outwards by 10 deg about the head's
 //                                     +Y, its field of view turned back: a display with canted panels),
+//                                     hangs-on-destroy (xrDestroyInstance never returns, as SteamVR's on
+//                                     Linux may not),
 //                                     vulkan1-only (XR_KHR_vulkan_enable2 is neither listed nor accepted:
 //                                     a runtime with only the first Vulkan binding, which names Vulkan
 //                                     extensions the application must enable, and refuses a session whose
@@ -127,8 +129,10 @@ struct Config {
   bool stays_lost = false;
   bool ignores_exit = false;
   bool wait_timeout = false;
-  bool canted = false;  // each eye's view turned outwards by 10 deg (its field of view turned back)  // the
-                        // first xrWaitSwapchainImage of each acquired image: XR_TIMEOUT_EXPIRED
+  bool canted = false;
+  bool hangs_on_destroy = false;  // xrDestroyInstance never returns  // each eye's view turned outwards by 10
+                                  // deg (its field of view turned back)  // the first xrWaitSwapchainImage of
+                                  // each acquired image: XR_TIMEOUT_EXPIRED
   bool vulkan1_only = false;
   bool no_vulkan = false;
   bool no_controller_extensions = false;     // offers none of the controller-profile extensions

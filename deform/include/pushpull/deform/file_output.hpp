@@ -29,13 +29,18 @@ void write_file_atomically(const std::filesystem::path& path, std::string_view b
 
 // What a command does about an output's folder that is not there yet.
 enum class MissingFolder { Refused, WillBeMade };
+// How an output is written: Atomic (write_file_atomically: a temporary in its folder renamed over it, so the
+// folder must take new files) or InPlace (opened and written as it is, as a log: an existing file only needs
+// its own write permission).
+enum class OutputWrite { Atomic, InPlace };
 
 // Why `path` cannot be written as above, or "" when it can (as far as one can tell before writing): its
 // name is empty, its folder does not exist (unless it will be made) or is a file, it is a folder, it has no
 // write permission, its folder (or the nearest existing one above a folder to be made) takes no new files.
 // For checking every output of a command before writing any of them.
 [[nodiscard]] std::string output_path_problem(const std::filesystem::path& path,
-                                              MissingFolder missing = MissingFolder::Refused);
+                                              MissingFolder missing = MissingFolder::Refused,
+                                              OutputWrite write = OutputWrite::Atomic);
 
 // Whether `path`, or a link on the way from it, names a descriptor the process holds (written through).
 [[nodiscard]] bool holds_descriptor(const std::filesystem::path& path);

@@ -62,8 +62,7 @@ class MirrorWindow {
   // call; they must not use this window. Cleared by the destructor. Nothing happens without X11.
   void on_connection_lost(std::function<void()> last_words);
   void poll_events();
-  // Keys pressed since the last call, in order, a key held down once per repeat, as GLFW key codes (letters
-  // and digits are their ASCII
+  // Keys pressed since the last call, in order, as GLFW key codes (letters and digits are their ASCII
   // upper-case characters, e.g. 'C'; GLFW_KEY_ESCAPE = 256). Filled by poll_events().
   std::vector<int> take_key_presses();
   void set_title(const std::string& title);
