@@ -8,18 +8,26 @@
 #include <GLFW/glfw3.h>
 
 #include <algorithm>
+#include <string>
 #include <utility>
 
 namespace pushpull::renderer {
 
 namespace {
 
+// GLFW's description of its last error (": ..."), or "" when it gave none.
+std::string glfw_error_text() {
+  const char* description = nullptr;
+  if (glfwGetError(&description) == GLFW_NO_ERROR || description == nullptr) return "";
+  return std::string(": ") + description;
+}
+
 void init_glfw() {
   if (glfwInit() != GLFW_TRUE)
     throw VulkanError(VK_ERROR_INITIALIZATION_FAILED,
-                      "glfwInit failed (no display? set DISPLAY or use xvfb-run)");
+                      "glfwInit failed" + glfw_error_text() + " (no display? set DISPLAY or use xvfb-run)");
   if (glfwVulkanSupported() != GLFW_TRUE)
-    throw VulkanError(VK_ERROR_INITIALIZATION_FAILED, "GLFW finds no Vulkan loader");
+    throw VulkanError(VK_ERROR_INITIALIZATION_FAILED, "GLFW finds no Vulkan loader" + glfw_error_text());
 }
 
 }  // namespace
@@ -158,7 +166,8 @@ MirrorWindow::MirrorWindow(const Context& context, uint32_t width, uint32_t heig
   init_glfw();
   glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
   impl_->window = glfwCreateWindow(int(width), int(height), title.c_str(), nullptr, nullptr);
-  if (impl_->window == nullptr) throw VulkanError(VK_ERROR_INITIALIZATION_FAILED, "glfwCreateWindow failed");
+  if (impl_->window == nullptr)
+    throw VulkanError(VK_ERROR_INITIALIZATION_FAILED, "glfwCreateWindow failed" + glfw_error_text());
   detail::watch_x11_window(impl_->window);
   detail::install_x11_error_guard();
   glfwSetWindowUserPointer(impl_->window, impl_.get());
