@@ -488,12 +488,20 @@ void run_review(const ReviewCommandOptions& o) {
           const std::string profile = input->current_profile(xr::Hand::Right);
           // Which controllers the runtime bound (a profile without a grip or stick limits what a reviewer
           // can do, and buttons that do nothing are otherwise unexplained).
-          if (profile != profile_said && !profile.empty()) {
-            profile_said = profile;
+          const std::string bound =
+              profile.empty() ? input->current_profile(xr::Hand::Left) : profile;  // a left hand alone
+          if (bound.empty() && profile_said.empty() && t > 5.0 && !xr.lost() && xr.focused() && !o.quiet) {
+            std::printf(
+                "pushpull review: no controller is bound after 5 s: the review needs motion "
+                "controllers (hand tracking alone is not supported); turn them on\n");
+            profile_said = "none";
+          }
+          if (bound != profile_said && !bound.empty()) {
+            profile_said = bound;
             if (!o.quiet)
               std::printf(
-                  "pushpull review: controllers: %s%s\n", profile.c_str(),
-                  profile == "/interaction_profiles/khr/simple_controller"
+                  "pushpull review: controllers: %s%s\n", bound.c_str(),
+                  bound == "/interaction_profiles/khr/simple_controller"
                       ? " (select: push/pull; left menu: undo, right menu: redo; no grip, sizes or panel)"
                       : "");
           }

@@ -1333,6 +1333,12 @@ TEST(ReviewXr, APullLongerThanTheModelIsWarnedOf) {
       run.result.output.find("times the model's size (a tracking jump at the release?); undo takes it back"),
       std::string::npos)
       << run.result.output;
+  // No controller on at all (hand tracking alone): said after 5 s.
+  const ReviewRun none = run_review(dir, pull_released_then_exit(6.0), "", "PUSHPULL_XR_SIM_PROFILE=none");
+  EXPECT_EQ(none.result.status, 0) << none.result.output;
+  EXPECT_NE(none.result.output.find("no controller is bound after 5 s"), std::string::npos)
+      << none.result.output;
+  EXPECT_TRUE(none.of("press").empty()) << none.result.output;
   const ReviewRun unknown =
       run_review(dir, pull_released_then_exit(2.0), "",
                  "PUSHPULL_XR_SIM_PROFILE=/interaction_profiles/bytedance/pico4_controller");

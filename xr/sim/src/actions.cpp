@@ -217,13 +217,14 @@ void choose_interaction_profile(Session& s) {
     return false;
   };
   s.profile = nullptr;
+  const bool none = instance.config.profile == "none";  // no controller on (hand tracking only, or off)
   if (!instance.config.profile.empty() && has_bindings(instance.config.profile))
     s.profile = find_profile(instance.config.profile);
   for (const InteractionProfile& p : interaction_profiles())
-    if (s.profile == nullptr && has_bindings(p.path)) s.profile = &p;
+    if (s.profile == nullptr && has_bindings(p.path) && !none) s.profile = &p;
   // A profile asked for that cannot be current (unknown here, or the application suggested no bindings for
   // it): said, since the script's paths for it then read nothing.
-  if (!instance.config.profile.empty() &&
+  if (!instance.config.profile.empty() && !none &&
       (s.profile == nullptr || instance.config.profile != s.profile->path))
     std::fprintf(stderr,
                  "pushpull xr/sim: PUSHPULL_XR_SIM_PROFILE=%s is not a profile the application suggested "

@@ -42,7 +42,8 @@ constexpr XrSystemId kSystemId = 1;
 //   PUSHPULL_XR_SIM_CAPTURE           folder for captured eye images (PNG)
 //   PUSHPULL_XR_SIM_CAPTURE_EVERY     also capture every N frames (default 0: only at "capture" events)
 //   PUSHPULL_XR_SIM_PROFILE           interaction profile to make current (default: first suggested of
-//                                     khr/simple, oculus/touch, valve/index, htc/vive, microsoft/motion)
+//                                     khr/simple, oculus/touch, valve/index, htc/vive, microsoft/motion;
+//                                     "none": no controller is on, nothing is bound)
 //   PUSHPULL_XR_SIM_PACE              1: with an input script, xrWaitFrame still waits for the frame's
 //                                     moment on the real clock (a headset's pacing: the app idles between
 //                                     frames; for frame-time benchmarks); default 0: returns at once
