@@ -1316,8 +1316,9 @@ TEST(ReviewXr, ButtonsThatDoNothingMidDragSaySo) {
   expect_replays_with_commits(recording);
 }
 
-// A pull longer than the whole model (a tracking jump at the release) commits as asked and is warned of; a
-// profile the runtime is asked for but cannot make current is said by xr/sim.
+// A pull longer than the whole model (a tracking jump at the release) commits as asked and is warned of; no
+// controller bound at all is said by the review after 5 s, and a profile xr/sim is asked for but cannot make
+// current by xr/sim.
 TEST(ReviewXr, APullLongerThanTheModelIsWarnedOf) {
   const fs::path dir = test_dir();
   const std::string script =
