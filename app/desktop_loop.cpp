@@ -178,7 +178,8 @@ void run_desktop(const ReviewCommandOptions& given, const ReviewSetup& setup) {
     // Ctrl-C or SIGTERM: the review ends as with Esc (the committed work is written); a second one ends it at
     // once.
     const InterruptRequests interrupts;
-    window.on_connection_lost([&] {
+    // (last_words is declared after everything they use: it goes first.)
+    const auto last_words = window.on_connection_lost([&] {
       finish_review_on_lost_display(
           [&] {
             if (const auto e = interaction.cancel()) record_interaction(*e);
@@ -187,11 +188,6 @@ void run_desktop(const ReviewCommandOptions& given, const ReviewSetup& setup) {
           },
           recorder, log, t, service, o.out, setup.model);
     });
-    // Unset before the locals the last words use go (the window, declared before them, would clear it last).
-    struct ForgetLastWords {
-      renderer::MirrorWindow& window;
-      ~ForgetLastWords() { window.on_connection_lost({}); }
-    } forget_last_words{window};
     FrameStats stats;  // --benchmark
     stats.span = "window events .. present, CPU";
     while (!window.should_close() && (o.frames <= 0 || frames < o.frames)) {

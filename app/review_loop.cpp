@@ -26,6 +26,7 @@
 #include "pushpull/assets/model.hpp"
 #include "pushpull/deform/cpu_affinity.hpp"
 #include "pushpull/deform/file_output.hpp"
+#include "pushpull/deform/metrics.hpp"
 #include "pushpull/deform/service.hpp"
 #include "pushpull/renderer/context.hpp"
 #include "pushpull/renderer/mirror_window.hpp"
@@ -311,8 +312,7 @@ void run_review(const ReviewCommandOptions& o) {
     std::size_t next_size_change = 0;    // into o.size_changes
     // A pull longer than the whole model (a tracking jump at the release, a hand thrown): committed as asked,
     // and said, with the way back.
-    const double model_size =
-        rest->V.rows() > 0 ? (rest->V.colwise().maxCoeff() - rest->V.colwise().minCoeff()).norm() : 0.0;
+    const double model_size = deform::curvature_reference_length(rest->V);  // the bounding box's diagonal
     auto log_event = [&](const InteractionEvent& e) {
       if (e.kind == InteractionEvent::Kind::Committed) commits.expect_commit(e.request);
       log.write_interaction(e, life);
@@ -331,8 +331,10 @@ void run_review(const ReviewCommandOptions& o) {
     if (o.end_on_interrupt) interrupts.emplace();
     auto interrupted = [&] { return interrupts && interrupts->requested(); };
     // The mirror's X display gone: Xlib ends the process (the headset's session with it) once this returns.
+    // (last_words is declared after everything they use: it goes first.)
+    std::optional<renderer::MirrorWindow::LastWords> last_words;
     if (mirror)
-      mirror->on_connection_lost([&] {
+      last_words.emplace(mirror->on_connection_lost([&] {
         std::fprintf(stderr,
                      "pushpull review: the mirror window's display is gone; ending the review (the "
                      "committed work is kept)\n");
@@ -345,14 +347,7 @@ void run_review(const ReviewCommandOptions& o) {
               take_commits();
             },
             recorder, log, t, service, o.out, model);
-      });
-    // Unset before the locals the last words use go (the mirror, declared before them, would clear it last).
-    struct ForgetLastWords {
-      std::optional<SupervisorMirror>& mirror;
-      ~ForgetLastWords() {
-        if (mirror) mirror->on_connection_lost({});
-      }
-    } forget_last_words{mirror};
+      }));
     // The session was lost (headset unplugged, runtime restarted): the drag in progress is cancelled (the
     // model stays as it was before it); the committed work stays, and with --reconnect the review goes on
     // when the headset is back. Returns whether it is back.

@@ -40,8 +40,8 @@ class SupervisorMirror {
   // The window was destroyed from outside (renderer::MirrorWindow::lost).
   [[nodiscard]] bool lost() const { return window_.lost(); }
   // renderer::MirrorWindow::on_connection_lost: the X display's connection broke, and the process ends.
-  void on_connection_lost(std::function<void()> last_words) {
-    window_.on_connection_lost(std::move(last_words));
+  [[nodiscard]] renderer::MirrorWindow::LastWords on_connection_lost(std::function<void()> last_words) {
+    return window_.on_connection_lost(std::move(last_words));
   }
   void set_orbit_bounds(const renderer::Bounds& bounds) { view_.set_orbit_bounds(bounds); }
   [[nodiscard]] MirrorMode mode() const { return view_.mode(); }

@@ -191,8 +191,13 @@ MirrorWindow::~MirrorWindow() {
   if (impl_->window != nullptr) glfwDestroyWindow(impl_->window);
 }
 
-void MirrorWindow::on_connection_lost(std::function<void()> last_words) {
+MirrorWindow::LastWords MirrorWindow::on_connection_lost(std::function<void()> last_words) {
   detail::set_x11_connection_lost(std::move(last_words));
+  return LastWords{};
+}
+
+MirrorWindow::LastWords::~LastWords() {
+  if (set_) detail::set_x11_connection_lost({});
 }
 
 std::optional<MirrorWindow::Frame> MirrorWindow::acquire(uint64_t timeout_ns) {

@@ -24,6 +24,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace pushpull::renderer {
@@ -59,8 +60,20 @@ class MirrorWindow {
   // What to do when the connection to the X display breaks (the X server gone, the window force-quit with
   // xkill): Xlib then ends the process with status 1 as soon as `last_words` returns, so they are the last
   // chance to keep the user's work. Called once, on the main thread, inside poll_events() or another window
-  // call; they must not use this window. Cleared by the destructor. Nothing happens without X11.
-  void on_connection_lost(std::function<void()> last_words);
+  // call; they must not use this window. Unset when the returned LastWords goes (declare it after everything
+  // the last words use, so that it goes first) or with the window. Nothing happens without X11.
+  class LastWords {
+   public:
+    LastWords(LastWords&& other) noexcept : set_(std::exchange(other.set_, false)) {}
+    LastWords& operator=(LastWords&&) = delete;
+    ~LastWords();
+
+   private:
+    friend class MirrorWindow;
+    LastWords() = default;
+    bool set_ = true;
+  };
+  [[nodiscard]] LastWords on_connection_lost(std::function<void()> last_words);
   void poll_events();
   // Keys pressed since the last call, in order, as GLFW key codes (letters and digits are their ASCII
   // upper-case characters, e.g. 'C'; GLFW_KEY_ESCAPE = 256). Filled by poll_events().
