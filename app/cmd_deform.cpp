@@ -3,6 +3,7 @@
 #include "commands.hpp"
 #include "drag_notes.hpp"
 #include "life_size.hpp"
+#include "messages_off_stdout.hpp"
 #include "method_check.hpp"
 #include "metrics_json.hpp"
 #include "model_output.hpp"
@@ -45,6 +46,7 @@ namespace fs = std::filesystem;
 
 struct DeformCommandOptions {
   std::string mesh;
+  double weld_tolerance = assets::WeldOptions{}.relative_tolerance;  // of the bounding-box diagonal
   std::string handle_file;
   std::string fixed_file;
   std::vector<double> handle_at;
@@ -86,14 +88,16 @@ struct LoadedModel {
   assets::Model scene;                       // the model as loaded (the weld's map, a glTF's scene)
 };
 
-LoadedModel load_model(const fs::path& path) {
+LoadedModel load_model(const fs::path& path, double weld_tolerance) {
   if (!fs::exists(path)) throw CommandError(path.string() + ": model file does not exist");
   if (!assets::is_supported_model_path(path)) {
     throw CommandError(path.string() +
                        ": unsupported model format (expected .gltf, .glb, .drc, .off, .obj or .ply)");
   }
   try {
-    assets::Model scene = assets::load_model(path);
+    assets::LoadOptions load;
+    load.weld.relative_tolerance = weld_tolerance;
+    assets::Model scene = assets::load_model(path, load);
     auto mesh = std::make_shared<const deform::Mesh>(scene.deform_mesh);
     return {std::move(mesh), std::move(scene)};
   } catch (const assets::AssetError& error) {
@@ -217,7 +221,7 @@ deform::DeformOptions solver_options(const DeformCommandOptions& o) {
   if (!o.stretch_direction.empty()) {
     options.stretch_direction = vector3(o.stretch_direction, "--stretch-direction");
     if (options.stretch_direction->stableNorm() == 0.0)
-      throw CommandError("--stretch-direction: must not be zero");
+      throw UsageError("--stretch-direction: must not be zero");
   }
   options.max_iterations = o.iterations;
   options.tolerance = o.tolerance;  // --tolerance 0 (and no --energy-tolerance): exactly --iterations
@@ -295,16 +299,17 @@ constexpr double kFarMove = 10.0;
 
 void run_deform(DeformCommandOptions o) {
   const auto start = std::chrono::steady_clock::now();
+  (void)messages_off_stdout({o.out, o.metrics});
   if (o.handle_file.empty() == o.handle_at.empty()) {
-    throw CommandError("give exactly one of --handle FILE or --handle-at X Y Z (with --handle-radius)");
+    throw UsageError("give exactly one of --handle FILE or --handle-at X Y Z (with --handle-radius)");
   }
   if (!o.handle_at.empty() && !(o.handle_radius > 0.0))
-    throw CommandError("--handle-at needs a positive --handle-radius");
+    throw UsageError("--handle-at needs a positive --handle-radius");
   if (o.fixed_file.empty() && !o.roi_radius) {
-    throw CommandError("give --fixed FILE, --roi-radius R, or both (the region needs a boundary)");
+    throw UsageError("give --fixed FILE, --roi-radius R, or both (the region needs a boundary)");
   }
   if (vector3(o.displacement, "--displacement").norm() == 0.0)
-    throw CommandError("--displacement: zero displacement (nothing to push or pull)");
+    throw UsageError("--displacement: zero displacement (nothing to push or pull)");
   deform::DeformOptions options = solver_options(o);
   check_output_model_path(o.out);
   // Every output is checked before any is written, so a bad one leaves the others as they were.
@@ -312,10 +317,10 @@ void run_deform(DeformCommandOptions o) {
     if (const std::string problem = deform::output_path_problem(*output); !problem.empty())
       throw CommandError((output->empty() ? std::string(option) : *output) + ": " + problem);
   if (deform::same_output_file(o.out, o.metrics))
-    throw CommandError("--out and --metrics name the same file (" + o.out +
-                       "): the metrics would replace the model");
+    throw UsageError("--out and --metrics name the same file (" + o.out +
+                     "): the metrics would replace the model");
 
-  const LoadedModel model = load_model(o.mesh);
+  const LoadedModel model = load_model(o.mesh, o.weld_tolerance);
   {
     std::vector<InputFile> inputs = model_inputs(model.scene.source_files);
     if (!o.handle_file.empty()) inputs.push_back({o.handle_file, "the --handle file"});
@@ -340,13 +345,13 @@ void run_deform(DeformCommandOptions o) {
     }
     // So is one below what the model's coordinates resolve: on a 2 m model a pull of 1e-11 m came out 7% of
     // |d| off with an estimate of 0 (rounding, not the solver's iterations, sets the error there).
-    if (across > 0.0 && d.norm() < kSmallestPull * across) {
+    if (across > 0.0 && d.stableNorm() < kSmallestPull * across) {  // (stable: its square may underflow)
       char text[224];
       std::snprintf(
           text, sizeof text,
           "--displacement: |d| = %.3g m is less than %.0e times the model's size (%.6g m across): too "
           "small for its coordinates' precision",
-          d.norm() * life.scale(), kSmallestPull, across * life.scale());
+          d.stableNorm() * life.scale(), kSmallestPull, across * life.scale());
       throw CommandError(text);
     }
   }
@@ -501,13 +506,14 @@ void run_deform(DeformCommandOptions o) {
   record.fixed_count = static_cast<long>(roi.fixed.size());
   record.free_count = static_cast<long>(roi.free.size());
   record.dead_band_fraction = o.dead_band;
+  record.weld_tolerance = o.weld_tolerance;
   record.life_size_scale = life.scale();
   record.total_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   try {
     deform::write_file_atomically(o.metrics, metrics_json(record));
-  } catch (const std::runtime_error& error) {
-    throw CommandError(error.what());
+  } catch (const std::runtime_error& error) {  // the model is written by now: said, as it is on disk
+    throw CommandError(std::string(error.what()) + " (the deformed model was written to " + o.out + ")");
   }
 
   const deform::DeformResult& r = record.result;
@@ -590,10 +596,12 @@ void add_deform_command(CLI::App& root) {
       "--handle", o->handle_file,
       "File of 0-based handle vertex indices (white-space separated): an OFF/OBJ/PLY's own vertex "
       "numbers, a glTF's, GLB's or Draco file's welded surface's (as `pushpull info` counts them)");
-  cmd->add_option("--handle-at", o->handle_at,
-                  "Handle = vertices within --handle-radius, measured along the surface, of the surface point "
-                  "closest to this one (model frame, metres at life size)")
-      ->expected(3);
+  cmd->add_option(
+         "--handle-at", o->handle_at,
+         "Handle = vertices within --handle-radius, measured along the surface, of the surface point "
+         "closest to this one (model frame, metres at life size)")
+      ->expected(3)
+      ->check(finite_number());
   cmd->add_option("--handle-radius", o->handle_radius, "Radius for --handle-at (metres at life size)")
       ->check(finite_above(0.0));
   cmd->add_option("--fixed", o->fixed_file,
@@ -605,7 +613,8 @@ void add_deform_command(CLI::App& root) {
   cmd->add_option("--displacement", o->displacement,
                   "Push/pull displacement d of the handle (metres at life size)")
       ->expected(3)
-      ->required();
+      ->required()
+      ->check(finite_number());
   cmd->add_option("--method", o->method,
                   "arap-s, arap-sr, arap-m, arap-n, sr-arap, arap-h, arap-sr-h or asan")
       ->capture_default_str()
@@ -614,7 +623,8 @@ void add_deform_command(CLI::App& root) {
       ->capture_default_str()
       ->check(finite_above(1.0));
   cmd->add_option("--stretch-direction", o->stretch_direction, "asan: direction d_o (default: d)")
-      ->expected(3);
+      ->expected(3)
+      ->check(finite_number());
   cmd->add_option("--asan-base", o->asan_base, "asan: membrane energy, arap-sr or arap-m")
       ->check(asan_base_name())
       ->capture_default_str();
@@ -688,6 +698,11 @@ void add_deform_command(CLI::App& root) {
          "--attach-reach", o->attach_reach,
          "Parts within this distance of the region follow the surface (metres at life size; default: "
          "3% of the region's bounding-box diagonal)")
+      ->check(finite_above(0.0, false));
+  cmd->add_option("--weld-tolerance", o->weld_tolerance,
+                  "Weld the file's patches within this distance, relative to the bounding-box diagonal (as "
+                  "`pushpull info --weld-tolerance`: vertex numbers of index files follow it)")
+      ->capture_default_str()
       ->check(finite_above(0.0, false));
   cmd->add_option("--dead-band", o->dead_band,
                   "Curvature sign: |K| L^2 <= this counts as flat (zero) in sign statistics, L = the model's "

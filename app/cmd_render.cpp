@@ -2,6 +2,7 @@
 // review colour maps (displacement magnitude, sign of Gaussian curvature) and overlays.
 #include "commands.hpp"
 #include "life_size.hpp"
+#include "messages_off_stdout.hpp"
 #include "number_checks.hpp"
 #include "output_guard.hpp"
 #include "render_inputs.hpp"
@@ -27,10 +28,12 @@ namespace {
 
 namespace fs = std::filesystem;
 
-assets::Model load(const std::string& path, const char* what) {
+assets::Model load(const std::string& path, const char* what, double weld_tolerance) {
   if (!fs::exists(path)) throw CommandError(path + ": " + what + " file does not exist");
   try {
-    return assets::load_model(path);
+    assets::LoadOptions options;
+    options.weld.relative_tolerance = weld_tolerance;
+    return assets::load_model(path, options);
   } catch (const std::exception& e) {
     throw CommandError(e.what());
   }
@@ -48,8 +51,9 @@ void convert_to_file_units(RenderCommandOptions& o, const LifeSize& life) {
 }
 
 void run_render(RenderCommandOptions options) {
+  (void)messages_off_stdout({options.out});
   if (options.up.size() == 3 && options.up[0] == 0.0 && options.up[1] == 0.0 && options.up[2] == 0.0)
-    throw CommandError("--up: the up direction must not be zero");
+    throw UsageError("--up: the up direction must not be zero");
   if (const std::string problem = deform::output_path_problem(options.out); !problem.empty())
     throw CommandError((options.out.empty() ? std::string("--out") : options.out) + ": " + problem);
   // The picture is PNG whatever the name says: a name that promises another format (x.jpg) is refused
@@ -61,7 +65,7 @@ void run_render(RenderCommandOptions options) {
     if (!extension.empty() && extension != ".png")
       throw CommandError(options.out + ": render writes PNG pictures; give --out a name ending in .png");
   }
-  const assets::Model model = load(options.model, "model");
+  const assets::Model model = load(options.model, "model", options.weld_tolerance);
   const LifeSize life(options.life_size, model.bounds, options.model);
   convert_to_file_units(options, life);
   auto render = std::make_shared<const RenderModel>(build_render_model(model));
@@ -74,7 +78,7 @@ void run_render(RenderCommandOptions options) {
   const Eigen::MatrixXd& V0 = model.deform_mesh.V;
   std::optional<assets::Model> result;
   if (!options.deformed.empty()) {
-    result = load(options.deformed, "deformed result");
+    result = load(options.deformed, "deformed result", options.weld_tolerance);
     if (result->deform_mesh.V.rows() != V0.rows())
       throw CommandError(options.deformed + ": has " + std::to_string(result->deform_mesh.V.rows()) +
                          " (welded) vertices but " + options.model + " has " + std::to_string(V0.rows()) +
@@ -106,8 +110,8 @@ void add_render_command(CLI::App& root) {
       "Render a model or a deformation result to PNG (Vulkan; headless on Mesa lavapipe when there is no "
       "GPU).\n"
       "Colour maps follow Le Vaou et al. 2020, Fig. 12: displacement magnitude (left) and the sign of the\n"
-      "Gaussian curvature, yellow positive, blue negative (right). Handle red, fixed blue, ROI tinted "
-      "green.");
+      "Gaussian curvature, yellow positive, blue negative (right). Handle red (magenta on the displacement "
+      "map, whose top is red), fixed blue, ROI tinted green.");
   cmd->add_option("model", options->model, "Model file: .gltf .glb .drc .off .obj .ply")->required();
   cmd->add_option(
       "--deformed", options->deformed,
@@ -141,6 +145,11 @@ void add_render_command(CLI::App& root) {
          "--scalar-max", options->scalar_max,
          "Displacement shown as the top of the colour map (metres at life size; default: the largest)")
       ->check(finite_above(0.0));
+  cmd->add_option("--weld-tolerance", options->weld_tolerance,
+                  "Weld the file's patches within this distance, relative to the bounding-box diagonal (as "
+                  "`pushpull info --weld-tolerance`: --handle/--fixed vertex numbers follow it)")
+      ->capture_default_str()
+      ->check(finite_above(0.0, false));
   cmd->add_option("--dead-band", options->dead_band,
                   "Curvature sign: |K| L^2 <= dead-band counts as flat (grey), L = MODEL's bounding-box "
                   "diagonal (the rule of deform's metrics); faces of flat panels are drawn flat")

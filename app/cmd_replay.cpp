@@ -59,12 +59,12 @@ void add_replay_command(CLI::App& root) {
   cmd->callback([o, mu, mu_option, compare] {
     if (mu_option->count() > 0) o->mu = *mu;
     if (!compare->empty()) {
-      if (!o->method.empty()) throw CommandError("give --method or --compare, not both");
+      if (!o->method.empty()) throw UsageError("give --method or --compare, not both");
       for (std::size_t i = 0; i < compare->size(); ++i)
         for (std::size_t j = 0; j < i; ++j)
           if ((*compare)[i] == (*compare)[j])
-            throw CommandError("--compare names " + (*compare)[i] +
-                               " twice (each method replays into its own folder)");
+            throw UsageError("--compare names " + (*compare)[i] +
+                             " twice (each method replays into its own folder)");
       run_replay_comparison(*o, *compare);
       return;
     }

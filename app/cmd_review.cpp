@@ -1,5 +1,6 @@
 // `pushpull review`: push and pull a model in an OpenXR headset (review_loop.hpp).
 #include "commands.hpp"
+#include "messages_off_stdout.hpp"
 #include "method_check.hpp"
 #include "number_checks.hpp"
 #include "review_loop.hpp"
@@ -110,6 +111,7 @@ void add_review_command(CLI::App& root) {
          "--reconnect", o->reconnect_s,
          "After the OpenXR session is lost, wait this many seconds for the headset to come back and go on "
          "(0: end the review)")
+      ->capture_default_str()
       ->check(finite_in(0.0, 86400.0));
   cmd->add_option("--headset-wait", o->headset_wait_s,
                   "At the start, wait this many seconds for a runtime's headset that has not connected yet "
@@ -148,6 +150,7 @@ void add_review_command(CLI::App& root) {
   add_life_size_options(*cmd, o->life_size);
   cmd->callback([o, samples] {
     o->samples_given = samples->count() > 0;
+    (void)messages_off_stdout({o->out, o->record, o->events});
     // A recording is the one copy of a session: one already at --record is not replaced (a replay's own
     // recording, which it rewrites each time, does not come this way).
     if (!o->record.empty() && !deform::holds_descriptor(o->record)) {

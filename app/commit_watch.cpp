@@ -8,6 +8,8 @@ std::function<void(const std::shared_ptr<const deform::Snapshot>&)> CommitWatch:
     // to, so the state before a commit is the rest of the snapshot published before it.
     std::shared_ptr<const deform::Mesh> before = current_;
     current_ = s->rest;
+    if (s->kind == deform::Snapshot::Kind::Error && !s->failed_commit)
+      return;  // a preview's: not the commit's
     if (s->kind == deform::Snapshot::Kind::Error) {
       std::lock_guard lock(mutex_);
       if (expected_.erase(s->request) > 0) {

@@ -36,7 +36,8 @@ class CommitWatch {
  public:
   // For ServiceOptions::on_publish; the watch must outlive the service.
   [[nodiscard]] std::function<void(const std::shared_ptr<const deform::Snapshot>&)> callback();
-  // The loop committed `request` (Service::commit's sequence): an error published for it is a failed commit.
+  // The loop committed `request` (Service::commit's sequence): a commit error published for it
+  // (Snapshot::failed_commit) is a failed commit; a preview's error for the same request is not.
   void expect_commit(std::uint64_t request);
   // The commits published since the last call, oldest first.
   [[nodiscard]] std::vector<CommitRecord> take();
@@ -48,7 +49,7 @@ class CommitWatch {
   std::vector<CommitRecord> pending_;
   std::set<std::uint64_t> expected_;  // committed requests not yet finished
   std::vector<FailedCommit> failed_;
-  // The last errors by request: one may be published before the loop says it committed that request.
+  // The last commit errors by request: one may be published before the loop says it committed that request.
   std::map<std::uint64_t, std::string> recent_errors_;
   std::size_t count_ = 0;
   std::shared_ptr<const deform::Mesh> current_;  // the committed state of the last snapshot seen (worker only)

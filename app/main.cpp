@@ -65,6 +65,12 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "pushpull%s: error: %s\n(pushpull%s --help lists the options)\n", command.c_str(),
                  message.c_str(), command.c_str());
     return kUsageError;
+  } catch (const pushpull::app::UsageError& e) {  // options the command found unusable together
+    std::string command;
+    for (const CLI::App* sub : root.get_subcommands()) command = " " + sub->get_name();
+    std::fprintf(stderr, "pushpull%s: error: %s\n(pushpull%s --help lists the options)\n", command.c_str(),
+                 e.what(), command.c_str());
+    return kUsageError;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "pushpull: error: %s\n", e.what());
     return 1;

@@ -37,6 +37,7 @@ std::string metrics_json(const DeformRunRecord& record) {
   doc["input"] = record.input;
   doc["output"] = record.output;
   doc["life_size_scale"] = record.life_size_scale;
+  doc["weld_tolerance"] = record.weld_tolerance;
   doc["method"] = std::string(deform::method_name(options.method));
   doc["asan_base"] = std::string(deform::method_name(options.asan_base));
   doc["mu"] = options.mu;
@@ -134,8 +135,10 @@ std::string metrics_json(const DeformRunRecord& record) {
             "after it under flat_band; vertices on the mesh boundary or a non-manifold edge are left out"}};
   json sections = json::array();
   for (const deform::Section& section : metrics.sections) {
-    sections.push_back(json{
-        {"offset", section.offset}, {"before", curves(section.before)}, {"after", curves(section.after)}});
+    sections.push_back(json{{"offset", section.offset},
+                            {"before", curves(section.before)},
+                            {"after", curves(section.after)},
+                            {"carried", curves(section.carried)}});
   }
   doc["sections"] = std::move(sections);
   json parts = json::array();

@@ -28,6 +28,7 @@
 #include <string>
 #include <vector>
 
+#include "pushpull/assets/weld.hpp"
 #include "pushpull/deform/deformer.hpp"
 #include "pushpull/deform/metrics.hpp"
 
@@ -53,6 +54,8 @@ struct DeformRunRecord {
   deform::DeformResult result;
   deform::DeformationMetrics metrics;
   double dead_band_fraction = 0.0;  // the sign rule's flat band (--dead-band), dimensionless
+  // The load's weld, relative to the bounding-box diagonal (--weld-tolerance).
+  double weld_tolerance = assets::WeldOptions{}.relative_tolerance;
   std::vector<AttachedPartRecord> attached;  // parts that follow the surface (empty when turned off)
   double attach_reach = 0.0;                 // the distance that decided which parts follow
   double life_size_scale = 1.0;  // metres per model unit (--scale / --length)

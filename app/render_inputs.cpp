@@ -64,7 +64,7 @@ RenderInputs prepare_render_inputs(std::shared_ptr<const RenderModel> render, co
   if (!options.handle_file.empty()) mark(read(options.handle_file), &renderer::OverlayWeights::handle);
   if (!options.handle_at.empty()) {
     if (options.handle_radius <= 0.0)
-      throw CommandError("--handle-at needs --handle-radius > 0 (metres at life size)");
+      throw UsageError("--handle-at needs --handle-radius > 0 (metres at life size)");
     // The same rule as `pushpull deform`: along the surface from the closest surface point.
     deform::SurfacePoint hit;
     try {
@@ -94,7 +94,7 @@ RenderInputs prepare_render_inputs(std::shared_ptr<const RenderModel> render, co
     inputs.arrow = std::make_pair(vec3(options.arrow, 0), vec3(options.arrow, 3));
     if (options.sections > 0) {
       const Eigen::Vector3d d = inputs.arrow->second - inputs.arrow->first;
-      if (d.norm() <= 0.0) throw CommandError("--sections needs a non-zero --arrow direction");
+      if (d.norm() <= 0.0) throw UsageError("--sections needs a non-zero --arrow direction");
       const Eigen::Vector3d dn = d.normalized();
       const Eigen::VectorXd along = V * dn;
       const double lo = along.minCoeff(), hi = along.maxCoeff();
@@ -109,7 +109,7 @@ RenderInputs prepare_render_inputs(std::shared_ptr<const RenderModel> render, co
       }
     }
   } else if (options.sections > 0) {
-    throw CommandError("--sections needs --arrow (the sections are orthogonal to the push/pull direction)");
+    throw UsageError("--sections needs --arrow (the sections are orthogonal to the push/pull direction)");
   }
   return inputs;
 }

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "life_size.hpp"
+#include "pushpull/assets/weld.hpp"
 #include "pushpull/deform/mesh.hpp"
 #include "pushpull/deform/metrics.hpp"
 #include "render_model.hpp"
@@ -35,6 +36,7 @@ struct RenderCommandOptions {
   double fov_deg = 30.0;
   std::optional<double> scalar_max;
   double dead_band = deform::kDefaultFlatBand;  // curvature sign: |K| L^2 <= this is flat
+  double weld_tolerance = assets::WeldOptions{}.relative_tolerance;  // of the bounding-box diagonal
   std::string handle_file, fixed_file, roi_file;
   std::vector<double> handle_at;
   double handle_radius = 0.0;
@@ -61,6 +63,9 @@ struct RenderInputs {
   std::vector<std::vector<glm::vec3>> sections;
   bool deformed = false;
   double life_size_scale = 1.0;  // metres per model unit: legends in life-size mm
+  // The box the camera frames (model units); none: the box of `positions`. A before / after pair given the
+  // box of both is drawn from one camera (a push/pull that grows the model moved the whole picture).
+  std::optional<std::pair<glm::vec3, glm::vec3>> frame;  // min, max
 };
 
 // One picture's inputs: the positions V (#Vd by 3) drawn on `render` (built from the model whose deform mesh

@@ -100,7 +100,9 @@ void split_at_creases(const std::vector<Eigen::Vector3f>& p, const std::vector<u
     std::vector<std::pair<Eigen::Vector3f, uint32_t>> clusters;  // representative unit normal, new vertex
     for (uint32_t c : corners_of[v]) {
       const Eigen::Vector3f n = face_normal[c / 3];
-      const Eigen::Vector3f unit = n.norm() > 0 ? Eigen::Vector3f(n.normalized()) : Eigen::Vector3f::UnitZ();
+      // (stableNormalized: the squared norm of a huge model's face normal overflows a float: black pictures)
+      const Eigen::Vector3f unit =
+          n.cwiseAbs().maxCoeff() > 0 ? Eigen::Vector3f(n.stableNormalized()) : Eigen::Vector3f::UnitZ();
       bool placed = false;
       for (auto& [rep, vertex] : clusters)
         if (rep.dot(unit) >= cos_crease) {
@@ -118,7 +120,8 @@ void split_at_creases(const std::vector<Eigen::Vector3f>& p, const std::vector<u
       }
     }
   }
-  for (auto& n : normals) n = n.norm() > 0 ? Eigen::Vector3f(n.normalized()) : Eigen::Vector3f::UnitZ();
+  for (auto& n : normals)
+    n = n.cwiseAbs().maxCoeff() > 0 ? Eigen::Vector3f(n.stableNormalized()) : Eigen::Vector3f::UnitZ();
 }
 
 }  // namespace
@@ -198,8 +201,8 @@ std::vector<float> deformed_normals(const RenderModel& render, const std::vector
   for (size_t v = 0; v + 2 < normals.size(); v += 3) {
     Eigen::Vector3f n(render.file_normals[v], render.file_normals[v + 1], render.file_normals[v + 2]);
     n += Eigen::Vector3f(after[v] - before[v], after[v + 1] - before[v + 1], after[v + 2] - before[v + 2]);
-    n = n.norm() > 0 ? Eigen::Vector3f(n.normalized())
-                     : Eigen::Vector3f(after[v], after[v + 1], after[v + 2]);
+    n = n.cwiseAbs().maxCoeff() > 0 ? Eigen::Vector3f(n.stableNormalized())
+                                    : Eigen::Vector3f(after[v], after[v + 1], after[v + 2]);
     normals[v] = n.x();
     normals[v + 1] = n.y();
     normals[v + 2] = n.z();

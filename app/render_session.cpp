@@ -50,14 +50,14 @@ View make_view(const RenderCommandOptions& o, const Bounds& bounds, float aspect
   }
   if (o.camera.size() == 3) {
     if (!(o.camera[2] >= 1e-6 && o.camera[2] <= 1e6))
-      throw CommandError("--camera: ZOOM must be from 1e-6 to 1e6 (1 frames the model)");
+      throw UsageError("--camera: ZOOM must be from 1e-6 to 1e6 (1 frames the model)");
     orbit.distance_scale = float(1.0 / o.camera[2]);
   }
   View view = frame_bounds(bounds, orbit, aspect);
   if (!o.eye.empty() || !o.target.empty()) {
     const glm::vec3 target = o.target.empty() ? bounds.centre() : to_glm(o.target);
     const glm::vec3 eye = o.eye.empty() ? glm::vec3(glm::inverse(view.view)[3]) : to_glm(o.eye);
-    if (glm::length(eye - target) <= 0.0f) throw CommandError("--eye and --target coincide");
+    if (glm::length(eye - target) <= 0.0f) throw UsageError("--eye and --target coincide");
     // Looking along --up leaves the picture's up undefined (it came out blank).
     if (glm::length(glm::cross(glm::normalize(target - eye), orbit.up)) < 1e-4f)
       throw CommandError(
@@ -65,7 +65,7 @@ View make_view(const RenderCommandOptions& o, const Bounds& bounds, float aspect
           "is undefined; give another --up");
     view.view = glm::lookAt(eye, target, glm::normalize(orbit.up));
     const float distance = glm::length(eye - bounds.centre());
-    const float radius = std::max(bounds.radius(), 1e-6f);
+    const float radius = bounds.radius() > 0.0f ? bounds.radius() : 1e-6f;
     view.projection =
         perspective(glm::radians(orbit.fov_y_deg), aspect,
                     std::max(distance - 2.0f * radius, distance * 1e-3f), distance + 2.0f * radius);
@@ -243,8 +243,9 @@ TextureRGBA8 PictureRenderer::render(const RenderInputs& inputs, const RenderCom
                            inputs.overlays.empty() ? std::span<const OverlayWeights>(p.no_overlays)
                                                    : std::span<const OverlayWeights>(inputs.overlays));
 
-  const Bounds bounds = compute_bounds(inputs.positions);
-  const float size = std::max(bounds.radius(), 1e-6f);
+  Bounds bounds = compute_bounds(inputs.positions);
+  if (inputs.frame) bounds = {inputs.frame->first, inputs.frame->second};
+  const float size = bounds.radius() > 0.0f ? bounds.radius() : 1e-6f;
   std::vector<Draw> draws{Draw{p.model_mesh, glm::mat4(1.0f)}};
   if (inputs.arrow) {
     // Thick enough to see at the model's size, thin enough to stay an arrow for a short pull.
@@ -312,6 +313,27 @@ void PictureRenderer::benchmark(const RenderInputs& inputs, const RenderCommandO
                            inputs, options.benchmark_frames);
 }
 
+namespace {
+// Every pixel outside the legend's corner has the colour of the top-right one (the background): the
+// model is nowhere in the picture.
+bool shows_nothing(const TextureRGBA8& image) {
+  if (image.width == 0 || image.height == 0 ||
+      image.pixels.size() < std::size_t(image.width) * image.height * 4)
+    return false;
+  const LegendLayout legend = legend_layout(image.width, image.height);
+  const auto legend_x1 = std::size_t(std::ceil(double(legend.rect[2]) * image.width)) + 2;
+  const auto legend_y0 = std::size_t(std::max(0.0, std::floor(double(legend.rect[1]) * image.height) - 2));
+  const uint8_t* corner = &image.pixels[(std::size_t(image.width) - 1) * 4];
+  for (std::size_t y = 0; y < image.height; ++y)
+    for (std::size_t x = 0; x < image.width; ++x) {
+      if (x < legend_x1 && y >= legend_y0) continue;
+      const uint8_t* pixel = &image.pixels[(y * image.width + x) * 4];
+      if (pixel[0] != corner[0] || pixel[1] != corner[1] || pixel[2] != corner[2]) return false;
+    }
+  return true;
+}
+}  // namespace
+
 void render_to_png(const RenderInputs& inputs, const RenderCommandOptions& o) {
   TextureRGBA8 image;
   std::size_t validation_messages = 0;
@@ -333,6 +355,16 @@ void render_to_png(const RenderInputs& inputs, const RenderCommandOptions& o) {
   if (o.validation && validation_messages > 0)
     throw CommandError("Vulkan validation reported " + std::to_string(validation_messages) +
                        " message(s) (printed above)");
+  if (shows_nothing(image)) {
+    if (o.eye.empty() && o.target.empty())  // framed by us: a picture of nothing is our failure, not a result
+      throw CommandError(o.out +
+                         ": the picture would show nothing of the model (framed automatically; its "
+                         "coordinates may be beyond what 32-bit floats draw: a model far from the origin "
+                         "for its size, or of an extreme scale); nothing written");
+    std::fprintf(stderr,
+                 "pushpull render: warning: the picture shows nothing of the model (--eye/--target "
+                 "look away from it)\n");
+  }
   write_picture(o.out, image);
   std::printf("pushpull render: wrote %s (%u x %u)\n", o.out.c_str(), image.width, image.height);
 }

@@ -37,61 +37,161 @@ std::string number(double v, const char* format = "%.3g") {
   return text;
 }
 
-// The section curves of one plane (perpendicular to d) before (grey) and after (red), in the plane's own 2D
-// axes (u, v): v the model's up where d is not along it, life-size millimetres, one scale for both. The
-// caption gives the curves' largest extent in the plane ("across"; within 0.1% of it: the widest of 64
-// directions).
+// A round length for a scale bar about a fifth of `width` (mm): 1, 2 or 5 times a power of ten.
+double scale_bar_mm(double width) {
+  const double target = std::max(width / 5.0, 1e-3);
+  const double power = std::pow(10.0, std::floor(std::log10(target)));
+  for (const double step : {5.0, 2.0, 1.0})
+    if (step * power <= target) return step * power;
+  return power;
+}
+
+// One plane across d, seen along d in the plane's own 2D axes (u, v; v the model's up where d is not along
+// it), life-size millimetres: the model's cut before the pull (grey) and the same surface points after it
+// (red, Section::carried): where the two differ, the section changed shape across d; a slide along d does not
+// show (the fixed plane's cut of the deformed model, Section::after, mixes the two: a bonnet sliding forward
+// through the plane looked bent). The view is zoomed on the part of the section that moved (the region's),
+// with a scale bar; the caption gives the largest in-plane gap between a point and its carried point.
 std::string section_svg(const deform::Section& section, const Eigen::Vector3d& d, const Eigen::Vector3d& up,
                         double scale) {
   const Eigen::Vector3d n = d.normalized();
   Eigen::Vector3d v = up - up.dot(n) * n;
-  if (!(v.norm() > 0.1 * up.norm())) {  // pulled along the up axis: any axis in the plane
+  const bool upright = v.norm() > 0.1 * up.norm();
+  if (!upright) {  // pulled along the up axis: any axis in the plane
     const Eigen::Vector3d helper =
         std::abs(n.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
     v = n.cross(helper);
   }
   v.normalize();
   const Eigen::Vector3d u = v.cross(n);
-  double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
-  constexpr int kDirections = 64;
-  std::array<std::pair<double, double>, kDirections> spans;
-  spans.fill({1e300, -1e300});
-  for (const auto* curves : {&section.before, &section.after})
-    for (const deform::SectionCurve& c : *curves)
-      for (const Eigen::Vector3d& p : c.points) {
-        const double x = p.dot(u), y = p.dot(v);
-        x0 = std::min(x0, x), x1 = std::max(x1, x);
-        y0 = std::min(y0, y), y1 = std::max(y1, y);
-        for (int k = 0; k < kDirections; ++k) {
-          const double angle = std::numbers::pi * k / kDirections;
-          const double s = x * std::cos(angle) + y * std::sin(angle);
-          spans[k] = {std::min(spans[k].first, s), std::max(spans[k].second, s)};
-        }
+  const double mm = scale * 1000.0;
+  struct Box {
+    double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
+    void add(double x, double y) {
+      x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+    }
+    [[nodiscard]] bool empty() const { return !(x1 >= x0); }
+  };
+  Box all, moved;
+  double largest_gap = 0.0, largest_move = 0.0;
+  const bool carried = section.carried.size() == section.before.size();
+  for (std::size_t c = 0; c < section.before.size(); ++c) {
+    const auto& points = section.before[c].points;
+    for (std::size_t k = 0; k < points.size(); ++k) {
+      all.add(points[k].dot(u), points[k].dot(v));
+      if (!carried || k >= section.carried[c].points.size()) continue;
+      const Eigen::Vector3d move = section.carried[c].points[k] - points[k];
+      largest_move = std::max(largest_move, move.norm());
+      largest_gap = std::max(largest_gap, (move - move.dot(n) * n).norm());
+    }
+  }
+  if (all.empty()) return "";
+  // The moved part: points that moved more than 1% of the largest move (or 0.1 mm), before and after.
+  const double threshold = std::max(0.01 * largest_move, 1e-4 / scale);
+  if (carried)
+    for (std::size_t c = 0; c < section.before.size(); ++c)
+      for (std::size_t k = 0; k < section.before[c].points.size() && k < section.carried[c].points.size();
+           ++k) {
+        const Eigen::Vector3d& a = section.before[c].points[k];
+        const Eigen::Vector3d& b = section.carried[c].points[k];
+        if ((b - a).norm() <= threshold) continue;
+        moved.add(a.dot(u), a.dot(v));
+        moved.add(b.dot(u), b.dot(v));
       }
-  if (!(x1 >= x0)) return "";
-  double across = 0.0;
-  for (const auto& [lo, hi] : spans) across = std::max(across, hi - lo);
+  Box view = all;
+  if (!moved.empty()) {  // the moved part with a margin of context, within the whole cut (and what it left)
+    const double size = std::max(
+        {moved.x1 - moved.x0, moved.y1 - moved.y0, 0.05 * std::max(all.x1 - all.x0, all.y1 - all.y0)});
+    const double margin = 0.3 * size;
+    view.x0 = std::max(all.x0, moved.x0 - margin), view.x1 = std::min(all.x1, moved.x1 + margin);
+    view.y0 = std::max(all.y0, moved.y0 - margin), view.y1 = std::min(all.y1, moved.y1 + margin);
+    view.add(moved.x0, moved.y0), view.add(moved.x1, moved.y1);
+  }
   const double W = 360, H = 220, margin = 10;
-  const double k = std::min((W - 2 * margin) / std::max(x1 - x0, 1e-12), (H - 2 * margin) / std::max(y1 - y0, 1e-12));
+  const double k = std::min((W - 2 * margin) / std::max(view.x1 - view.x0, 1e-12),
+                            (H - 2 * margin) / std::max(view.y1 - view.y0, 1e-12));
+  // Centred in the picture.
+  const double cx = 0.5 * (view.x0 + view.x1), cy = 0.5 * (view.y0 + view.y1);
+  auto px = [&](double x) { return 0.5 * W + (x - cx) * k; };
+  auto py = [&](double y) { return 0.5 * H - (y - cy) * k; };
   std::ostringstream svg;
   svg << "<figure><svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << W << "\" height=\"" << H
-      << "\" style=\"border:1px solid #ccc\">";
+      << "\" style=\"border:1px solid #ccc;overflow:hidden\">";
   auto polyline = [&](const deform::SectionCurve& c, const char* colour) {
     svg << "<polyline fill=\"none\" stroke=\"" << colour << "\" stroke-width=\"1.5\" points=\"";
     auto point = [&](const Eigen::Vector3d& p) {
-      svg << number(margin + (p.dot(u) - x0) * k, "%.1f") << ',' << number(H - margin - (p.dot(v) - y0) * k, "%.1f")
-          << ' ';
+      svg << number(px(p.dot(u)), "%.1f") << ',' << number(py(p.dot(v)), "%.1f") << ' ';
     };
     for (const Eigen::Vector3d& p : c.points) point(p);
     if (c.closed && !c.points.empty()) point(c.points.front());
     svg << "\"/>";
   };
   for (const deform::SectionCurve& c : section.before) polyline(c, "#888");
-  for (const deform::SectionCurve& c : section.after) polyline(c, "#d00");
-  svg << "</svg><figcaption>section at " << number(section.offset * scale * 1000.0, "%.0f")
-      << " mm along d: before grey, after red (" << number(across * scale * 1000.0, "%.0f") << " mm across)"
-      << "</figcaption></figure>\n";
+  for (const deform::SectionCurve& c : section.carried) polyline(c, "#d00");
+  // Scale bar, bottom left.
+  const double view_mm = (W - 2 * margin) / k * mm;
+  const double bar_mm = scale_bar_mm(view_mm);
+  const double bar_px = bar_mm / mm * k;
+  svg << "<line x1=\"" << margin << "\" y1=\"" << H - margin << "\" x2=\"" << number(margin + bar_px, "%.1f")
+      << "\" y2=\"" << H - margin << "\" stroke=\"#000\" stroke-width=\"2\"/><text x=\"" << margin
+      << "\" y=\"" << H - margin - 4 << "\" font-size=\"11\">" << number(bar_mm, "%g") << " mm</text>";
+  svg << "</svg><figcaption>section " << number(section.offset * mm, "%.0f") << " mm along d, seen along d"
+      << (upright ? " (the model's up is up)" : "") << ": before grey, the same surface points after red; "
+      << (carried ? "they are up to " + number(largest_gap * mm, "%.1f") + " mm apart across d"
+                  : std::string())
+      << (moved.empty() ? "" : " (zoomed on what moved)") << "</figcaption></figure>\n";
   return svg.str();
+}
+
+// The method as the paper names it (section 3.3 and 4), with its parameter where it has one: "arap-sr" was
+// easy to take for "sr-arap", and mu means nothing to the isotropic methods.
+std::string method_title(const std::string& method, double mu) {
+  static const std::pair<const char*, const char*> kPaperNames[] = {
+      {"asan", "ASAN: ARAP-s&r with the region's cotangent weights taken stretched along d"},
+      {"arap-s", "ARAP-s: spokes"},
+      {"arap-sr", "ARAP-s&r: spokes and rims"},
+      {"arap-m", "ARAP-m: per-triangle rotations, membrane"},
+      {"arap-n", "ARAP-n: spokes and n-rings"},
+      {"sr-arap", "SR-ARAP: smoothed rotations"},
+      {"arap-h", "ARAP-h: ARAP-m with a mean-curvature term"},
+      {"arap-sr-h", "ARAP-s&r with ARAP-h's mean-curvature term (pushpull's variant)"}};
+  std::string title = method;
+  for (const auto& [name, paper] : kPaperNames)
+    if (method == name) title += std::string(" (") + paper + ")";
+  if (method == "asan") title += ", mu = " + number(mu, "%g");
+  return title;
+}
+
+// What the numbers and pictures below mean, once, for a reader who has not read the paper.
+void how_to_read(std::ostringstream& h) {
+  h << "<details open><summary><b>How to read this report</b></summary><ul>\n"
+       "<li><b>Push/pull</b>: the reviewer pressed the trigger on the surface at p0, dragged and released at "
+       "p1; d = p1 - p0. The handle (the surface around p0) moved by d, a region around it deformed by the "
+       "method and its border stayed fixed (Le Vaou et al., Computer-Aided Design 121, 2020).</li>\n"
+       "<li><b>Displacement along d and across d</b>: every vertex's move split into its part along the pull "
+       "and its part across it (the paper's Fig. 13). ASAN lets the surface stretch along d and keeps its "
+       "sections across d as they were: less displacement across d means the shape was carried, not bent. "
+       "RMS "
+       "is over the region's vertices, its fixed border included.</li>\n"
+       "<li><b>Gaussian curvature sign reversals</b>: vertices inside the region whose surface went from "
+       "dome-like (K &gt; 0, yellow) to saddle-like (K &lt; 0, blue) or back: a convex bonnet turned saddle "
+       "shows here (requirement R2, the style preserved). Fewer is better. Near-flat vertices (|K| L&sup2; "
+       "&le; 0.01, L the model's bounding-box diagonal: grey in the pictures) count as neither; \"any sign "
+       "change\" adds the moves into and out of flat, and \"where clearly curved\" counts again among the "
+       "vertices curved tighter than the given radius before the pull.</li>\n"
+       "<li><b>Sections</b>: planes across d at three places along the region, seen along d: the cut before "
+       "the pull (grey) and the same surface points after it (red). Where red leaves grey the section "
+       "changed "
+       "shape; a move along d does not show. The gap is the section's displacement across d.</li>\n"
+       "<li><b>Iterations, converged, error estimate</b>: the solver's estimate of the largest distance of "
+       "any vertex to the exact minimiser of the method's energy, as a fraction of |d| and in mm; converged "
+       "means it fell below the tolerance (1% of |d| by default).</li>\n"
+       "<li><b>Hash</b>: \"match\" means the replayed model is bit for bit the one the review "
+       "committed.</li>\n"
+       "<li><b>Pictures</b>: before and after with the model's materials; the displacement of this push/pull "
+       "(its legend in mm per vertex); the curvature sign after (yellow +, blue -, grey near-flat). The "
+       "camera is the same before and after.</li>\n"
+       "</ul></details>\n";
 }
 
 }  // namespace
@@ -108,7 +208,7 @@ void write_replay_report(const std::string& path, const ReportSession& s, const 
   h << "<tr><th>model</th><td>" << escape(s.model) << "</td></tr>\n";
   h << "<tr><th>model SHA-256</th><td><code>" << escape(s.model_sha256) << "</code></td></tr>\n";
   h << "<tr><th>recorded on</th><td>" << escape(s.runtime) << "</td></tr>\n";
-  h << "<tr><th>method, mu</th><td>" << escape(s.method) << ", " << number(s.mu) << "</td></tr>\n";
+  h << "<tr><th>method</th><td>" << escape(method_title(s.method, s.mu)) << "</td></tr>\n";
   h << "<tr><th>result</th><td>" << escape(s.summary) << "</td></tr>\n";
   if (!s.history.empty()) h << "<tr><th>history</th><td>" << escape(s.history) << "</td></tr>\n";
   if (!s.final_model.empty()) h << "<tr><th>final model</th><td>" << escape(s.final_model) << "</td></tr>\n";
@@ -119,7 +219,24 @@ void write_replay_report(const std::string& path, const ReportSession& s, const 
     h << "</ul></td></tr>\n";
   }
   if (!s.cut.empty()) h << "<tr><th>recording cut</th><td class=\"bad\">" << escape(s.cut) << "</td></tr>\n";
+  // The model's own notes (the weld's non-manifold edges, degenerate faces, its parts: "mesh: ...") are the
+  // same for every commit: said once here, not in red under each push/pull.
+  std::vector<std::string> model_notes;
+  if (!commits.empty())
+    for (const std::string& w : commits.front().warnings)
+      if (w.rfind("mesh: ", 0) == 0 &&
+          std::all_of(commits.begin(), commits.end(), [&](const ReportCommit& c) {
+            return std::find(c.warnings.begin(), c.warnings.end(), w) != c.warnings.end();
+          }))
+        model_notes.push_back(w);
+  if (!model_notes.empty()) {
+    h << "<tr><th>model notes</th><td>what the solver tolerates in this model (the same for every "
+         "push/pull):<ul>";
+    for (const std::string& note : model_notes) h << "<li>" << escape(note.substr(6)) << "</li>";
+    h << "</ul></td></tr>\n";
+  }
   h << "</table>\n";
+  how_to_read(h);
   if (commits.empty())
     h << "<p>No push/pull was committed" << (s.not_committed.empty() ? "" : " (see \"not committed\" above)")
       << ".</p>\n";
@@ -129,17 +246,36 @@ void write_replay_report(const std::string& path, const ReportSession& s, const 
     h << "<h2>Push/pull " << c.index
       << (c.undone ? " <span class=\"bad\">(undone: not in the final model)</span>" : "")
       << "</h2>\n<table>\n";
-    h << "<tr><th>method</th><td>" << escape(c.method) << "</td></tr>\n";
+    h << "<tr><th>method</th><td>" << escape(method_title(c.method, s.mu)) << "</td></tr>\n";
     h << "<tr><th>|d|</th><td>" << number(c.d_mm, "%.1f") << " mm</td></tr>\n";
     h << "<tr><th>iterations</th><td>" << c.iterations << (c.converged ? " (converged)" : " (not converged)")
       << "</td></tr>\n";
     h << "<tr><th>error estimate</th><td>"
-      << (c.error_estimate ? number(*c.error_estimate) + " of |d|" : std::string("not given")) << "</td></tr>\n";
+      << (c.error_estimate
+              ? number(*c.error_estimate) + " of |d| (" + number(*c.error_estimate * c.d_mm, "%.2f") + " mm)"
+              : std::string("not given"))
+      << "</td></tr>\n";
+    if (c.handle_radius_mm || c.angle_to_normal_deg) {
+      h << "<tr><th>grabbed</th><td>";
+      if (c.handle_radius_mm)
+        h << "the handle within " << number(*c.handle_radius_mm, "%.0f") << " mm of p0 along the surface ("
+          << c.handle_vertices << " vertices)"
+          << (c.roi_radius_mm ? ", the region " + number(*c.roi_radius_mm, "%.0f") + " mm further" : "")
+          << "; ";
+      if (c.angle_to_normal_deg)
+        h << "d at " << number(*c.angle_to_normal_deg, "%.0f") << "&deg; to the surface normal at p0 ("
+          << (*c.angle_to_normal_deg < 30.0   ? "a push or pull across the surface"
+              : *c.angle_to_normal_deg > 60.0 ? "mostly a drag along the surface"
+                                              : "oblique")
+          << ")";
+      h << "</td></tr>\n";
+    }
     h << "<tr><th>region</th><td>" << c.region_vertices << " vertices; " << c.attached_parts
       << " separate part(s) near it bound to the surface, " << c.attached_moved
       << " of them moved with it</td></tr>\n";
     for (const std::string& warning : c.warnings)
-      h << "<tr><th>warning</th><td class=\"bad\">" << escape(warning) << "</td></tr>\n";
+      if (std::find(model_notes.begin(), model_notes.end(), warning) == model_notes.end())
+        h << "<tr><th>warning</th><td class=\"bad\">" << escape(warning) << "</td></tr>\n";
     if (m.curvature_vertices == 0)  // a strip of a region: no vertex with its whole ring inside, no measure
       h << "<tr><th>Gaussian curvature sign reversals</th><td>not measured (no interior vertex in the region)"
         << "</td></tr>\n";

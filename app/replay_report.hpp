@@ -24,6 +24,12 @@ struct ReportCommit {
   bool converged = false;
   std::optional<double> error_estimate;
   std::size_t region_vertices = 0;   // the solved region (handle, free and fixed border)
+  std::size_t handle_vertices = 0;   // of those, the handle's (moved by d)
+  // How the press asked for them (life-size mm along the surface from p0); none where not recorded.
+  std::optional<double> handle_radius_mm, roi_radius_mm;
+  // The angle between d and the surface normal at p0 (degrees, 0-90: 0 a push or pull along the normal, 90
+  // a drag along the surface); none where the press's face is unknown.
+  std::optional<double> angle_to_normal_deg;
   std::size_t attached_parts = 0;    // separate parts bound to the surface (lamps, glass, trims)
   std::size_t attached_moved = 0;    // those of them the commit moved
   std::vector<std::string> warnings;   // the commit's (as in its metrics file)

@@ -19,6 +19,7 @@
 #include "pushpull/assets/write.hpp"
 #include "pushpull/deform/mesh_io.hpp"
 #include "pushpull/deform/metrics.hpp"
+#include "pushpull/renderer/camera.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -30,7 +31,9 @@
 #include <fstream>
 #include <limits>
 #include <memory>
+#include <numbers>
 #include <optional>
+#include <regex>
 #include <set>
 #include <variant>
 
@@ -108,12 +111,23 @@ int recorded_threshold(const json& header, const char* key, const std::string& r
 
 // The names a replay writes in --out (and eyes/), and of those the ones it clears first: an earlier replay's
 // commits and final model (it may have had more), and its report, which would otherwise outlive an
-// interrupted replay and point at files no longer there.
+// interrupted replay and point at files no longer there. Exactly the names a replay gives them
+// (commit-07.glb, commit-07-before.off, commit-07.metrics.json, commit-07-curvature.png, final.ply): a file
+// of the user's that merely starts alike (commit-notes.txt, a recording named commit-session.jsonl) is left
+// alone.
 bool replay_clears(const std::string& name) {
-  return name.rfind("commit-", 0) == 0 || name.rfind("final.", 0) == 0 || name == "report.html";
+  static const std::regex kNames(
+      R"((commit-[0-9]{2,}(-before)?|final)\.(glb|off|obj|ply)|commit-[0-9]{2,}\.metrics\.json|)"
+      R"(commit-[0-9]{2,}-(before|after|displacement|curvature)\.png|report\.html)");
+  return std::regex_match(name, kNames);
 }
 bool replay_writes(const std::string& name) {
   return replay_clears(name) || name == "input.jsonl" || name == "replay-session.jsonl";
+}
+// The eye images xr/sim captures into eyes/ (frame_000113_left.png).
+bool replay_clears_eye_image(const std::string& name) {
+  static const std::regex kNames(R"(frame_[0-9]{6,}_[a-z0-9-]+\.png)");
+  return std::regex_match(name, kNames);
 }
 
 // A .gltf's external files (its buffers' and images' URIs, data: URIs aside) beside it, read before the model
@@ -149,11 +163,12 @@ void refuse_inputs_in_out_folder(const fs::path& out,
     const fs::path file = fs::weakly_canonical(fs::absolute(input, error), error);
     if (error) continue;
     const bool in_out = file.parent_path() == folder && replay_writes(file.filename().string());
-    const bool in_eyes = file.parent_path() == folder / "eyes";
+    const bool in_eyes =
+        file.parent_path() == folder / "eyes" && replay_clears_eye_image(file.filename().string());
     if (in_out || in_eyes)
       throw CommandError(input.string() + ": " + role + " lies in --out " + out.string() +
-                         " under a name the " + "replay writes or clears (" +
-                         (in_eyes ? "eyes/*" : file.filename().string()) + "): give --out another folder");
+                         " under a name the " + "replay writes or clears (" + (in_eyes ? "eyes/" : "") +
+                         file.filename().string() + "): give --out another folder");
   }
 }
 
@@ -195,13 +210,27 @@ void run_replay(const ReplayOptions& o) {
   }
   std::error_code ec;
   fs::create_directories(out / "eyes", ec);
-  if (ec) throw CommandError(out.string() + ": cannot create the output folder: " + ec.message());
-  for (const auto& entry : fs::directory_iterator(out / "eyes")) fs::remove(entry.path(), ec);
-  // What an earlier replay into the same folder wrote (it may have had more commits).
-  for (const auto& entry : fs::directory_iterator(out)) {
-    const std::string name = entry.path().filename().string();
-    if (entry.is_regular_file() && replay_clears(name)) fs::remove(entry.path(), ec);
+  if (ec)
+    throw CommandError(out.string() + ": " +
+                       (fs::is_directory(out) ? "cannot write into the output folder (its eyes/ folder): "
+                                              : "cannot create the output folder: ") +
+                       ec.message());
+  // What an earlier replay into the same folder wrote (it may have had more commits), said.
+  std::size_t cleared = 0;
+  for (const auto& [folder, clears] :
+       {std::pair{out / "eyes", &replay_clears_eye_image}, std::pair{out, &replay_clears}}) {
+    for (const auto& entry : fs::directory_iterator(folder)) {
+      std::error_code error;
+      if (entry.is_regular_file(error) && clears(entry.path().filename().string()) &&
+          fs::remove(entry.path(), error))
+        ++cleared;
+    }
   }
+  if (cleared > 0)
+    std::printf(
+        "pushpull replay: %s: removed %zu file(s) an earlier replay wrote (commit-NN*, final.*, "
+        "report.html, eyes/frame_*.png); other files there are left alone\n",
+        out.c_str(), cleared);
 
   // The script: the recording's complete lines, the eyes captured one frame after every release and at the
   // end, and the exit one frame after the last input.
@@ -403,8 +432,10 @@ void run_replay(const ReplayOptions& o) {
       ++failed_where_committed;
       on_recorded_path = false;
     }
-    not_committed.push_back(f.error);
-    bar.print("pushpull replay: a push/pull not committed (the model stays as it was): " + f.error);
+    // Named by its place among the session's releases (the report numbers commits, which it is not).
+    const std::string which = "the push/pull of release " + std::to_string(k + 1);
+    not_committed.push_back(which + ": " + f.error);
+    bar.print("pushpull replay: " + which + " not committed (the model stays as it was): " + f.error);
   };
   // The bar follows the recording's virtual clock through the loop, then the report's commits.
   const double total_s = std::max(rec.last_input_time, 1e-9);
@@ -569,6 +600,23 @@ void run_replay(const ReplayOptions& o) {
     rc.converged = s.converged;
     rc.error_estimate = s.error_estimate;
     rc.region_vertices = roi.size();
+    rc.handle_vertices = std::size_t(std::max(0L, record.handle_count));
+    if (record.handle_at) rc.handle_radius_mm = 1000.0 * scale * record.handle_radius;
+    if (record.roi_radius) rc.roi_radius_mm = 1000.0 * scale * *record.roi_radius;
+    if (s.committed_request && s.d.norm() > 0.0)
+      if (const auto* handle = std::get_if<deform::SurfaceHandle>(&s.committed_request->handle)) {
+        const int f = handle->point.face;
+        if (f >= 0 && f < model.deform_mesh.F.rows()) {
+          const auto corner = [&](int k) {
+            return Eigen::Vector3d(before_mesh.V.row(model.deform_mesh.F(f, k)).transpose());
+          };
+          const Eigen::Vector3d normal = (corner(1) - corner(0)).cross(corner(2) - corner(0));
+          if (normal.norm() > 0.0)
+            rc.angle_to_normal_deg =
+                std::acos(std::min(1.0, std::abs(normal.normalized().dot(s.d.normalized())))) * 180.0 /
+                std::numbers::pi;
+        }
+      }
     rc.warnings = record.result.warnings;
     rc.attached_parts = s.attached_parts;
     rc.attached_moved =
@@ -605,6 +653,10 @@ void run_replay(const ReplayOptions& o) {
           {"displacement (this push/pull)", stem + "-displacement.png", "displacement", true, true},
           {"Gaussian curvature sign after", stem + "-curvature.png", "curvature-sign", true, false}};
       const deform::Mesh before_shape{before_mesh.V, model.deform_mesh.F};
+      // Prepared first, then drawn from one camera framing before and after (a push/pull that grows the
+      // model used to move the whole after picture against the before one).
+      std::vector<std::optional<std::pair<RenderInputs, RenderCommandOptions>>> prepared;
+      std::optional<std::pair<glm::vec3, glm::vec3>> frame;
       for (const Picture& picture : list) {
         RenderCommandOptions po = base;
         po.color = picture.color;
@@ -612,12 +664,27 @@ void run_replay(const ReplayOptions& o) {
         try {
           // The before shape is the original model's for the first commit, a deformed one after.
           const bool moved = picture.after || c.before != nullptr;
-          const RenderInputs inputs = prepare_render_inputs(
+          RenderInputs inputs = prepare_render_inputs(
               render_model, before_shape, picture.after ? *s.positions : before_mesh.V, moved, po, scale);
-          write_picture(out / picture.file, pictures->render(inputs, po));
-          rc.pictures.push_back({picture.caption, picture.file});
+          const renderer::Bounds box = renderer::compute_bounds(inputs.positions);
+          frame = frame ? std::pair{glm::min(frame->first, box.min), glm::max(frame->second, box.max)}
+                        : std::pair{box.min, box.max};
+          prepared.emplace_back(std::pair{std::move(inputs), po});
         } catch (const std::exception& e) {
+          prepared.emplace_back();
           bar.print("pushpull replay: warning: the " + picture.caption + " picture of commit " +
+                    std::to_string(c.index) + " failed: " + e.what());
+        }
+      }
+      for (std::size_t k = 0; k < list.size(); ++k) {
+        if (!prepared[k]) continue;
+        auto& [inputs, po] = *prepared[k];
+        inputs.frame = frame;
+        try {
+          write_picture(out / list[k].file, pictures->render(inputs, po));
+          rc.pictures.push_back({list[k].caption, list[k].file});
+        } catch (const std::exception& e) {
+          bar.print("pushpull replay: warning: the " + list[k].caption + " picture of commit " +
                     std::to_string(c.index) + " failed: " + e.what());
         }
       }
@@ -666,8 +733,13 @@ void run_replay(const ReplayOptions& o) {
     if (entry.path().extension() == ".png") eyes.insert("eyes/" + entry.path().filename().string());
   session.eye_images.assign(eyes.begin(), eyes.end());
   session.not_committed = not_committed;
+  // Commits with no recorded commit to compare with (a recording cut inside a commit's line).
+  const auto not_compared = std::size_t(std::count(pairs.begin(), pairs.end(), std::nullopt));
   session.summary =
       std::to_string(commits.size()) + " commit(s) replayed of " + std::to_string(recorded) + " recorded" +
+      (not_compared == 0 ? std::string()
+                         : ", " + std::to_string(not_compared) + " not compared with the recording" +
+                               (rec.cut ? " (past its cut)" : "")) +
       (not_committed.empty()
            ? std::string()
            : ", " + std::to_string(not_committed.size()) +

@@ -9,16 +9,15 @@ namespace pushpull::app {
 void finish_review(std::optional<std::string>& failure, SessionRecorder& recorder, EventLog& log, double t,
                    const deform::Service& service, const std::string& out, const assets::Model& model,
                    bool print_out) {
-  const auto history = service.history();
-  const deform::HistoryEntry& current = history.at(service.history_position());
+  const auto [current, commits] = service.current();  // the state and its index read together
   guarded(failure, [&] {
-    nlohmann::json end_fields{{"commits", service.history_position()}, {"hash", hash_text(current.hash)}};
+    nlohmann::json end_fields{{"commits", commits}, {"hash", hash_text(current.hash)}};
     if (failure) end_fields["error"] = *failure;
     recorder.write_record("end", t, end_fields);
     log.write({{"event", "end"},
                {"revision", service.revision()},
                {"hash", hash_text(current.hash)},  // a string: 64 bits lose digits in a JSON double
-               {"commits", service.history_position()}});
+               {"commits", commits}});
   });
   if (!out.empty()) {
     try {
@@ -27,8 +26,7 @@ void finish_review(std::optional<std::string>& failure, SessionRecorder& recorde
       throw CommandError(e.what() + kept_work_note("", recorder));
     }
     if (print_out || failure)
-      std::printf("pushpull review: wrote %s (%zu committed push/pull(s))\n", out.c_str(),
-                  service.history_position());
+      std::printf("pushpull review: wrote %s (%zu committed push/pull(s))\n", out.c_str(), commits);
   }
   if (failure)
     throw CommandError("the review ended on an error: " + *failure + kept_work_note(out, recorder));

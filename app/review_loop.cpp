@@ -827,8 +827,7 @@ void run_review(const ReviewCommandOptions& o) {
     if (!o.out.empty() && !service.idle() && !deform::holds_descriptor(o.out) &&
         (std::filesystem::is_regular_file(o.out) || !std::filesystem::exists(o.out))) {
       try {
-        const auto history = service.history();
-        write_review_model(o.out, model, history.at(service.history_position()).state->V,
+        write_review_model(o.out, model, service.current().entry.state->V,
                            /*say_warnings=*/false);
       } catch (const std::exception&) {  // said by finish_review's write, which fails the same way
       }

@@ -49,6 +49,13 @@ bool is_method_name(const std::string& name) {
   }
 }
 
+bool finite_vector3(const nlohmann::json& j) {
+  if (!j.is_array() || j.size() != 3) return false;
+  for (const auto& v : j)
+    if (!v.is_number() || !std::isfinite(v.get<double>())) return false;
+  return true;
+}
+
 // The problem with an input line ("t" lines, read by xr/sim), or "" when it is well formed.
 std::string input_line_problem(const nlohmann::json& j) {
   if (!j["t"].is_number()) return "\"t\" is not a number";
@@ -242,6 +249,12 @@ SessionRecording read_lines(const std::string& path, const std::string& text, st
         if (!j.contains("hash") || !j["hash"].is_string() || !j.contains("index") ||
             !j["index"].is_number_unsigned())
           corrupted(path, number, "a commit record needs \"index\" and \"hash\"");
+        // What a replay with another method compares (d) and reads (the commit's method).
+        if (j.contains("d") && !finite_vector3(j["d"]))
+          corrupted(path, number, "a commit record's \"d\" must be [x, y, z], finite numbers");
+        if (j.contains("method") &&
+            !(j["method"].is_string() && is_method_name(j["method"].get<std::string>())))
+          corrupted(path, number, "a commit record's \"method\" must be a known method's name");
         // Commits are numbered in order (a line written twice made the replay compare one commit with
         // another's hash).
         if (!r.commits.empty() &&

@@ -311,6 +311,31 @@ TEST_F(CliMessages, UnusableCommandLinesNameTheCommandAndExitTwo) {
        "pushpull deform: error: --asan-base: asan's base must be arap-sr or arap-m, got 'arap-s'"},
       {"review " + model + " --method foo",
        "pushpull review: error: --method: unknown deformation method 'foo'"},
+      // Options that cannot be used together or make no sense, found after parsing: the same form and status
+      // (they exited 1 with a bare "pushpull: error:").
+      {"deform " + model +
+           " --handle-at nan 0 0.9 --handle-radius 0.1 --roi-radius 1 --displacement 0 0 1 --out " +
+           path("o.off"),
+       "pushpull deform: error: --handle-at: nan must be a finite number"},
+      {"deform " + model +
+           " --handle-at 0 0 1 --handle-radius 0.1 --roi-radius 1 --displacement 0 inf 0 --out " +
+           path("o.off"),
+       "pushpull deform: error: --displacement: inf must be a finite number"},
+      {"deform " + model + " --handle-at 0 0 1 --roi-radius 1 --displacement 0 0 1 --out " + path("o.off") +
+           " --metrics " + path("m.json"),
+       "pushpull deform: error: --handle-at needs a positive --handle-radius"},
+      {"deform " + model + " --handle-at 0 0 1 --handle-radius 0.1 --displacement 0 0 1 --out " +
+           path("o.off") + " --metrics " + path("m.json"),
+       "pushpull deform: error: give --fixed FILE, --roi-radius R, or both"},
+      {"deform " + model +
+           " --handle-at 0 0 1 --handle-radius 0.1 --roi-radius 1 --displacement 0 0 1 "
+           "--stretch-direction 0 0 0 --out " +
+           path("o.off") + " --metrics " + path("m.json"),
+       "pushpull deform: error: --stretch-direction: must not be zero"},
+      {"render " + model + " --out " + path("r.png") + " --up 0 0 0",
+       "pushpull render: error: --up: the up direction must not be zero"},
+      {"render " + model + " --out " + path("r.png") + " --camera 0 0 0",
+       "pushpull render: error: --camera: ZOOM must be from 1e-6 to 1e6"},
       {"bogus", "pushpull: error: unknown command 'bogus'"},
       {"", "pushpull: error: A subcommand is required"},
   };

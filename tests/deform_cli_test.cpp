@@ -26,6 +26,25 @@ const fs::path kHemisphere = fs::path(PUSHPULL_SHARED_DATA) / "meshes" / "hemisp
 using RunResult = pushpull::testing::CommandResult;
 using pushpull::testing::run_pushpull;
 
+// Two 11 x 11-vertex patches side by side on z = 0, y in [0, 1]: A over x in [0, 1], B over x in [1 + gap,
+// 2 + gap]; each writes its own copy of the seam column (tessellated CAD). File vertex j * 11 + i of patch p
+// is p * 121 + j * 11 + i.
+std::string two_patches_off(double gap) {
+  std::string off = "OFF\n242 400 0\n";
+  for (int patch = 0; patch < 2; ++patch)
+    for (int j = 0; j <= 10; ++j)
+      for (int i = 0; i <= 10; ++i)
+        off += std::to_string(patch * (1.0 + gap) + 0.1 * i) + " " + std::to_string(0.1 * j) + " 0\n";
+  for (int patch = 0; patch < 2; ++patch)
+    for (int j = 0; j < 10; ++j)
+      for (int i = 0; i < 10; ++i) {
+        const int a = patch * 121 + j * 11 + i, b = a + 1, c = a + 11, d = a + 12;
+        off += "3 " + std::to_string(a) + " " + std::to_string(b) + " " + std::to_string(d) + "\n";
+        off += "3 " + std::to_string(a) + " " + std::to_string(d) + " " + std::to_string(c) + "\n";
+      }
+  return off;
+}
+
 class DeformCli : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -185,19 +204,7 @@ TEST_F(DeformCli, BadInputsExitNonZeroNamingTheFileAndProblem) {
 // moved alike. Index files name the file's own vertices.
 TEST_F(DeformCli, PatchesWithSeamVerticesTwiceDeformAsOneSurface) {
   // Patch A: x in [0, 1]; patch B: x in [1, 2]; 11 x 11 vertices each, y in [0, 1]; the column x = 1 twice.
-  std::string off = "OFF\n242 400 0\n";
-  for (int patch = 0; patch < 2; ++patch)
-    for (int j = 0; j <= 10; ++j)
-      for (int i = 0; i <= 10; ++i)
-        off += std::to_string(patch + 0.1 * i) + " " + std::to_string(0.1 * j) + " 0\n";
-  for (int patch = 0; patch < 2; ++patch)
-    for (int j = 0; j < 10; ++j)
-      for (int i = 0; i < 10; ++i) {
-        const int a = patch * 121 + j * 11 + i, b = a + 1, c = a + 11, d = a + 12;
-        off += "3 " + std::to_string(a) + " " + std::to_string(b) + " " + std::to_string(d) + "\n";
-        off += "3 " + std::to_string(a) + " " + std::to_string(d) + " " + std::to_string(c) + "\n";
-      }
-  write("patches.off", off);
+  write("patches.off", two_patches_off(0.0));
   // The handle: patch A's vertex (0.9, 0.5); fixed: the outer ends x = 0 (patch A) and x = 2 (patch B).
   write("patch_handle.txt", std::to_string(5 * 11 + 9) + "\n");
   std::string fixed;
@@ -264,6 +271,37 @@ TEST_F(DeformCli, PatchesWithSeamVerticesTwiceDeformAsOneSurface) {
             std::string::npos)
       << picked.output;
   EXPECT_FALSE(fs::exists(path("o2.off")));
+}
+
+// Patches whose seam copies lie a little apart (3.5e-5 of the diagonal here: tessellated CAD written with
+// less precision) stay torn at the default weld; --weld-tolerance, as `info` takes it, welds them for the
+// solve too, and the metrics say which weld the model was loaded with.
+TEST_F(DeformCli, AWiderWeldToleranceJoinsPatchesAFileLeftApart) {
+  write("gap.off", two_patches_off(1e-4));
+  write("gap_handle.txt", std::to_string(5 * 11 + 9) + "\n");
+  std::string fixed;
+  for (int j = 0; j <= 10; ++j)
+    fixed += std::to_string(j * 11) + " " + std::to_string(121 + j * 11 + 10) + "\n";
+  write("gap_fixed.txt", fixed);
+  auto pull = [&](const std::string& weld) {
+    return run_pushpull("deform " + path("gap.off") + " --handle " + path("gap_handle.txt") + " --fixed " +
+                        path("gap_fixed.txt") + " --roi-radius 5 --displacement 0 0 0.05 --out " +
+                        path("g.off") + " --metrics " + path("g.json") + weld);
+  };
+  const RunResult apart = pull("");
+  ASSERT_EQ(apart.status, 0) << apart.output;
+  EXPECT_EQ(read_json(path("g.json")).at("vertices").get<int>(), 242) << apart.output;  // not welded
+  EXPECT_DOUBLE_EQ(read_json(path("g.json")).at("weld_tolerance").get<double>(), 1e-5);
+  const RunResult joined = pull(" --weld-tolerance 1e-4");
+  ASSERT_EQ(joined.status, 0) << joined.output;
+  EXPECT_NE(joined.output.find("(2 pieces -> 1 component)"), std::string::npos) << joined.output;
+  EXPECT_EQ(read_json(path("g.json")).at("vertices").get<int>(), 231);  // the seam's 11 copies welded
+  const pd::Mesh welded = pd::read_mesh(path("g.off"));
+  for (int j = 0; j <= 10; ++j)  // the seam's copies moved alike: one surface
+    EXPECT_NEAR((welded.V.row(j * 11 + 10) - welded.V.row(121 + j * 11)).norm(), 1e-4, 1e-9) << j;
+  EXPECT_DOUBLE_EQ(read_json(path("g.json")).at("weld_tolerance").get<double>(), 1e-4);
+  const RunResult refused = pull(" --weld-tolerance -1");
+  EXPECT_EQ(refused.status, 2) << refused.output;
 }
 
 TEST_F(DeformCli, AModelWithoutTrianglesIsRefusedNamingTheFile) {

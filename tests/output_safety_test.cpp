@@ -6,6 +6,7 @@
 #include "command_runner.hpp"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <unistd.h>
 
@@ -110,55 +111,73 @@ TEST_F(OutputSafety, RenderAndReviewRefuseOutputsOverTheModelsFiles) {
   expect_refused("review " + model + " --record " + model, model, model, "--record: a file is already there");
 }
 
-// A replay clears and writes commit-*, final.*, report.html, input.jsonl, replay-session.jsonl and eyes/ in
-// its
-// --out: a recording or model lying there under such a name is refused before anything is removed (a model
-// renamed final.gltf was deleted, then "no such file").
+// A replay clears and writes the files it names as it does (commit-01.glb, commit-01.metrics.json,
+// commit-01-after.png, final.glb, report.html, eyes/frame_000113_left.png; input.jsonl and
+// replay-session.jsonl): a recording or a file the model reads lying there under such a name is refused
+// before anything is removed (a model renamed final.gltf was deleted, then "no such file"). The user's own
+// files that merely start alike (a recording named commit-log.jsonl, commit-notes.txt, a sketch in eyes/) are
+// left alone: they used to be removed without a word.
 TEST_F(OutputSafety, AReplayRefusesAnOutFolderThatHoldsItsInputsUnderItsNames) {
   const fs::path bundled = fs::path(PUSHPULL_SOURCE_DIR) / "examples" / "sessions" / "paper_scenarios.jsonl";
   const std::string model = (kCarFolder / "vehicle_example.gltf").string();
-  for (const char* name : {"final.jsonl", "input.jsonl", "commit-log.jsonl"}) {
+  for (const char* name : {"input.jsonl", "replay-session.jsonl", "final.glb", "commit-02.metrics.json"}) {
     fs::copy_file(bundled, path(name), fs::copy_options::overwrite_existing);
     expect_refused(
         "replay " + path(name) + " --model " + model + " --out " + dir_.string() + " --no-pictures",
         path(name), path(name), "under a name the replay writes or clears");
+    fs::remove(path(name));
   }
+  // Replayed twice into a folder holding the user's files: they stay, byte for byte; the second replay says
+  // what of the first's it removed.
+  fs::create_directories(path("keep/eyes"));
+  fs::copy_file(bundled, path("keep/commit-log.jsonl"));
+  std::ofstream(path("keep/commit-notes.txt")) << "the supervisor's notes\n";
+  std::ofstream(path("keep/final.gltf")) << "{}\n";
+  std::ofstream(path("keep/eyes/sketch.png")) << "not a capture\n";
+  const std::string bundled_bytes = bytes_of(bundled);
+  for (int run = 0; run < 2; ++run) {
+    const CommandResult r = run_pushpull("replay " + path("keep/commit-log.jsonl") + " --model " + model +
+                                         " --out " + path("keep") + " --no-pictures");
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_EQ(r.output.find("removed") != std::string::npos, run == 1) << r.output;
+    EXPECT_EQ(bytes_of(path("keep/commit-log.jsonl")), bundled_bytes);
+    EXPECT_EQ(bytes_of(path("keep/commit-notes.txt")), "the supervisor's notes\n");
+    EXPECT_EQ(bytes_of(path("keep/final.gltf")), "{}\n");
+    EXPECT_EQ(bytes_of(path("keep/eyes/sketch.png")), "not a capture\n");
+    EXPECT_TRUE(fs::exists(path("keep/commit-01.glb")));
+  }
+  // The model's own buffer under a name the replay writes, in --out: refused too (it was deleted before the
+  // model was read).
   fs::create_directories(path("car"));
   for (const auto& entry : fs::directory_iterator(kCarFolder))
-    fs::copy_file(entry.path(), dir_ / "car" /
-                                    (entry.path().extension() == ".gltf" ? fs::path("final.gltf")
-                                                                         : entry.path().filename()));
-  expect_refused("replay " + bundled.string() + " --model " + path("car/final.gltf") + " --out " +
-                     path("car") + " --no-pictures",
-                 path("car/final.gltf"), path("car/final.gltf"), "under a name the replay writes or clears");
-  // The model's own buffer under a name the replay clears, in --out: refused too (it was deleted before the
-  // model was read).
-  fs::rename(path("car/vehicle_example.bin"), path("car/final.bin"));
+    fs::copy_file(entry.path(), dir_ / "car" / entry.path().filename());
+  fs::rename(path("car/vehicle_example.bin"), path("car/final.glb"));
   {
-    std::ifstream in(path("car/final.gltf"));
+    std::ifstream in(path("car/vehicle_example.gltf"));
     std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     const std::size_t at = text.find("vehicle_example.bin");
     ASSERT_NE(at, std::string::npos);
-    text.replace(at, std::string("vehicle_example.bin").size(), "final.bin");
+    text.replace(at, std::string("vehicle_example.bin").size(), "final.glb");
     std::ofstream(path("car/model.gltf")) << text;
   }
   // (The recording names the model by its SHA-256: a copy made for the edited model.)
   const CommandResult sum = run_command("sha256sum " + path("car/model.gltf"));
   ASSERT_EQ(sum.status, 0) << sum.output;
-  std::string recording = bytes_of(bundled);
+  std::string recording = bundled_bytes;
   const std::size_t key = recording.find("\"model_sha256\":\"");
   ASSERT_NE(key, std::string::npos);
   recording.replace(key + 16, 64, sum.output.substr(0, 64));
   fs::create_directories(path("rec"));
   std::ofstream(path("rec/session.jsonl")) << recording;
+  const std::string buffer_bytes = bytes_of(path("car/final.glb"));
   const CommandResult buffer =
       run_pushpull("replay " + path("rec/session.jsonl") + " --model " + path("car/model.gltf") + " --out " +
                    path("car") + " --no-pictures");
   EXPECT_NE(buffer.status, 0);
-  EXPECT_NE(buffer.output.find(path("car/final.bin") + ": a file the model reads lies in --out"),
+  EXPECT_NE(buffer.output.find(path("car/final.glb") + ": a file the model reads lies in --out"),
             std::string::npos)
       << buffer.output;
-  EXPECT_TRUE(fs::exists(path("car/final.bin")));
+  EXPECT_EQ(bytes_of(path("car/final.glb")), buffer_bytes);
   const CommandResult empty = run_pushpull("replay " + bundled.string() + " --out ''");
   EXPECT_NE(empty.status, 0);
   EXPECT_NE(empty.output.find("--out: an empty folder name"), std::string::npos) << empty.output;
@@ -168,13 +187,27 @@ TEST_F(OutputSafety, ALinkToStdoutIsWrittenThroughAndTheLogKeepsItsLines) {
   fs::create_symlink("/dev/stdout", path("stdout.json"));
   std::ofstream(path("log.txt")) << "KEEP ME\n";
   const CommandResult r =
-      run_command(std::string(PUSHPULL_EXECUTABLE) + " deform " + kHood.string() + kPull + " --out " +
-                  path("z.off") + " --metrics " + path("stdout.json") + " >> " + path("log.txt"));
+      run_command("(" + std::string(PUSHPULL_EXECUTABLE) + " deform " + kHood.string() + kPull + " --out " +
+                  path("z.off") + " --metrics " + path("stdout.json") + " >> " + path("log.txt") + " 2> " +
+                  path("err.txt") + ")");
   ASSERT_EQ(r.status, 0) << r.output;
   const std::string log = bytes_of(path("log.txt"));
   EXPECT_EQ(log.rfind("KEEP ME\n", 0), 0u) << log.substr(0, 200);
   EXPECT_NE(log.find("\"input\""), std::string::npos) << "the metrics went to the log through the link";
+  // Only the metrics: the summary goes to stderr when an output is stdout (it followed the JSON, which no
+  // longer parsed).
+  EXPECT_TRUE(nlohmann::json::accept(log.substr(8))) << log.substr(log.size() > 300 ? log.size() - 300 : 0);
+  EXPECT_NE(bytes_of(path("err.txt")).find("pushpull deform: "), std::string::npos) << r.output;
   EXPECT_TRUE(fs::is_symlink(path("stdout.json")));
+  // A picture to stdout is the PNG's bytes alone.
+  const CommandResult png =
+      run_command("(" + std::string(PUSHPULL_EXECUTABLE) + " render " + kHood.string() +
+                  " --size 32 32 --out /dev/stdout > " + path("p.png") + " 2> " + path("err.txt") + ")");
+  ASSERT_EQ(png.status, 0) << png.output;
+  const std::string bytes = bytes_of(path("p.png"));
+  ASSERT_GT(bytes.size(), 12u);
+  EXPECT_EQ(bytes.substr(1, 3), "PNG");
+  EXPECT_EQ(bytes.substr(bytes.size() - 8, 4), "IEND") << "text after the PNG's end";
 }
 
 TEST_F(OutputSafety, AnEmptyOutputNameIsRefusedByItsOption) {

@@ -192,7 +192,18 @@ TEST(ReplayXr, ReplayReproducesEveryCommitHashAndTheSameMeshesTwice) {
   EXPECT_NE(report.find("Push/pull 2"), std::string::npos);
   EXPECT_NE(report.find("100.0 mm"), std::string::npos);
   EXPECT_NE(report.find("<polyline"), std::string::npos);  // the section curves
-  EXPECT_NE(report.find(" mm across)"), std::string::npos);  // their largest extent in the plane
+  // Seen along d, the cut before and the same surface points after, with the gap between them and a scale.
+  EXPECT_NE(report.find("the same surface points after red; they are up to "), std::string::npos);
+  EXPECT_NE(report.find(" mm apart across d"), std::string::npos);
+  EXPECT_NE(report.find(" mm</text>"), std::string::npos);  // the scale bar's length
+  EXPECT_NE(report.find("How to read this report"), std::string::npos);
+  EXPECT_NE(report.find("asan (ASAN: "), std::string::npos);  // the paper's name beside the option's
+  // Each section's carried curve, point for point with its cut, in the commit's metrics.
+  for (const auto& section : metrics.at("sections")) {
+    ASSERT_EQ(section.at("carried").size(), section.at("before").size());
+    for (std::size_t c = 0; c < section.at("before").size(); ++c)
+      EXPECT_EQ(section.at("carried")[c].at("points").size(), section.at("before")[c].at("points").size());
+  }
   // The committed model moved 100 mm at most, where the hand pulled.
   const auto rest = pushpull::deform::read_mesh(kHood);
   const auto one = pushpull::deform::read_mesh(dir / "replay1" / "commit-01.off");
@@ -278,6 +289,9 @@ TEST(ReplayXr, CompareReplaysEachMethodAndPutsThemSideBySide) {
     EXPECT_TRUE(fs::exists(dir / "cmp" / file)) << file << "\n" << r.output;
   const std::string page = file_bytes(dir / "cmp" / "compare.html");
   EXPECT_NE(page.find("arap-sr/report.html"), std::string::npos);
+  EXPECT_NE(page.find("<th>Push/pull 2</th>"), std::string::npos);
+  EXPECT_NE(page.find("across d: RMS "), std::string::npos);
+  EXPECT_NE(page.find(" mm, max "), std::string::npos);
   // The paper's point on the bonnet pulled forward: ASAN keeps the curvature signs, ARAP-s&r reverses many.
   const auto asan = nlohmann::json::parse(file_bytes(dir / "cmp" / "asan" / "commit-01.metrics.json"));
   const auto arap = nlohmann::json::parse(file_bytes(dir / "cmp" / "arap-sr" / "commit-01.metrics.json"));
@@ -417,6 +431,36 @@ TEST(ReplayXr, AMalformedPressHeldRecordIsNamedByItsLine) {
       << r.output;
 }
 
+// A commit record's d (compared by a replay with another method) or method of the wrong type is named by its
+// line, whichever method replays it: it used to pass the default replay and fail another method's with
+// nlohmann's "cannot use at() with string", no file, no line, under "pushpull review".
+TEST(ReplayXr, ACommitRecordWithAMalformedDOrMethodIsNamedByItsLine) {
+  const fs::path dir = test_dir();
+  const fs::path session = record_session(dir);
+  const auto recorded = text_lines(session);
+  std::size_t commit = 0;
+  while (commit < recorded.size() && recorded[commit].find("\"record\":\"commit\"") == std::string::npos)
+    ++commit;
+  ASSERT_LT(commit, recorded.size());
+  const std::pair<const char*, const char*> cases[] = {
+      {"d", "\"north\""}, {"d", "[1, 2]"}, {"method", "7"}, {"method", "\"magic\""}};
+  for (const auto& [key, value] : cases) {
+    auto lines = recorded;
+    nlohmann::json j = nlohmann::json::parse(lines[commit]);
+    j[key] = nlohmann::json::parse(value);
+    lines[commit] = j.dump();
+    write_lines(session, lines);
+    for (const char* method : {"", "--method arap-sr"}) {
+      const auto r = replay(session, dir / "out", std::string("--no-pictures ") + method);
+      EXPECT_NE(r.status, 0) << r.output;
+      EXPECT_NE(r.output.find(session.string() + ":" + std::to_string(commit + 1) +
+                              ": corrupted line: a commit record's \"" + key + "\""),
+                std::string::npos)
+          << key << " = " << value << " " << method << ": " << r.output;
+    }
+  }
+}
+
 // Input lines are in time order, a frame apart, and end with the session: a damaged time far ahead (which
 // would step the replay's clock on without end, also in a recording cut short), one that goes back, or one
 // past the end record is named by its line.
@@ -531,7 +575,8 @@ TEST(ReplayXr, APushPullAnotherMethodCannotCommitIsSaidAndTheRestCompared) {
                         dir / "out", "--method arap-s --no-pictures");
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(
-      r.output.find("a push/pull not committed (the model stays as it was): deformer: arap-s: the energy is "
+      r.output.find("the push/pull of release 3 not committed (the model stays as it was): deformer: arap-s: "
+                    "the energy is "
                     "negative, -0.809092 (-0.453769 at the start)"),
       std::string::npos)
       << r.output;

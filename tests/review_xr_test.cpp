@@ -1991,6 +1991,36 @@ wait $pid
   expect_replays_with_commits(recording, 3);
 }
 
+// A press, a move and a release the window system delivers between two frames (a quick flick, a slow
+// renderer): the loop used to read only the buttons' state once a frame, saw the button up both times and
+// lost the push/pull. Now each press and release reaches the loop in its own frame, where it happened.
+TEST(ReviewXrWindow, AClickAndDragWithinOneFrameStillPushesAndPulls) {
+  if (std::getenv("DISPLAY") == nullptr) GTEST_SKIP() << "no DISPLAY (ctest runs this under xvfb-run)";
+  ASSERT_EQ(run_command("command -v xdotool").status, 0) << "xdotool is missing (scripts/setup installs it)";
+  const fs::path dir = test_dir();
+  const fs::path recording = dir / "desktop.jsonl", out = dir / "desktop.off";
+  // One xdotool command: the three events leave within a millisecond, well inside one frame.
+  std::ofstream(dir / "drive.sh") << desktop_hood_review_script(dir, recording, out) << R"SH(
+xdotool mousemove --window $wid 200 150; sleep 0.5
+xdotool mousedown 1 mousemove_relative -- 30 0 mouseup 1; await commit 1
+xdotool mousemove --window $wid 150 170; sleep 0.5
+xdotool click 1; sleep 1  # a click without a move: pressed and released where it grabbed, nothing committed
+xdotool key Escape
+wait $pid
+)SH";
+  const auto driven = run_drive_script(dir);
+  ASSERT_EQ(driven.status, 0) << driven.output;
+  const auto releases = recording_records(recording, "release");
+  ASSERT_EQ(recording_records(recording, "press").size(), 2u) << driven.output;
+  ASSERT_EQ(releases.size(), 2u) << driven.output;
+  // The flick: 30 pixels to the right on a 400-pixel-wide view of the bonnet is a pull of several cm.
+  const auto d = releases[0].at("d").get<std::vector<double>>();
+  EXPECT_GT(std::hypot(d[0], d[1], d[2]), 0.01) << releases[0].dump();
+  EXPECT_EQ(recording_records(recording, "commit").size(), 1u) << driven.output;
+  EXPECT_GT(largest_move_from_hood(out), 0.0);
+  expect_replays_with_commits(recording, 1);
+}
+
 // A desktop review of the bonnet (desktop_hood_review_script) whose push/pull commits, then whose window
 // `xdotool_command` ends from outside ("windowclose", "windowkill"): the drive script's status and output,
 // ending with "review exit status N" and the review's log.

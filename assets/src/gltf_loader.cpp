@@ -351,6 +351,18 @@ class Flattener {
     } else {
       const auto position = source.attributes.find("POSITION");
       if (position == source.attributes.end()) throw AssetError(where + ": no POSITION attribute");
+      // glTF 2.0 positions are floats; integer ones only under KHR_mesh_quantization (read as their values,
+      // the file's own scale in the node's matrix), else they were unsigned integers read as metres.
+      if (position->second >= 0 && static_cast<std::size_t>(position->second) < gltf_.accessors.size() &&
+          gltf_.accessors[static_cast<std::size_t>(position->second)].componentType !=
+              TINYGLTF_COMPONENT_TYPE_FLOAT &&
+          std::find(gltf_.extensionsUsed.begin(), gltf_.extensionsUsed.end(), "KHR_mesh_quantization") ==
+              gltf_.extensionsUsed.end())
+        throw AssetError(
+            where + ": POSITION accessor " + std::to_string(position->second) +
+            " is not of floats (componentType " +
+            std::to_string(gltf_.accessors[static_cast<std::size_t>(position->second)].componentType) +
+            ", 5126 = FLOAT; integers need KHR_mesh_quantization)");
       for (const auto& [semantic, accessor] : source.attributes) {
         if (semantic != "POSITION" && semantic != "NORMAL" && semantic != "TANGENT" &&
             semantic != "COLOR_0" && semantic.rfind("TEXCOORD_", 0) != 0)
@@ -436,6 +448,10 @@ void load_gltf(std::span<const std::uint8_t> bytes, const std::string& name, con
   if (!document.is_object() || !document.contains("asset") || !document["asset"].is_object() ||
       !document["asset"].contains("version") || !document["asset"]["version"].is_string())
     throw AssetError(name + ": not a glTF 2.0 file: no \"asset\" object with its \"version\"");
+  if (const std::string version = document["asset"]["version"].get<std::string>();
+      version.rfind("2.", 0) != 0)
+    throw AssetError(name + ": glTF version \"" + version +
+                     "\": only glTF 2.x is read (glTF 1.0 is another format)");
   // tinygltf indexes these arrays without checking their types: make sure they are arrays.
   for (const char* key : {"meshes", "nodes", "accessors", "bufferViews", "buffers", "materials", "textures",
                           "images", "samplers", "scenes"})

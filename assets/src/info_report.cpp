@@ -1,6 +1,9 @@
 #include "pushpull/assets/info.hpp"
 
+#include <algorithm>
 #include <cstdio>
+#include <map>
+#include <numeric>
 #include <set>
 #include <sstream>
 
@@ -21,6 +24,108 @@ std::string join(const std::vector<std::string>& items) {
     out += item;
   }
   return out.empty() ? "none" : out;
+}
+
+// The deform mesh's connected components by faces: a label per vertex (-1 for a vertex no face uses),
+// labels numbered by decreasing size (0 the largest).
+std::vector<int> component_labels(const deform::Mesh& mesh, std::vector<std::size_t>& sizes) {
+  const auto n = static_cast<std::size_t>(mesh.V.rows());
+  std::vector<std::size_t> parent(n);
+  std::iota(parent.begin(), parent.end(), std::size_t{0});
+  auto find = [&](std::size_t v) {
+    while (parent[v] != v) v = parent[v] = parent[parent[v]];
+    return v;
+  };
+  std::vector<bool> used(n, false);
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
+    for (int c = 0; c < 3; ++c) {
+      const auto a = static_cast<std::size_t>(mesh.F(f, c)),
+                 b = static_cast<std::size_t>(mesh.F(f, (c + 1) % 3));
+      if (a >= n || b >= n) continue;
+      used[a] = used[b] = true;
+      parent[find(a)] = find(b);
+    }
+  std::map<std::size_t, std::size_t> count;
+  for (std::size_t v = 0; v < n; ++v)
+    if (used[v]) ++count[find(v)];
+  std::vector<std::pair<std::size_t, std::size_t>> by_size(count.begin(), count.end());  // root, size
+  std::stable_sort(by_size.begin(), by_size.end(),
+                   [](const auto& x, const auto& y) { return x.second > y.second; });
+  std::map<std::size_t, int> label_of_root;
+  sizes.clear();
+  for (const auto& [root, size] : by_size) {
+    label_of_root[root] = static_cast<int>(sizes.size());
+    sizes.push_back(size);
+  }
+  std::vector<int> labels(n, -1);
+  for (std::size_t v = 0; v < n; ++v)
+    if (used[v]) labels[v] = label_of_root[find(v)];
+  return labels;
+}
+
+// The node (or mesh) a primitive belongs to, as a user names the part: "<node name>" of
+// "<node name>/<mesh name>#<primitive>".
+std::string part_name(const Primitive& p) {
+  const std::string& name = p.name;
+  const std::size_t slash = name.find('/');
+  std::string part = slash == std::string::npos ? name : name.substr(0, slash);
+  if (part.empty()) part = name.substr(0, name.find('#'));
+  if (!part.empty()) return part;
+  std::ostringstream unnamed;  // (a string concatenation here trips GCC 12's -Wrestrict)
+  unnamed << "node " << p.node;
+  return unnamed.str();
+}
+
+// The components the weld made of more than one part (glTF node): which parts a pull on one drags along as
+// one surface (a lamp's reflector sharing the body's vertices is the body), and the parts the weld split
+// between such a component and others (half of a lens joined to the body). Empty for a file of one part.
+std::string describe_joined_parts(const Model& model) {
+  if (model.primitives.size() < 2) return "";
+  std::vector<std::size_t> sizes;
+  const std::vector<int> labels = component_labels(model.deform_mesh, sizes);
+  // Per part: its deform vertices, and how many of them lie in each component.
+  std::map<std::string, std::set<int>> vertices_of_part;
+  for (const Primitive& p : model.primitives)
+    for (const int v : p.deform_vertex)
+      if (v >= 0 && static_cast<std::size_t>(v) < labels.size() && labels[static_cast<std::size_t>(v)] >= 0)
+        vertices_of_part[part_name(p)].insert(v);
+  std::map<int, std::vector<std::pair<std::string, std::pair<std::size_t, std::size_t>>>> parts_in;  // in, of
+  for (const auto& [part, vertices] : vertices_of_part) {
+    std::map<int, std::size_t> in;
+    for (const int v : vertices) ++in[labels[static_cast<std::size_t>(v)]];
+    for (const auto& [component, count] : in) parts_in[component].push_back({part, {count, vertices.size()}});
+  }
+  std::ostringstream out;
+  constexpr std::size_t kComponents = 6, kParts = 10;
+  std::size_t shown = 0, more = 0;
+  for (const auto& [component, parts] : parts_in) {
+    if (parts.size() < 2) continue;
+    if (shown == kComponents) {
+      ++more;
+      continue;
+    }
+    ++shown;
+    out << "  - component " << component << " (" << sizes[static_cast<std::size_t>(component)]
+        << " vertices): " << parts.size() << " parts, one surface: ";
+    auto sorted = parts;  // the largest share first
+    std::stable_sort(sorted.begin(), sorted.end(),
+                     [](const auto& x, const auto& y) { return x.second.first > y.second.first; });
+    for (std::size_t k = 0; k < sorted.size() && k < kParts; ++k) {
+      const auto& [part, share] = sorted[k];
+      out << (k ? ", " : "") << part;
+      if (share.first < share.second)
+        out << " (" << share.first << " of its " << share.second << " vertices)";
+    }
+    if (sorted.size() > kParts) out << ", and " << sorted.size() - kParts << " more";
+    out << "\n";
+  }
+  if (shown == 0) return "";
+  std::ostringstream head;
+  head << "joined:       parts (glTF nodes) the weld made one surface, which a pull deforms together ("
+          "--no-attached-parts leaves only separate parts behind):\n"
+       << out.str();
+  if (more > 0) head << "  - and " << more << " more component(s) of several parts\n";
+  return head.str();
 }
 
 }  // namespace
@@ -71,12 +176,19 @@ std::string describe_model(const Model& model) {
   out << "weld:         tolerance " << number(weld.tolerance) << " (file units); " << weld.render_vertices
       << " -> " << weld.deform_vertices << " vertices; " << weld.pieces_before << " pieces -> "
       << weld.topology.components << " components; " << weld.collapsed_triangles
-      << " triangles collapsed by the weld (dropped)\n";
+      << " triangles collapsed by the weld or repeating a corner in the file (dropped)\n";
   out << "deform mesh:  " << model.deform_mesh.V.rows() << " vertices, " << model.deform_mesh.F.rows()
       << " triangles, " << weld.topology.components << " components, " << weld.topology.boundary_loops
       << " boundary loops (" << weld.topology.boundary_edges << " boundary edges), "
       << weld.topology.non_manifold_edges << " non-manifold edges, " << weld.topology.degenerate_triangles
       << " degenerate triangles (repeated vertex or zero area: no stiffness in the solver)\n";
+  std::size_t unused = 0;  // (each primitive's own; an instanced mesh counts once per instance)
+  for (const Primitive& p : model.primitives)
+    unused += static_cast<std::size_t>(std::count(p.deform_vertex.begin(), p.deform_vertex.end(), -1));
+  if (unused > 0)
+    out << "unused:       " << unused
+        << " vertices of the file are used by no triangle (left out of the drawn and deformed surface)\n";
+  out << describe_joined_parts(model);
   out << "warnings:     " << report.warnings.size() << "\n";
   for (const std::string& warning : report.warnings) out << "  - " << warning << "\n";
   return out.str();

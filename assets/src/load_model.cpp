@@ -150,6 +150,24 @@ Model load_model_from_memory(const std::vector<std::uint8_t>& bytes, const std::
   else
     load_plain_mesh(data, name, extension, model, exact);
 
+  // In the model frame, after the nodes' transforms (a node translated by 1e308 put a glTF's vertices there,
+  // drawn as nothing, welded into one point): beyond the 32-bit floats the model is drawn in.
+  for (const Primitive& p : model.primitives)
+    for (Eigen::Index v = 0; v < p.positions.rows(); ++v) {
+      const Eigen::Vector3d at =
+          p.T_model_node.topLeftCorner<3, 3>() * p.positions.row(v).transpose().cast<double>() +
+          p.T_model_node.topRightCorner<3, 1>();
+      for (int axis = 0; axis < 3; ++axis)
+        if (!(std::abs(at(axis)) <= double(std::numeric_limits<float>::max()))) {
+          char coordinate[32];
+          std::snprintf(coordinate, sizeof coordinate, "%.6g", at(axis));
+          throw AssetError(
+              name + ": vertex " + std::to_string(v) + " of primitive \"" + p.name +
+              "\" (node/mesh#primitive) has the coordinate " + coordinate +
+              " in the model frame (its node's transform applied), beyond the 32-bit floats it is "
+              "drawn in (|x| < 3.4e38)");
+        }
+    }
   // A mesh file is welded on the reader's doubles (weld_primitives keeps them in the deform mesh).
   model.report.weld = weld_primitives(model.primitives, options.weld, model.deform_mesh,
                                       exact.V.rows() > 0 ? &exact.V : nullptr);

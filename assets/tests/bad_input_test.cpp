@@ -114,6 +114,23 @@ TEST(AssetsBadInput, NoAssetAndAMissingSceneAreNamed) {
   json negative = triangle_gltf();
   negative["scene"] = -1;
   expect_refused(dir, negative, "\"scene\" -1 names none");
+  // glTF 1.0 is another format (it was read as 2.0).
+  json old = triangle_gltf();
+  old["asset"]["version"] = "1.0";
+  expect_refused(dir, old, "glTF version \"1.0\": only glTF 2.x is read");
+}
+
+// Positions that are not floats without KHR_mesh_quantization (unsigned integers were read as metres, a model
+// 1e9 long), and a node transform that puts the vertices beyond the 32-bit floats they are drawn in (drawn as
+// nothing, solved into non-finite positions), are refused by name.
+TEST(AssetsBadInput, PositionsThatAreNotFloatsOrOutOfRangeAreNamed) {
+  ScratchDir dir;
+  json integers = triangle_gltf();
+  integers["accessors"][0]["componentType"] = 5125;
+  expect_refused(dir, integers, "POSITION accessor 0 is not of floats (componentType 5125");
+  json far = triangle_gltf();
+  far["nodes"][0]["matrix"] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 1e308, 0, 0, 1};
+  expect_refused(dir, far, "has the coordinate 1e+308 in the model frame (its node's transform applied)");
 }
 
 TEST(AssetsBadInput, UriPolicy) {

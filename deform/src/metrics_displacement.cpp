@@ -132,7 +132,9 @@ DeformationMetrics evaluate_deformation(const Mesh& before, const Eigen::MatrixX
     Section section;
     section.offset = offset;
     const Eigen::Vector3d origin = options.section_origin + offset * unit;
-    section.before = plane_section(before.V, before.F, origin, unit);
+    CarriedSection cut = plane_section_carried(before.V, V_after, before.F, origin, unit);
+    section.before = std::move(cut.cut);
+    section.carried = std::move(cut.carried);
     section.after = plane_section(V_after, before.F, origin, unit);
     metrics.sections.push_back(std::move(section));
   }

@@ -12,8 +12,11 @@ namespace pushpull::deform {
 
 using detail::edge_key;
 
-std::vector<SectionCurve> plane_section(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
-                                        const Eigen::Vector3d& origin, const Eigen::Vector3d& normal) {
+namespace {
+
+// The cut of V, and where V_carried (when given) puts the same surface points.
+CarriedSection cut_mesh(const Eigen::MatrixXd& V, const Eigen::MatrixXd* V_carried, const Eigen::MatrixXi& F,
+                        const Eigen::Vector3d& origin, const Eigen::Vector3d& normal) {
   const double length = normal.norm();
   if (!(length > 0.0) || !std::isfinite(length))
     throw std::invalid_argument("plane_section: zero or non-finite normal");
@@ -27,7 +30,7 @@ std::vector<SectionCurve> plane_section(const Eigen::MatrixXd& V, const Eigen::M
 
   // One crossing point per cut edge, shared by the faces on that edge; one segment per cut face.
   std::unordered_map<std::uint64_t, int> point_of_edge;
-  std::vector<Eigen::Vector3d> points;
+  std::vector<Eigen::Vector3d> points, carried_points;
   std::vector<std::vector<int>> segments_at;  // per point, the segments touching it
   std::vector<std::array<int, 2>> segments;
   auto crossing = [&](int a, int b) {
@@ -35,6 +38,9 @@ std::vector<SectionCurve> plane_section(const Eigen::MatrixXd& V, const Eigen::M
     if (inserted) {
       const double t = s(a) / (s(a) - s(b));
       points.push_back(V.row(a).transpose() + t * (V.row(b) - V.row(a)).transpose());
+      if (V_carried != nullptr)
+        carried_points.push_back(V_carried->row(a).transpose() +
+                                 t * (V_carried->row(b) - V_carried->row(a)).transpose());
       segments_at.emplace_back();
     }
     return it->second;
@@ -55,10 +61,10 @@ std::vector<SectionCurve> plane_section(const Eigen::MatrixXd& V, const Eigen::M
   }
 
   std::vector<bool> used(segments.size(), false);
-  std::vector<SectionCurve> curves;
+  CarriedSection out;
   auto walk = [&](int start) {
-    SectionCurve curve;
-    curve.points.push_back(points[static_cast<std::size_t>(start)]);
+    SectionCurve curve, carried;
+    std::vector<int> chain{start};
     int at = start;
     for (;;) {
       int next_segment = -1;
@@ -73,12 +79,17 @@ std::vector<SectionCurve> plane_section(const Eigen::MatrixXd& V, const Eigen::M
       const auto& ends = segments[static_cast<std::size_t>(next_segment)];
       at = ends[0] == at ? ends[1] : ends[0];
       if (at == start) {
-        curve.closed = true;
+        curve.closed = carried.closed = true;
         break;
       }
-      curve.points.push_back(points[static_cast<std::size_t>(at)]);
+      chain.push_back(at);
     }
-    curves.push_back(std::move(curve));
+    for (const int p : chain) {
+      curve.points.push_back(points[static_cast<std::size_t>(p)]);
+      if (V_carried != nullptr) carried.points.push_back(carried_points[static_cast<std::size_t>(p)]);
+    }
+    out.cut.push_back(std::move(curve));
+    if (V_carried != nullptr) out.carried.push_back(std::move(carried));
   };
   // Open chains first, from their ends (points on a single segment), then the remaining loops.
   for (std::size_t p = 0; p < points.size(); ++p) {
@@ -90,7 +101,22 @@ std::vector<SectionCurve> plane_section(const Eigen::MatrixXd& V, const Eigen::M
       if (!used[static_cast<std::size_t>(segment)]) walk(static_cast<int>(p));
     }
   }
-  return curves;
+  return out;
+}
+
+}  // namespace
+
+std::vector<SectionCurve> plane_section(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
+                                        const Eigen::Vector3d& origin, const Eigen::Vector3d& normal) {
+  return cut_mesh(V, nullptr, F, origin, normal).cut;
+}
+
+CarriedSection plane_section_carried(const Eigen::MatrixXd& V, const Eigen::MatrixXd& V_carried,
+                                     const Eigen::MatrixXi& F, const Eigen::Vector3d& origin,
+                                     const Eigen::Vector3d& normal) {
+  if (V_carried.rows() != V.rows() || V_carried.cols() != V.cols())
+    throw std::invalid_argument("plane_section_carried: V and V_carried differ in shape");
+  return cut_mesh(V, &V_carried, F, origin, normal);
 }
 
 }  // namespace pushpull::deform

@@ -12,6 +12,7 @@
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
+#include <cstdio>
 #include <cstring>
 #include <deque>
 #include <exception>
@@ -67,8 +68,9 @@ bool same_options(const DeformOptions& a, const DeformOptions& b) {
   return a.method == b.method && a.mu == b.mu && a.stretch_direction == b.stretch_direction &&
          a.asan_base == b.asan_base && a.max_iterations == b.max_iterations && a.tolerance == b.tolerance &&
          a.energy_tolerance == b.energy_tolerance && a.anderson_window == b.anderson_window &&
-         a.arap_n_rings == b.arap_n_rings && a.sr_arap_alpha == b.sr_arap_alpha &&
-         a.arap_h_lambda == b.arap_h_lambda && a.validate == b.validate;
+         a.smooth_start_min_free == b.smooth_start_min_free &&
+         a.coarse_start_min_free == b.coarse_start_min_free && a.arap_n_rings == b.arap_n_rings &&
+         a.sr_arap_alpha == b.sr_arap_alpha && a.arap_h_lambda == b.arap_h_lambda && a.validate == b.validate;
 }
 
 // Same Deformer setup: handle, region and options (d may differ).
@@ -183,7 +185,17 @@ struct Service::Impl {
     snapshot.generation = ++generation;
     auto shared = std::make_shared<const Snapshot>(std::move(snapshot));
     newest.store(shared);
-    if (options.on_publish) options.on_publish(shared);
+    if (!options.on_publish) return;
+    // The snapshot is published whatever the callback does: a throw from it must not fail the request (a
+    // commit already in the history would be reported failed) nor, thrown again from the error snapshot
+    // the worker publishes for it, end the process.
+    try {
+      options.on_publish(shared);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "pushpull: the deformation service's on_publish callback failed: %s\n", e.what());
+    } catch (...) {
+      std::fprintf(stderr, "pushpull: the deformation service's on_publish callback failed\n");
+    }
   }
 
   Snapshot state_snapshot(Snapshot::Kind kind, std::uint64_t request, Clock::time_point since) const {
@@ -199,9 +211,10 @@ struct Service::Impl {
     return s;
   }
 
-  void publish_error(std::uint64_t request, Clock::time_point since, std::string what) {
+  void publish_error(std::uint64_t request, Clock::time_point since, std::string what, bool commit) {
     Snapshot s = state_snapshot(Snapshot::Kind::Error, request, since);
     s.error = std::move(what);
+    s.failed_commit = commit;
     publish(std::move(s));
   }
 
@@ -288,7 +301,8 @@ struct Service::Impl {
       publish_error(p.sequence, p.submitted,
                     "request " + std::to_string(p.sequence) + " was made for state " +
                         std::to_string(p.request.revision) + " but state " + std::to_string(current().id) +
-                        " is committed now");
+                        " is committed now",
+                    /*commit=*/false);
       return;
     }
     double setup_ms = 0.0;
@@ -357,7 +371,8 @@ struct Service::Impl {
       publish_error(p.sequence, issued,
                     "commit of request " + std::to_string(p.sequence) + ": it was made for state " +
                         std::to_string(p.request.revision) + " but state " + std::to_string(current().id) +
-                        " is committed now");
+                        " is committed now",
+                    /*commit=*/true);
       return;
     }
     double setup_ms = 0.0;
@@ -454,6 +469,7 @@ struct Service::Impl {
       const std::uint64_t sequence =
           command ? (command->request ? command->request->sequence : 0) : request->sequence;
       const Clock::time_point since = command ? command->issued : request->submitted;
+      const bool commit = command && command->kind == CommandKind::Commit;
       try {
         if (command)
           run_command(*command);
@@ -461,10 +477,10 @@ struct Service::Impl {
           solve_preview(*request);
       } catch (const std::exception& error) {
         active.reset();
-        publish_error(sequence, since, error.what());
+        publish_error(sequence, since, error.what(), commit);
       } catch (...) {
         active.reset();
-        publish_error(sequence, since, "unknown error in the deformation worker");
+        publish_error(sequence, since, "unknown error in the deformation worker", commit);
       }
     }
   }
@@ -475,13 +491,19 @@ struct Service::Impl {
     std::shared_ptr<const Pending> dropped, ended;  // released outside the lock
     {
       std::lock_guard lock(mutex);
-      dropped = std::move(pending);
       if (end_drag) ended = std::move(last_submitted);
-      commands.push_back(std::move(command));
-      command_waiting.store(true, std::memory_order_release);
-      interrupt.store(true, std::memory_order_release);
+      dropped = queue_locked(std::move(command));
     }
     wake.notify_one();
+  }
+  // Queues a command with `mutex` held (one lock with whatever the caller read: a submit() or cancel() from
+  // another thread cannot come in between); returns the request it dropped, to be released outside the lock.
+  std::shared_ptr<const Pending> queue_locked(Command command) {
+    std::shared_ptr<const Pending> dropped = std::move(pending);
+    commands.push_back(std::move(command));
+    command_waiting.store(true, std::memory_order_release);
+    interrupt.store(true, std::memory_order_release);
+    return dropped;
   }
 };
 
@@ -531,14 +553,18 @@ std::uint64_t Service::submit(Request request) {
 }
 
 std::uint64_t Service::commit() {
-  std::shared_ptr<const Impl::Pending> what;
+  std::shared_ptr<const Impl::Pending> dropped;  // released outside the lock
+  std::uint64_t sequence = 0;
   {
+    // What to commit and the command in one lock: a submit() between them would be dropped unsolved and
+    // committed by the next commit(), a cancel() between them queued before the commit of what it cancelled.
     std::lock_guard lock(impl_->mutex);
-    what = std::move(impl_->last_submitted);
+    std::shared_ptr<const Impl::Pending> what = std::move(impl_->last_submitted);
+    if (!what) return 0;
+    sequence = what->sequence;
+    dropped = impl_->queue_locked({Impl::CommandKind::Commit, std::move(what), Clock::now()});
   }
-  if (!what) return 0;
-  const std::uint64_t sequence = what->sequence;
-  impl_->post({Impl::CommandKind::Commit, std::move(what), Clock::now()});
+  impl_->wake.notify_one();
   return sequence;
 }
 
@@ -579,6 +605,11 @@ std::vector<HistoryEntry> Service::history() const {
   out.reserve(impl_->states.size());
   for (const auto& s : impl_->states) out.push_back(s.entry);
   return out;
+}
+
+Service::Current Service::current() const {
+  std::lock_guard lock(impl_->history_mutex);
+  return {impl_->states[impl_->position].entry, impl_->position};
 }
 
 std::size_t Service::history_position() const {

@@ -161,6 +161,42 @@ TEST(MetricsEvaluate, BumpOnAPlaneFlipsSignsAndIdentityFlipsNone) {
   EXPECT_TRUE(m.sections[0].after[0].closed);
 }
 
+// The carried section is the section's own surface points where the deformation took them, point for point:
+// a sheet slid along d by s and sheared across it keeps its cut's points on their edges, so the carried
+// curve is the cut moved by the motion of those points (here exactly: the motion is affine), while the fixed
+// plane's cut of the moved sheet (`after`) is another piece of material.
+TEST(MetricsEvaluate, TheCarriedSectionIsTheSamePointsMoved) {
+  const pd::Mesh sheet = pt::grid(12, 12, -1, 1, -1, 1);  // z = 0, cut by planes x = const
+  Eigen::MatrixXd moved = sheet.V;
+  auto motion =
+      [](const Eigen::Vector3d& p) {  // along d = x by 0.3, plus a bend across it (z) growing with y
+        return Eigen::Vector3d(p.x() + 0.3, p.y(), p.z() + 0.1 * p.y());
+      };
+  for (Eigen::Index i = 0; i < moved.rows(); ++i)
+    moved.row(i) = motion(sheet.V.row(i).transpose()).transpose();
+  pd::MetricsOptions options;
+  options.section_offsets = {0.05};
+  const pd::DeformationMetrics m =
+      pd::evaluate_deformation(sheet, moved, Eigen::Vector3d(1, 0, 0), {}, options);
+  ASSERT_EQ(m.sections.size(), 1u);
+  const pd::Section& section = m.sections[0];
+  ASSERT_EQ(section.before.size(), 1u);
+  ASSERT_EQ(section.carried.size(), 1u);
+  ASSERT_EQ(section.carried[0].points.size(), section.before[0].points.size());
+  EXPECT_EQ(section.carried[0].closed, section.before[0].closed);
+  for (std::size_t k = 0; k < section.before[0].points.size(); ++k) {
+    const Eigen::Vector3d& p = section.before[0].points[k];
+    EXPECT_NEAR(p.x(), 0.05, 1e-12);
+    EXPECT_LT((section.carried[0].points[k] - motion(p)).norm(), 1e-12) << k;
+  }
+  // The fixed plane x = 0.05 cuts the moved sheet where the material from x = -0.25 now lies.
+  ASSERT_EQ(section.after.size(), 1u);
+  for (const Eigen::Vector3d& p : section.after[0].points) EXPECT_NEAR(p.x(), 0.05, 1e-12);
+  EXPECT_THROW((void)pd::plane_section_carried(sheet.V, moved.topRows(3), sheet.F, Eigen::Vector3d::Zero(),
+                                               Eigen::Vector3d::UnitX()),
+               std::invalid_argument);
+}
+
 // Two tetrahedra sharing an edge (tessellated CAD's sheets meeting): the shared edge has four faces, so its
 // two vertices' angles do not close one disc and their angle defect is not a curvature. They are marked
 // non-manifold and left out of the sign statistics (they were counted, always negative, swelling every

@@ -54,7 +54,9 @@ View frame_bounds(const Bounds& bounds, const OrbitCamera& camera, float aspect)
   const float el = glm::radians(camera.elevation_deg);
   const glm::vec3 dir = std::cos(el) * (std::cos(az) * front + std::sin(az) * side) + std::sin(el) * up;
 
-  const float radius = std::max(bounds.radius(), 1e-6f);
+  // A point (radius 0) is framed as if 1e-6 across; any real size, however small (a model in km drawn in
+  // file units of 1e-9), keeps its own (an absolute floor of 1e-6 left it a speck or nothing).
+  const float radius = bounds.radius() > 0.0f ? bounds.radius() : 1e-6f;
   const float fov_y = glm::radians(camera.fov_y_deg);
   const float tan_y = std::tan(0.5f * fov_y), tan_x = tan_y * aspect;
   // Smallest distance at which all 8 box corners project inside the view (5% margin).
@@ -68,7 +70,7 @@ View frame_bounds(const Bounds& bounds, const OrbitCamera& camera, float aspect)
     fit = std::max(fit, towards + 1.05f * std::abs(glm::dot(rel, right)) / tan_x);
     fit = std::max(fit, towards + 1.05f * std::abs(glm::dot(rel, cam_up)) / tan_y);
   }
-  const float distance = camera.distance_scale * std::max(fit, 1e-6f);
+  const float distance = camera.distance_scale * (fit > 0.0f ? fit : radius);
   const glm::vec3 target = bounds.centre() + camera.target_offset;
   const glm::vec3 eye = target + dir * distance;
 

@@ -23,9 +23,10 @@ void compute_vertex_normals(std::span<const float> positions, std::span<const ui
     }
   }
   for (size_t v = 0; v + 2 < normals_out.size(); v += 3) {
-    glm::vec3 n(normals_out[v], normals_out[v + 1], normals_out[v + 2]);
-    const float len = glm::length(n);
-    n = len > 0.0f ? n / len : glm::vec3(0.0f, 0.0f, 1.0f);
+    // In double: a huge model's summed normals square beyond a float's range (black pictures).
+    glm::dvec3 n(normals_out[v], normals_out[v + 1], normals_out[v + 2]);
+    const double len = glm::length(n);
+    n = len > 0.0 && std::isfinite(len) ? n / len : glm::dvec3(0.0, 0.0, 1.0);
     normals_out[v] = n.x;
     normals_out[v + 1] = n.y;
     normals_out[v + 2] = n.z;

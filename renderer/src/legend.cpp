@@ -132,7 +132,7 @@ TextureRGBA8 make_curvature_legend(uint32_t width, uint32_t height) {
   // apart (5.2 lines in all); the text as large as a row holds, at least the font's own size.
   const float line = std::max(10.0f, float(height) / 5.2f);
   const float scale = std::max(1.0f, std::floor(line / 10.0f));
-  const char* labels[3] = {"K > 0", "K < 0", "K = 0"};
+  const char* labels[3] = {"K > 0", "K < 0", "flat"};  // flat: |K| L^2 within the sign rule's band
   const glm::vec3 colours[3] = {curvature_sign_colour(1.0f, 0.0f), curvature_sign_colour(-1.0f, 0.0f),
                                 curvature_sign_colour(0.0f, 0.0f)};
   for (int i = 0; i < 3; ++i) {

@@ -8,6 +8,7 @@
 #include <GLFW/glfw3.h>
 
 #include <algorithm>
+#include <deque>
 #include <string>
 #include <utility>
 
@@ -48,7 +49,43 @@ struct MirrorWindow::Impl {
   bool lost = false;         // the surface or the window is gone (closed from outside)
   bool blit_target = false;  // the swapchain images take transfers (TRANSFER_DST usage)
   std::vector<int> key_presses;
-  double scroll = 0.0;
+  double scroll = 0.0;  // since the last poll_events()
+  // The pointer at each button press and release since the frame last read it, oldest first: a click or a
+  // short drag begun and ended between two polls (a slow frame) still shows the loop its press, its last
+  // position with the button held, and its release, one a poll. Bounded: past kMaxQueued transitions (a
+  // stalled loop) the oldest go.
+  static constexpr std::size_t kMaxQueued = 32;
+  std::deque<Pointer> queued;
+  Pointer polled;  // what pointer() returns until the next poll_events()
+  // The cursor as the last motion (or enter) event placed it. glfwGetCursorPos asks the X server where the
+  // pointer is now, which for a press followed by a move within one poll is already past the press.
+  double event_x = 0.0, event_y = 0.0;
+
+  Pointer live() const {
+    Pointer p;
+    glfwGetCursorPos(window, &p.x, &p.y);
+    glfwGetWindowSize(window, &p.window_width, &p.window_height);
+    p.left = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+    p.right = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
+    p.middle = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS;
+    p.shift = glfwGetKey(window, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS ||
+              glfwGetKey(window, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS;
+    return p;
+  }
+  // GLFW has set the button's new state when it calls back; the cursor is where the last motion event put it.
+  void button_changed(int button, int action) {
+    Pointer now = live();
+    now.x = event_x, now.y = event_y;
+    if (action == GLFW_RELEASE) {  // first the position the button was released at, still held
+      Pointer held = now;
+      if (button == GLFW_MOUSE_BUTTON_LEFT) held.left = true;
+      if (button == GLFW_MOUSE_BUTTON_RIGHT) held.right = true;
+      if (button == GLFW_MOUSE_BUTTON_MIDDLE) held.middle = true;
+      queued.push_back(held);
+    }
+    queued.push_back(now);
+    while (queued.size() > kMaxQueued) queued.pop_front();
+  }
 
   explicit Impl(const Context& c) : context(c) {}
 
@@ -175,6 +212,14 @@ MirrorWindow::MirrorWindow(const Context& context, uint32_t width, uint32_t heig
     if (action == GLFW_PRESS)
       static_cast<Impl*>(glfwGetWindowUserPointer(window))->key_presses.push_back(key);
   });
+  glfwGetCursorPos(impl_->window, &impl_->event_x, &impl_->event_y);
+  glfwSetCursorPosCallback(impl_->window, [](GLFWwindow* window, double x, double y) {
+    Impl& w = *static_cast<Impl*>(glfwGetWindowUserPointer(window));
+    w.event_x = x, w.event_y = y;
+  });
+  glfwSetMouseButtonCallback(impl_->window, [](GLFWwindow* window, int button, int action, int) {
+    static_cast<Impl*>(glfwGetWindowUserPointer(window))->button_changed(button, action);
+  });
   glfwSetScrollCallback(impl_->window, [](GLFWwindow* window, double, double dy) {
     static_cast<Impl*>(glfwGetWindowUserPointer(window))->scroll += dy;
   });
@@ -277,23 +322,24 @@ bool MirrorWindow::lost() const {
   return impl_->lost || detail::x11_window_gone();
 }
 void MirrorWindow::poll_events() {
+  Impl& w = *impl_;
   glfwPollEvents();
   detail::install_x11_error_guard();  // again: GLFW resets it after its own guarded requests
+  if (lost()) return;                 // the window's state would be garbage
+  if (w.queued.empty()) {
+    w.polled = w.live();
+  } else {
+    w.polled = w.queued.front();
+    w.queued.pop_front();
+    glfwGetWindowSize(w.window, &w.polled.window_width, &w.polled.window_height);
+  }
+  w.polled.scroll = std::exchange(w.scroll, 0.0);
 }
 std::vector<int> MirrorWindow::take_key_presses() {
   return std::exchange(impl_->key_presses, {});
 }
-MirrorWindow::Pointer MirrorWindow::pointer() {
-  Pointer p;
-  GLFWwindow* w = impl_->window;
-  glfwGetCursorPos(w, &p.x, &p.y);
-  glfwGetWindowSize(w, &p.window_width, &p.window_height);
-  p.left = glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
-  p.right = glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
-  p.middle = glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS;
-  p.shift = glfwGetKey(w, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS || glfwGetKey(w, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS;
-  p.scroll = std::exchange(impl_->scroll, 0.0);
-  return p;
+MirrorWindow::Pointer MirrorWindow::pointer() const {
+  return impl_->polled;
 }
 void MirrorWindow::set_title(const std::string& title) {
   glfwSetWindowTitle(impl_->window, title.c_str());

@@ -150,10 +150,27 @@ struct SectionCurve {
                                                       const Eigen::Vector3d& origin,
                                                       const Eigen::Vector3d& normal);
 
+// The cut of V (plane_section) and the same surface points on a deformed copy V_carried (#V by 3, same
+// faces): each point of the cut lies on an edge (a, b) at a parameter t of V, and its carried point is
+// (1 - t) V_carried(a) + t V_carried(b). Curves and points correspond one to one.
+struct CarriedSection {
+  std::vector<SectionCurve> cut;      // plane_section(V, F, origin, normal)
+  std::vector<SectionCurve> carried;  // the same surface points on V_carried
+};
+[[nodiscard]] CarriedSection plane_section_carried(const Eigen::MatrixXd& V, const Eigen::MatrixXd& V_carried,
+                                                   const Eigen::MatrixXi& F, const Eigen::Vector3d& origin,
+                                                   const Eigen::Vector3d& normal);
+
 struct Section {
   double offset = 0.0;               // plane through origin + offset d^, normal d^
   std::vector<SectionCurve> before;  // the undeformed mesh cut
-  std::vector<SectionCurve> after;   // the deformed mesh cut by the same plane
+  std::vector<SectionCurve>
+      after;  // the deformed mesh cut by the same plane (the paper's Fig. 13 silhouettes)
+  // The surface points of `before` where the deformation took them (plane_section_carried; point for point
+  // with `before`): the section of the material, which ASAN keeps rigid across d (the paper's section 4.3:
+  // sections orthogonal to d stay as they were while the surface deforms along d). Seen along d, its
+  // difference from `before` is the displacement across d of that section; a move along d does not show.
+  std::vector<SectionCurve> carried;
 };
 
 struct MetricsOptions {

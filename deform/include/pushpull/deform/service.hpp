@@ -7,7 +7,8 @@
 //   // press: p0 on the surface; every frame of the drag:
 //   service.submit({.handle = SurfaceHandle{hit, 0.05}, .region = {.max_distance = 1.0}, .d = d});
 //   (with ServiceOptions::on_publish, every snapshot is also handed to a callback on the worker)
-//   auto s = service.latest();           // wait-free; draw s->positions (may be a preview iterate)
+//   auto s = service.latest();           // never waits for a solve; draw s->positions (may be a preview
+//   iterate)
 //   // release:
 //   service.commit();                    // the last request, solved from the committed state, becomes it
 //   service.undo(); service.redo();
@@ -26,7 +27,8 @@
 // previews converge in a few iterations).
 //
 // Commands (commit, undo, redo, cancel) are queued in call order and run by the worker between solves; they
-// too interrupt a running preview solve. A commit solves its request again from the committed state with a
+// too interrupt a running preview solve (not a commit's solve, nor the region and Deformer setup or a cold
+// start's preparation, which finish first). A commit solves its request again from the committed state with a
 // cold start (rest positions, identity rotations: DeformResult is then a pure function of the request and
 // the committed state), so commits never depend on previews, timing or thread scheduling: the same request
 // sequence gives bit-identical commits on the same machine (a replay depends on it).
@@ -134,6 +136,9 @@ struct Snapshot {
   double solve_ms = 0.0;          // iterations so far
   double latency_ms = 0.0;        // from submit() (or the command call) to this publication
   std::string error;              // Kind::Error: what went wrong
+  // Kind::Error: commit() failed (the request is not committed; the state stays). False for a preview's
+  // failure, which says nothing about the commit of the same request (solved again, cold).
+  bool failed_commit = false;
   std::vector<std::string> warnings;
   // Kind::Committed only (empty otherwise): the commit's solve, its energy before the first iteration and
   // after each, and the separate parts bound to the surface (attached_parts.hpp) with the reach that chose
@@ -149,7 +154,7 @@ struct Snapshot {
 
 // One entry of the history that commit/undo/redo walk.
 struct HistoryEntry {
-  std::shared_ptr<const Mesh> state;  // the committed positions (faces shared with the initial mesh)
+  std::shared_ptr<const Mesh> state;  // the committed positions and the faces (a copy of the initial mesh's)
   std::optional<Request> request;     // the request whose commit produced it (none for the initial state)
   std::uint64_t hash = 0;             // position_hash(state->V)
 };
@@ -159,8 +164,11 @@ struct HistoryEntry {
 [[nodiscard]] std::uint64_t position_hash(const Eigen::MatrixXd& V);
 
 struct ServiceOptions {
-  // Called on the worker with every snapshot right after its publication (tests, recording). Must be quick;
-  // it may call submit(), commit(), undo(), redo() and cancel() (they never wait), nothing that blocks.
+  // Called on the worker with every snapshot right after its publication (tests, recording; the first Rest
+  // snapshot's on the thread constructing the Service, inside the constructor). Must be quick; it may call
+  // submit(), commit(), undo(), redo() and cancel() (they never wait), nothing that blocks. It should not
+  // throw: an exception from it is written to stderr and dropped (the snapshot stays published, the request
+  // unaffected).
   std::function<void(const std::shared_ptr<const Snapshot>&)> on_publish;
   // Scheduling niceness of the worker thread, 0 (as the caller) to 19 (runs only when nothing else wants the
   // core). A frame loop sharing the machine's cores with the solver gives it > 0 so frames come first;
@@ -206,7 +214,7 @@ class Service {
   std::uint64_t commit();
   void undo();    // back to the previous committed state (no-op at the start of the history)
   void redo();    // forward again (no-op at its end); a commit after undo drops the undone states
-  void cancel();  // stops the running solve, drops pending requests, shows the committed state again
+  void cancel();  // stops a running preview solve, drops pending requests, shows the committed state again
 
   // The newest snapshot (never null). Never waits for a solve: one shared_ptr copy under a spin flag.
   [[nodiscard]] std::shared_ptr<const Snapshot> latest() const;
@@ -222,6 +230,13 @@ class Service {
   [[nodiscard]] std::uint64_t revision() const;
   [[nodiscard]] std::vector<HistoryEntry> history() const;  // a copy, oldest first
   [[nodiscard]] std::size_t history_position() const;       // index of the current state in history()
+  // The current state and its index, read together (history() and history_position() called one after the
+  // other may straddle a commit, undo or redo).
+  struct Current {
+    HistoryEntry entry;
+    std::size_t position = 0;
+  };
+  [[nodiscard]] Current current() const;
   [[nodiscard]] std::size_t history_size() const;           // history().size(), without the copy
 
  private:

@@ -80,16 +80,20 @@ class MirrorWindow {
   std::vector<int> take_key_presses();
   void set_title(const std::string& title);
 
-  // The mouse, as of the last poll_events(): cursor in window coordinates (pixels from the top-left corner,
-  // window_width x window_height, which may differ from extent() on scaled displays), buttons, the shift key,
-  // and the scroll since the previous call (lines, + = away from the user).
+  // The mouse as of the last poll_events(), the same until the next: cursor in window coordinates (pixels
+  // from the top-left corner, window_width x window_height, which may differ from extent() on scaled
+  // displays), buttons, the shift key, and the scroll since the poll before (lines, + = away from the user).
+  // Button presses and releases are never lost between polls: each poll shows the next one not yet shown,
+  // as it was when it happened (a release first as the position it happened at, the button still held,
+  // then released), and the live state once none is left; a click within one frame is a press one frame and
+  // a release two frames later.
   struct Pointer {
     double x = 0.0, y = 0.0;
     int window_width = 1, window_height = 1;
     bool left = false, right = false, middle = false, shift = false;
     double scroll = 0.0;
   };
-  Pointer pointer();
+  [[nodiscard]] Pointer pointer() const;
   [[nodiscard]] VkExtent2D extent() const;
   // Whether the swapchain images take transfers (Renderer::RenderPass::blit_from can fill them).
   [[nodiscard]] bool accepts_blit() const;
