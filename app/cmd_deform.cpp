@@ -512,7 +512,7 @@ void run_deform(DeformCommandOptions o) {
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   try {
     deform::write_file_atomically(o.metrics, metrics_json(record));
-  } catch (const std::runtime_error& error) {  // the model is written by now: said, as it is on disk
+  } catch (const std::exception& error) {  // the model is written by now: said, as it is on disk
     throw CommandError(std::string(error.what()) + " (the deformed model was written to " + o.out + ")");
   }
 
@@ -699,9 +699,11 @@ void add_deform_command(CLI::App& root) {
          "Parts within this distance of the region follow the surface (metres at life size; default: "
          "3% of the region's bounding-box diagonal)")
       ->check(finite_above(0.0, false));
-  cmd->add_option("--weld-tolerance", o->weld_tolerance,
-                  "Weld the file's patches within this distance, relative to the bounding-box diagonal (as "
-                  "`pushpull info --weld-tolerance`: vertex numbers of index files follow it)")
+  cmd->add_option(
+         "--weld-tolerance", o->weld_tolerance,
+         "Weld the file's patches within this distance, relative to the bounding-box diagonal (as "
+         "`pushpull info --weld-tolerance`; a glTF's index files number the vertices of this weld, an "
+         "OFF/OBJ/PLY's the file's own)")
       ->capture_default_str()
       ->check(finite_above(0.0, false));
   cmd->add_option("--dead-band", o->dead_band,

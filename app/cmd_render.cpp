@@ -145,9 +145,11 @@ void add_render_command(CLI::App& root) {
          "--scalar-max", options->scalar_max,
          "Displacement shown as the top of the colour map (metres at life size; default: the largest)")
       ->check(finite_above(0.0));
-  cmd->add_option("--weld-tolerance", options->weld_tolerance,
-                  "Weld the file's patches within this distance, relative to the bounding-box diagonal (as "
-                  "`pushpull info --weld-tolerance`: --handle/--fixed vertex numbers follow it)")
+  cmd->add_option(
+         "--weld-tolerance", options->weld_tolerance,
+         "Weld the file's patches within this distance, relative to the bounding-box diagonal (as "
+         "`pushpull info --weld-tolerance`; a glTF's --handle/--fixed files number the vertices of this "
+         "weld, an OFF/OBJ/PLY's the file's own)")
       ->capture_default_str()
       ->check(finite_above(0.0, false));
   cmd->add_option("--dead-band", options->dead_band,

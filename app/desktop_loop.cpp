@@ -30,6 +30,7 @@
 #include <cstdio>
 #include <deque>
 #include <optional>
+#include <utility>
 
 #include <nlohmann/json.hpp>
 
@@ -165,6 +166,7 @@ void run_desktop(const ReviewCommandOptions& given, const ReviewSetup& setup) {
     // frame, with a released frame between two of the same button (a replay reads two pressed frames in a
     // row as one press). Several presses within one frame (a slow renderer, a quick double tap) all act.
     std::deque<HistoryStep> queued_steps;
+    int deferred_method_steps = 0;   // M presses that came with a release not yet shown (see below)
     bool said_along_normal = false;  // this drag's Shift pull was held for a view along the normal
     std::optional<HistoryStep> stepped_last_frame;
     bool dragging = false;
@@ -225,9 +227,9 @@ void run_desktop(const ReviewCommandOptions& given, const ReviewSetup& setup) {
           }
           quit = quit || key == 256 /* GLFW_KEY_ESCAPE */;
           if (key == 'U' || key == 'R') {
-            // Mid-drag: refused, unless the button went up in this frame too (the release, read after the
-            // keys, ends the drag first; the undo then steps back over it).
-            if (interaction.dragging() && window.pointer().left)
+            // Mid-drag: refused, unless the button is already up (its release shown within two frames ends
+            // the drag first; the undo then steps back over it).
+            if (interaction.dragging() && window.pointer().left && !window.pointer().left_release_queued)
               say("undo and redo act between drags");
             else
               queued_steps.push_back(key == 'U' ? HistoryStep::Undo : HistoryStep::Redo);
@@ -338,7 +340,9 @@ void run_desktop(const ReviewCommandOptions& given, const ReviewSetup& setup) {
           record_interaction(e);
         if (interaction.dragging()) recorder.write_drag(t, interaction.current_d());
         dragging = interaction.dragging();
-        if (dragging && !queued_steps.empty()) {  // a drag begun first: undoing it next would surprise
+        // A drag begun first: undoing it next would surprise (not when its release is already queued: the
+        // key came with the release).
+        if (dragging && !queued_steps.empty() && !p.left_release_queued) {
           say("undo and redo act between drags");
           queued_steps.clear();
         }
@@ -354,6 +358,12 @@ void run_desktop(const ReviewCommandOptions& given, const ReviewSetup& setup) {
           recorder.write_colour(t, scene.colour());
         }
         scene.set_highlight(interaction.hover_handle(1));
+        // M pressed as the button went up (its release still queued): applied once the drag has ended.
+        if (method_steps > 0 && dragging && p.left_release_queued) {
+          deferred_method_steps += method_steps;
+          method_steps = 0;
+        }
+        if (!dragging) method_steps += std::exchange(deferred_method_steps, 0);
         if (method_steps > 0 && dragging && !o.fixed_method) say("the method changes between drags");
         if (method_steps > 0 && !dragging && !o.fixed_method) {
           deform::Method next = interaction.method();

@@ -12,6 +12,8 @@ bool names_stdout(const std::string& path) {
   struct stat out {};
   struct stat named {};
   if (fstat(STDOUT_FILENO, &out) != 0 || stat(path.c_str(), &named) != 0) return false;
+  // A terminal or /dev/null mixes nothing into a file: messages stay where a script expects them.
+  if (S_ISCHR(named.st_mode)) return false;
   return out.st_dev == named.st_dev && out.st_ino == named.st_ino;
 }
 

@@ -10,7 +10,8 @@
 
 namespace pushpull::app {
 
-// Whether `path` is the file, pipe or terminal the process's standard output is (same device and inode).
+// Whether `path` is the file or pipe the process's standard output is (same device and inode; a terminal or
+// other character device, /dev/null, is not counted: nothing there is a file the messages would spoil).
 [[nodiscard]] bool names_stdout(const std::string& path);
 
 // Points the C stream `stdout` at stderr when one of `outputs` names the standard output (the GNU C

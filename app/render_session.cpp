@@ -60,7 +60,7 @@ View make_view(const RenderCommandOptions& o, const Bounds& bounds, float aspect
     if (glm::length(eye - target) <= 0.0f) throw UsageError("--eye and --target coincide");
     // Looking along --up leaves the picture's up undefined (it came out blank).
     if (glm::length(glm::cross(glm::normalize(target - eye), orbit.up)) < 1e-4f)
-      throw CommandError(
+      throw UsageError(
           "--up is parallel to the view direction (from --eye to --target): the picture's up "
           "is undefined; give another --up");
     view.view = glm::lookAt(eye, target, glm::normalize(orbit.up));
@@ -314,21 +314,27 @@ void PictureRenderer::benchmark(const RenderInputs& inputs, const RenderCommandO
 }
 
 namespace {
-// Every pixel outside the legend's corner has the colour of the top-right one (the background): the
-// model is nowhere in the picture.
+// Every pixel outside the legend's corner has the clear colour (sRGB-encoded, within 2 levels): the model is
+// nowhere in the picture. (A view filled by one colour of the model is not taken for nothing.)
 bool shows_nothing(const TextureRGBA8& image) {
   if (image.width == 0 || image.height == 0 ||
       image.pixels.size() < std::size_t(image.width) * image.height * 4)
     return false;
+  const glm::vec4 clear = FrameSettings{}.clear_colour;
+  auto encoded = [&](float linear) {
+    const float s = linear <= 0.0031308f ? 12.92f * linear : 1.055f * std::pow(linear, 1.0f / 2.4f) - 0.055f;
+    return int(std::lround(255.0f * std::clamp(image.srgb ? s : linear, 0.0f, 1.0f)));
+  };
+  const int background[3] = {encoded(clear.r), encoded(clear.g), encoded(clear.b)};
   const LegendLayout legend = legend_layout(image.width, image.height);
   const auto legend_x1 = std::size_t(std::ceil(double(legend.rect[2]) * image.width)) + 2;
   const auto legend_y0 = std::size_t(std::max(0.0, std::floor(double(legend.rect[1]) * image.height) - 2));
-  const uint8_t* corner = &image.pixels[(std::size_t(image.width) - 1) * 4];
   for (std::size_t y = 0; y < image.height; ++y)
     for (std::size_t x = 0; x < image.width; ++x) {
       if (x < legend_x1 && y >= legend_y0) continue;
       const uint8_t* pixel = &image.pixels[(y * image.width + x) * 4];
-      if (pixel[0] != corner[0] || pixel[1] != corner[1] || pixel[2] != corner[2]) return false;
+      for (int c = 0; c < 3; ++c)
+        if (std::abs(int(pixel[c]) - background[c]) > 2) return false;
     }
   return true;
 }
@@ -356,14 +362,14 @@ void render_to_png(const RenderInputs& inputs, const RenderCommandOptions& o) {
     throw CommandError("Vulkan validation reported " + std::to_string(validation_messages) +
                        " message(s) (printed above)");
   if (shows_nothing(image)) {
-    if (o.eye.empty() && o.target.empty())  // framed by us: a picture of nothing is our failure, not a result
+    if (o.eye.empty() && o.target.empty() && o.camera.size() < 3)  // framed by us: our failure, not a result
       throw CommandError(o.out +
                          ": the picture would show nothing of the model (framed automatically; its "
                          "coordinates may be beyond what 32-bit floats draw: a model far from the origin "
                          "for its size, or of an extreme scale); nothing written");
     std::fprintf(stderr,
                  "pushpull render: warning: the picture shows nothing of the model (--eye/--target "
-                 "look away from it)\n");
+                 "look away from it, or --camera's zoom leaves it too small to see)\n");
   }
   write_picture(o.out, image);
   std::printf("pushpull render: wrote %s (%u x %u)\n", o.out.c_str(), image.width, image.height);

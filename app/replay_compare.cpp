@@ -118,8 +118,9 @@ void run_replay_comparison(const ReplayOptions& o, const std::vector<std::string
                 << number(100.0 * j.value("gaussian_sign_reversal_fraction", 0.0)) << " %)"
                 << band_reversals(j["curvature"], scale);
           const auto norm = [&](const char* part, const char* which) {
+            if (!j.contains("norms") || !j["norms"].is_object()) return 0.0;
             const auto& norms = j["norms"];
-            return norms.is_object() && norms.contains(part) && norms[part].is_object()
+            return norms.contains(part) && norms[part].is_object()
                        ? 1000.0 * scale * norms[part].value(which, 0.0)
                        : 0.0;
           };

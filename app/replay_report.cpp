@@ -39,7 +39,7 @@ std::string number(double v, const char* format = "%.3g") {
 
 // A round length for a scale bar about a fifth of `width` (mm): 1, 2 or 5 times a power of ten.
 double scale_bar_mm(double width) {
-  const double target = std::max(width / 5.0, 1e-3);
+  const double target = width > 0.0 ? width / 5.0 : 1.0;
   const double power = std::pow(10.0, std::floor(std::log10(target)));
   for (const double step : {5.0, 2.0, 1.0})
     if (step * power <= target) return step * power;
@@ -136,9 +136,10 @@ std::string section_svg(const deform::Section& section, const Eigen::Vector3d& d
       << "\" y2=\"" << H - margin << "\" stroke=\"#000\" stroke-width=\"2\"/><text x=\"" << margin
       << "\" y=\"" << H - margin - 4 << "\" font-size=\"11\">" << number(bar_mm, "%g") << " mm</text>";
   svg << "</svg><figcaption>section " << number(section.offset * mm, "%.0f") << " mm along d, seen along d"
-      << (upright ? " (the model's up is up)" : "") << ": before grey, the same surface points after red; "
-      << (carried ? "they are up to " + number(largest_gap * mm, "%.1f") + " mm apart across d"
-                  : std::string())
+      << (upright ? " (the model's up is up)" : "")
+      << (carried ? ": before grey, the same surface points after red; they are up to " +
+                        number(largest_gap * mm, "%.1f") + " mm apart across d"
+                  : std::string(": before grey"))
       << (moved.empty() ? "" : " (zoomed on what moved)") << "</figcaption></figure>\n";
   return svg.str();
 }

@@ -117,8 +117,9 @@ int recorded_threshold(const json& header, const char* key, const std::string& r
 // alone.
 bool replay_clears(const std::string& name) {
   static const std::regex kNames(
-      R"((commit-[0-9]{2,}(-before)?|final)\.(glb|off|obj|ply)|commit-[0-9]{2,}\.metrics\.json|)"
-      R"(commit-[0-9]{2,}-(before|after|displacement|curvature)\.png|report\.html)");
+      R"((commit-(0[1-9]|[1-9][0-9]+)(-before)?|final)\.(glb|off|obj|ply)|)"
+      R"(commit-(0[1-9]|[1-9][0-9]+)\.metrics\.json|)"
+      R"(commit-(0[1-9]|[1-9][0-9]+)-(before|after|displacement|curvature)\.png|report\.html)");
   return std::regex_match(name, kNames);
 }
 bool replay_writes(const std::string& name) {
@@ -433,7 +434,7 @@ void run_replay(const ReplayOptions& o) {
       on_recorded_path = false;
     }
     // Named by its place among the session's releases (the report numbers commits, which it is not).
-    const std::string which = "the push/pull of release " + std::to_string(k + 1);
+    const std::string which = "push/pull " + std::to_string(k + 1) + " of the recording";
     not_committed.push_back(which + ": " + f.error);
     bar.print("pushpull replay: " + which + " not committed (the model stays as it was): " + f.error);
   };
@@ -730,16 +731,20 @@ void run_replay(const ReplayOptions& o) {
   }
   std::set<std::string> eyes;
   for (const auto& entry : fs::directory_iterator(out / "eyes"))
-    if (entry.path().extension() == ".png") eyes.insert("eyes/" + entry.path().filename().string());
+    if (replay_clears_eye_image(entry.path().filename().string()))  // the captures, not a user's own files
+      eyes.insert("eyes/" + entry.path().filename().string());
   session.eye_images.assign(eyes.begin(), eyes.end());
   session.not_committed = not_committed;
   // Commits with no recorded commit to compare with (a recording cut inside a commit's line).
   const auto not_compared = std::size_t(std::count(pairs.begin(), pairs.end(), std::nullopt));
+  const auto past_the_end = std::size_t(std::count_if(checks.begin(), checks.end(), [](const std::string& c) {
+    return c.rfind("not compared (after the end", 0) == 0;
+  }));
   session.summary =
       std::to_string(commits.size()) + " commit(s) replayed of " + std::to_string(recorded) + " recorded" +
       (not_compared == 0 ? std::string()
                          : ", " + std::to_string(not_compared) + " not compared with the recording" +
-                               (rec.cut ? " (past its cut)" : "")) +
+                               (rec.cut && past_the_end == not_compared ? " (past its cut)" : "")) +
       (not_committed.empty()
            ? std::string()
            : ", " + std::to_string(not_committed.size()) +

@@ -53,8 +53,8 @@ ReviewSetup prepare_review(const ReviewCommandOptions& o) {
       for (std::size_t b = a + 1; b < 3; ++b)
         if (!outputs[a].second->empty() && !outputs[b].second->empty() &&
             deform::same_output_file(*outputs[a].second, *outputs[b].second))
-          throw CommandError(*outputs[a].second + ": " + outputs[a].first + " and " + outputs[b].first +
-                             " name the same file");
+          throw UsageError(*outputs[a].second + ": " + outputs[a].first + " and " + outputs[b].first +
+                           " name the same file");
   }
   ReviewSetup s;
   try {

@@ -189,9 +189,14 @@ TEST(MetricsEvaluate, TheCarriedSectionIsTheSamePointsMoved) {
     EXPECT_NEAR(p.x(), 0.05, 1e-12);
     EXPECT_LT((section.carried[0].points[k] - motion(p)).norm(), 1e-12) << k;
   }
-  // The fixed plane x = 0.05 cuts the moved sheet where the material from x = -0.25 now lies.
+  // The carried points left the plane with the slide along d; the fixed plane x = 0.05 cuts the moved sheet
+  // where the material from x = -0.25 now lies, bent across d as that material is (z = 0.1 y).
+  for (const Eigen::Vector3d& p : section.carried[0].points) EXPECT_NEAR(p.x(), 0.35, 1e-12);
   ASSERT_EQ(section.after.size(), 1u);
-  for (const Eigen::Vector3d& p : section.after[0].points) EXPECT_NEAR(p.x(), 0.05, 1e-12);
+  for (const Eigen::Vector3d& p : section.after[0].points) {
+    EXPECT_NEAR(p.x(), 0.05, 1e-12);
+    EXPECT_NEAR(p.z(), 0.1 * p.y(), 1e-12);
+  }
   EXPECT_THROW((void)pd::plane_section_carried(sheet.V, moved.topRows(3), sheet.F, Eigen::Vector3d::Zero(),
                                                Eigen::Vector3d::UnitX()),
                std::invalid_argument);

@@ -8,6 +8,7 @@
 #include <GLFW/glfw3.h>
 
 #include <algorithm>
+#include <array>
 #include <deque>
 #include <string>
 #include <utility>
@@ -72,11 +73,20 @@ struct MirrorWindow::Impl {
               glfwGetKey(window, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS;
     return p;
   }
+  // Each button's state as the callbacks left it: GLFW releases the buttons held when the window loses the
+  // focus, and the physical release that follows comes as a second release, which must not look like a
+  // press (a held snapshot) followed by a release.
+  std::array<bool, GLFW_MOUSE_BUTTON_LAST + 1> down{};
+
   // GLFW has set the button's new state when it calls back; the cursor is where the last motion event put it.
   void button_changed(int button, int action) {
+    if (button < 0 || button > GLFW_MOUSE_BUTTON_LAST) return;
+    const bool pressed = action == GLFW_PRESS;
+    if (down[std::size_t(button)] == pressed) return;  // a release of a button already up
+    down[std::size_t(button)] = pressed;
     Pointer now = live();
     now.x = event_x, now.y = event_y;
-    if (action == GLFW_RELEASE) {  // first the position the button was released at, still held
+    if (!pressed) {  // first the position the button was released at, still held
       Pointer held = now;
       if (button == GLFW_MOUSE_BUTTON_LEFT) held.left = true;
       if (button == GLFW_MOUSE_BUTTON_RIGHT) held.right = true;
@@ -333,6 +343,8 @@ void MirrorWindow::poll_events() {
     w.queued.pop_front();
     glfwGetWindowSize(w.window, &w.polled.window_width, &w.polled.window_height);
   }
+  w.polled.left_release_queued = w.polled.left && std::any_of(w.queued.begin(), w.queued.end(),
+                                                              [](const Pointer& p) { return !p.left; });
   w.polled.scroll = std::exchange(w.scroll, 0.0);
 }
 std::vector<int> MirrorWindow::take_key_presses() {

@@ -83,14 +83,18 @@ class MirrorWindow {
   // The mouse as of the last poll_events(), the same until the next: cursor in window coordinates (pixels
   // from the top-left corner, window_width x window_height, which may differ from extent() on scaled
   // displays), buttons, the shift key, and the scroll since the poll before (lines, + = away from the user).
-  // Button presses and releases are never lost between polls: each poll shows the next one not yet shown,
+  // Button presses and releases are not lost between polls: each poll shows the next one not yet shown,
   // as it was when it happened (a release first as the position it happened at, the button still held,
   // then released), and the live state once none is left; a click within one frame is a press one frame and
-  // a release two frames later.
+  // a release two frames later. (At most 32 wait: past that, from a loop that stopped polling, the oldest
+  // go.)
   struct Pointer {
     double x = 0.0, y = 0.0;
     int window_width = 1, window_height = 1;
     bool left = false, right = false, middle = false, shift = false;
+    // `left` is held in this snapshot but its release is already queued (the button is up by now): a key
+    // that acts between drags may go ahead, the drag ends within two polls.
+    bool left_release_queued = false;
     double scroll = 0.0;
   };
   [[nodiscard]] Pointer pointer() const;
