@@ -12,7 +12,10 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
+#include <string>
+#include <vector>
 
 namespace pushpull::app {
 namespace {
@@ -79,65 +82,95 @@ void run_replay_comparison(const ReplayOptions& o, const std::vector<std::string
        "<style>body{font-family:sans-serif;margin:2em}table{border-collapse:collapse}td,th{border:1px solid #ccc;"
        "padding:4px;vertical-align:top}img{width:300px;display:block}</style></head><body>\n";
   h << "<h1>" << escape(o.recording) << ": methods side by side</h1>\n";
-  h << "<p>Each column replays the session's push/pulls with one method (the paper's criteria, section 5: "
-       "the "
-       "displacement across d, which ASAN keeps small by carrying the sections across d unchanged, and the "
-       "Gaussian curvature sign reversals, a bonnet turning saddle: smaller is the shape better kept; the "
-       "displacement along d is what the pull asked for). Each method goes on from its own results: a "
-       "push/pull after the first starts from that method's shape, so later rows compare the methods on "
-       "surfaces that may already differ (each report's <i>region</i> row gives its size).</p>\n<table>\n"
+  h << "<p>Each column replays the session's push/pulls with one method. For each push/pull the fewest "
+       "Gaussian "
+       "curvature sign reversals (the paper's criterion for the style kept, section 5: a bonnet turning "
+       "saddle) and the least displacement across d (what ASAN is built to keep small: its material is stiff "
+       "across d) are in <b>bold</b>; where they disagree, neither method kept the shape clearly better. The "
+       "displacement along d is how the pull spread over the region, better neither way. Each method goes on "
+       "from its own results: a push/pull after the first starts from that method's shape, so later rows "
+       "compare the methods on surfaces that may already differ (each report's <i>region</i> row gives its "
+       "size), and each report gives its section pictures and warnings.</p>\n<table>\n"
        "<tr><th>push/pull</th>";
   for (const std::string& m : methods)
     h << "<th>" << escape(m) << " (<a href=\"" << escape(m) << "/report.html\">report</a>)</th>";
   h << "</tr>\n";
+  struct Cell {
+    bool present = false, parsed = false;
+    nlohmann::json j;
+  };
   for (int i = 1;; ++i) {
     char stem[32];
     std::snprintf(stem, sizeof stem, "commit-%02d", i);
+    std::vector<Cell> cells(methods.size());
     bool any = false;
-    std::ostringstream row;
-    row << "<tr><th>Push/pull " << i << "</th>";
-    for (const std::string& m : methods) {
-      const fs::path dir = fs::path(o.out) / m;
-      std::ifstream in(dir / (std::string(stem) + ".metrics.json"));
-      row << "<td>";
-      if (in) {
-        any = true;
-        const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
-        if (!j.is_discarded()) {
-          const double scale = j.value("life_size_scale", 1.0);
-          const auto& d = j["d"];
-          const double d_mm = 1000.0 * scale *
-                              std::sqrt(double(d[0]) * double(d[0]) + double(d[1]) * double(d[1]) +
-                                        double(d[2]) * double(d[2]));
-          row << "|d| " << number(d_mm, "%.1f") << " mm, " << j.value("iterations", 0) << " it"
-              << (j.value("converged", false) ? "" : " (not converged)") << "<br>sign reversals ";
-          if (j["curvature"].value("evaluated_vertices", 0) == 0)
-            row << "not measured (no interior vertex)";
-          else
-            row << j["curvature"].value("sign_reversals", 0) << " ("
-                << number(100.0 * j.value("gaussian_sign_reversal_fraction", 0.0)) << " %)"
-                << band_reversals(j["curvature"], scale);
-          const auto norm = [&](const char* part, const char* which) {
-            if (!j.contains("norms") || !j["norms"].is_object()) return 0.0;
-            const auto& norms = j["norms"];
-            return norms.contains(part) && norms[part].is_object()
-                       ? 1000.0 * scale * norms[part].value(which, 0.0)
-                       : 0.0;
-          };
-          row << "<br>across d: RMS " << number(norm("orthogonal", "rms")) << " mm, max "
-              << number(norm("orthogonal", "max")) << " mm<br>along d: RMS " << number(norm("along_d", "rms"))
-              << " mm, max " << number(norm("along_d", "max")) << " mm";
-        }
-        for (const char* kind : {"displacement", "curvature"}) {
-          const std::string png = std::string(stem) + "-" + kind + ".png";
-          if (fs::exists(dir / png)) row << "<img src=\"" << escape(m + "/" + png) << "\" alt=\"" << kind << "\">";
-        }
-      }
-      row << "</td>";
+    for (std::size_t k = 0; k < methods.size(); ++k) {
+      std::ifstream in(fs::path(o.out) / methods[k] / (std::string(stem) + ".metrics.json"));
+      if (!in) continue;
+      any = cells[k].present = true;
+      cells[k].j = nlohmann::json::parse(in, nullptr, false);
+      cells[k].parsed = !cells[k].j.is_discarded() && cells[k].j.is_object();
     }
-    row << "</tr>\n";
     if (!any) break;
-    h << row.str();
+    const auto norm = [](const nlohmann::json& j, const char* part, const char* which) {
+      const double scale = j.value("life_size_scale", 1.0);
+      if (!j.contains("norms") || !j["norms"].is_object()) return 0.0;
+      const auto& norms = j["norms"];
+      return norms.contains(part) && norms[part].is_object() ? 1000.0 * scale * norms[part].value(which, 0.0)
+                                                             : 0.0;
+    };
+    const auto reversals = [](const nlohmann::json& j) -> std::optional<long> {
+      if (!j.contains("curvature") || !j["curvature"].is_object() ||
+          j["curvature"].value("evaluated_vertices", 0) == 0)
+        return std::nullopt;
+      return j["curvature"].value("sign_reversals", 0L);
+    };
+    // The best of the row, per criterion, among the methods that have it.
+    std::optional<long> fewest;
+    std::optional<double> least_across;
+    for (const Cell& c : cells) {
+      if (!c.parsed) continue;
+      if (const auto r = reversals(c.j)) fewest = fewest ? std::min(*fewest, *r) : *r;
+      const double across = norm(c.j, "orthogonal", "rms");
+      least_across = least_across ? std::min(*least_across, across) : across;
+    }
+    auto bold = [](bool best, const std::string& text) { return best ? "<b>" + text + "</b>" : text; };
+    h << "<tr><th>Push/pull " << i << "</th>";
+    for (std::size_t k = 0; k < methods.size(); ++k) {
+      h << "<td>";
+      const Cell& c = cells[k];
+      if (c.parsed) {
+        const nlohmann::json& j = c.j;
+        const double scale = j.value("life_size_scale", 1.0);
+        double d_mm = 0.0;
+        if (j.contains("d") && j["d"].is_array() && j["d"].size() == 3)
+          d_mm = 1000.0 * scale *
+                 std::sqrt(double(j["d"][0]) * double(j["d"][0]) + double(j["d"][1]) * double(j["d"][1]) +
+                           double(j["d"][2]) * double(j["d"][2]));
+        h << "|d| " << number(d_mm, "%.1f") << " mm, " << j.value("iterations", 0) << " it"
+          << (j.value("converged", false) ? "" : " (not converged)") << "<br>sign reversals ";
+        if (const auto r = reversals(j))
+          h << bold(*r == *fewest, std::to_string(*r)) << " ("
+            << number(100.0 * j.value("gaussian_sign_reversal_fraction", 0.0)) << " %)"
+            << band_reversals(j["curvature"], scale);
+        else
+          h << "not measured (no interior vertex)";
+        const double across = norm(j, "orthogonal", "rms");
+        h << "<br>across d: " << bold(across == *least_across, "RMS " + number(across) + " mm") << ", max "
+          << number(norm(j, "orthogonal", "max")) << " mm<br>along d: RMS "
+          << number(norm(j, "along_d", "rms")) << " mm, max " << number(norm(j, "along_d", "max")) << " mm";
+      } else if (c.present) {
+        h << "its metrics file does not parse";
+      }
+      const fs::path dir = fs::path(o.out) / methods[k];
+      for (const char* kind : {"displacement", "curvature"}) {
+        const std::string png = std::string(stem) + "-" + kind + ".png";
+        if (fs::exists(dir / png))
+          h << "<img src=\"" << escape(methods[k] + "/" + png) << "\" alt=\"" << kind << "\">";
+      }
+      h << "</td>";
+    }
+    h << "</tr>\n";
   }
   h << "</table></body></html>\n";
   const fs::path page = fs::path(o.out) / "compare.html";

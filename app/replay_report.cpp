@@ -48,12 +48,13 @@ double scale_bar_mm(double width) {
 
 // One plane across d, seen along d in the plane's own 2D axes (u, v; v the model's up where d is not along
 // it), life-size millimetres: the model's cut before the pull (grey) and the same surface points after it
-// (red, Section::carried): where the two differ, the section changed shape across d; a slide along d does not
-// show (the fixed plane's cut of the deformed model, Section::after, mixes the two: a bonnet sliding forward
-// through the plane looked bent). The view is zoomed on the part of the section that moved (the region's),
-// with a scale bar; the caption gives the largest in-plane gap between a point and its carried point.
+// (red, Section::carried), their move across d drawn `exaggeration` times (the gaps are millimetres on a view
+// of a metre; the factor follows |d| and the view, not the method, so two methods' pictures of one push/pull
+// compare). The view frames the part of the cut that moved, as it was before; the caption
+// gives the largest gap across d and how far the section's points moved along d, least and most (a section
+// carried whole moves along d by one amount), and where the plane lies from p0.
 std::string section_svg(const deform::Section& section, const Eigen::Vector3d& d, const Eigen::Vector3d& up,
-                        double scale) {
+                        double scale, const std::optional<Eigen::Vector3d>& p0) {
   const Eigen::Vector3d n = d.normalized();
   Eigen::Vector3d v = up - up.dot(n) * n;
   const bool upright = v.norm() > 0.1 * up.norm();
@@ -74,32 +75,33 @@ std::string section_svg(const deform::Section& section, const Eigen::Vector3d& d
   };
   Box all, moved;
   double largest_gap = 0.0, largest_move = 0.0;
+  double least_along = 1e300, most_along = -1e300;  // of the points that moved
   const bool carried = section.carried.size() == section.before.size();
-  for (std::size_t c = 0; c < section.before.size(); ++c) {
-    const auto& points = section.before[c].points;
-    for (std::size_t k = 0; k < points.size(); ++k) {
-      all.add(points[k].dot(u), points[k].dot(v));
-      if (!carried || k >= section.carried[c].points.size()) continue;
-      const Eigen::Vector3d move = section.carried[c].points[k] - points[k];
-      largest_move = std::max(largest_move, move.norm());
-      largest_gap = std::max(largest_gap, (move - move.dot(n) * n).norm());
-    }
-  }
+  for (std::size_t c = 0; c < section.before.size(); ++c)
+    for (const Eigen::Vector3d& p : section.before[c].points) all.add(p.dot(u), p.dot(v));
   if (all.empty()) return "";
-  // The moved part: points that moved more than 1% of the largest move (or 0.1 mm), before and after.
+  if (carried)
+    for (std::size_t c = 0; c < section.before.size(); ++c)
+      for (std::size_t k = 0; k < section.before[c].points.size() && k < section.carried[c].points.size();
+           ++k)
+        largest_move =
+            std::max(largest_move, (section.carried[c].points[k] - section.before[c].points[k]).norm());
+  // The moved part: points that moved more than 1% of the largest move (or 0.1 mm); framed as they were.
   const double threshold = std::max(0.01 * largest_move, 1e-4 / scale);
   if (carried)
     for (std::size_t c = 0; c < section.before.size(); ++c)
       for (std::size_t k = 0; k < section.before[c].points.size() && k < section.carried[c].points.size();
            ++k) {
         const Eigen::Vector3d& a = section.before[c].points[k];
-        const Eigen::Vector3d& b = section.carried[c].points[k];
-        if ((b - a).norm() <= threshold) continue;
+        const Eigen::Vector3d move = section.carried[c].points[k] - a;
+        if (move.norm() <= threshold) continue;
         moved.add(a.dot(u), a.dot(v));
-        moved.add(b.dot(u), b.dot(v));
+        largest_gap = std::max(largest_gap, (move - move.dot(n) * n).norm());
+        least_along = std::min(least_along, move.dot(n));
+        most_along = std::max(most_along, move.dot(n));
       }
   Box view = all;
-  if (!moved.empty()) {  // the moved part with a margin of context, within the whole cut (and what it left)
+  if (!moved.empty()) {  // the moved part with a margin of context, within the whole cut
     const double size = std::max(
         {moved.x1 - moved.x0, moved.y1 - moved.y0, 0.05 * std::max(all.x1 - all.x0, all.y1 - all.y0)});
     const double margin = 0.3 * size;
@@ -110,6 +112,15 @@ std::string section_svg(const deform::Section& section, const Eigen::Vector3d& d
   const double W = 360, H = 220, margin = 10;
   const double k = std::min((W - 2 * margin) / std::max(view.x1 - view.x0, 1e-12),
                             (H - 2 * margin) / std::max(view.y1 - view.y0, 1e-12));
+  // A gap of 5% of |d| drawn as 8% of the view's width: 1, 2 or 5 times a power of ten, at least 1.
+  const double view_width = (W - 2 * margin) / k;  // model units
+  double exaggeration = 1.0;
+  if (d.norm() > 0.0) {
+    const double wanted = 0.08 * view_width / (0.05 * d.norm());
+    for (double power = 1.0; power <= 1e6; power *= 10.0)
+      for (const double step : {1.0, 2.0, 5.0})
+        if (step * power <= wanted) exaggeration = step * power;
+  }
   // Centred in the picture.
   const double cx = 0.5 * (view.x0 + view.x1), cy = 0.5 * (view.y0 + view.y1);
   auto px = [&](double x) { return 0.5 * W + (x - cx) * k; };
@@ -117,30 +128,56 @@ std::string section_svg(const deform::Section& section, const Eigen::Vector3d& d
   std::ostringstream svg;
   svg << "<figure><svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << W << "\" height=\"" << H
       << "\" style=\"border:1px solid #ccc;overflow:hidden\">";
-  auto polyline = [&](const deform::SectionCurve& c, const char* colour) {
+  auto polyline = [&](const std::vector<Eigen::Vector2d>& points, bool closed, const char* colour) {
     svg << "<polyline fill=\"none\" stroke=\"" << colour << "\" stroke-width=\"1.5\" points=\"";
-    auto point = [&](const Eigen::Vector3d& p) {
-      svg << number(px(p.dot(u)), "%.1f") << ',' << number(py(p.dot(v)), "%.1f") << ' ';
+    auto point = [&](const Eigen::Vector2d& p) {
+      svg << number(px(p.x()), "%.1f") << ',' << number(py(p.y()), "%.1f") << ' ';
     };
-    for (const Eigen::Vector3d& p : c.points) point(p);
-    if (c.closed && !c.points.empty()) point(c.points.front());
+    for (const Eigen::Vector2d& p : points) point(p);
+    if (closed && !points.empty()) point(points.front());
     svg << "\"/>";
   };
-  for (const deform::SectionCurve& c : section.before) polyline(c, "#888");
-  for (const deform::SectionCurve& c : section.carried) polyline(c, "#d00");
+  for (std::size_t c = 0; c < section.before.size(); ++c) {
+    std::vector<Eigen::Vector2d> grey;
+    for (const Eigen::Vector3d& p : section.before[c].points) grey.emplace_back(p.dot(u), p.dot(v));
+    polyline(grey, section.before[c].closed, "#888");
+  }
+  if (carried)
+    for (std::size_t c = 0; c < section.before.size(); ++c) {
+      std::vector<Eigen::Vector2d> red;
+      const auto& before = section.before[c].points;
+      const auto& after = section.carried[c].points;
+      for (std::size_t q = 0; q < before.size() && q < after.size(); ++q) {
+        const Eigen::Vector3d shown = before[q] + exaggeration * (after[q] - before[q]);  // along d: not seen
+        red.emplace_back(shown.dot(u), shown.dot(v));
+      }
+      polyline(red, section.before[c].closed, "#d00");
+    }
   // Scale bar, bottom left.
-  const double view_mm = (W - 2 * margin) / k * mm;
+  const double view_mm = view_width * mm;
   const double bar_mm = scale_bar_mm(view_mm);
   const double bar_px = bar_mm / mm * k;
   svg << "<line x1=\"" << margin << "\" y1=\"" << H - margin << "\" x2=\"" << number(margin + bar_px, "%.1f")
       << "\" y2=\"" << H - margin << "\" stroke=\"#000\" stroke-width=\"2\"/><text x=\"" << margin
       << "\" y=\"" << H - margin - 4 << "\" font-size=\"11\">" << number(bar_mm, "%g") << " mm</text>";
-  svg << "</svg><figcaption>section " << number(section.offset * mm, "%.0f") << " mm along d, seen along d"
-      << (upright ? " (the model's up is up)" : "")
-      << (carried ? ": before grey, the same surface points after red; they are up to " +
-                        number(largest_gap * mm, "%.1f") + " mm apart across d"
-                  : std::string(": before grey"))
-      << (moved.empty() ? "" : " (zoomed on what moved)") << "</figcaption></figure>\n";
+  std::string where = number(section.offset * mm, "%.0f") + " mm along d";
+  if (p0) {
+    const double from_p0 = (section.offset - p0->dot(n)) * mm;
+    where =
+        number(std::abs(from_p0), "%.0f") + " mm " + (from_p0 >= 0.0 ? "ahead of" : "behind") + " p0 along d";
+  }
+  svg << "</svg><figcaption>section " << where << ", seen along d"
+      << (upright ? " (the model's up is up)" : "");
+  if (!carried)
+    svg << ": before grey";
+  else if (moved.empty())
+    svg << ": before grey; nothing of it moved";
+  else
+    svg << ": before grey, the same surface points after red, their move across d drawn x"
+        << number(exaggeration, "%g") << "; up to " << number(largest_gap * mm, "%.1f")
+        << " mm across d, and along d from " << number(least_along * mm, "%.1f") << " to "
+        << number(most_along * mm, "%.1f") << " mm";
+  svg << "</figcaption></figure>\n";
   return svg.str();
 }
 
@@ -159,7 +196,8 @@ std::string method_title(const std::string& method, double mu) {
   std::string title = method;
   for (const auto& [name, paper] : kPaperNames)
     if (method == name) title += std::string(" (") + paper + ")";
-  if (method == "asan") title += ", mu = " + number(mu, "%g");
+  if (method == "asan")
+    title += ", mu = " + number(mu, "%g") + (mu == 100.0 ? " (the paper's, section 4.4)" : "");
   return title;
 }
 
@@ -170,28 +208,36 @@ void how_to_read(std::ostringstream& h) {
        "p1; d = p1 - p0. The handle (the surface around p0) moved by d, a region around it deformed by the "
        "method and its border stayed fixed (Le Vaou et al., Computer-Aided Design 121, 2020).</li>\n"
        "<li><b>Displacement along d and across d</b>: every vertex's move split into its part along the pull "
-       "and its part across it (the paper's Fig. 13). ASAN lets the surface stretch along d and keeps its "
-       "sections across d as they were: less displacement across d means the shape was carried, not bent. "
-       "RMS "
-       "is over the region's vertices, its fixed border included.</li>\n"
-       "<li><b>Gaussian curvature sign reversals</b>: vertices inside the region whose surface went from "
-       "dome-like (K &gt; 0, yellow) to saddle-like (K &lt; 0, blue) or back: a convex bonnet turned saddle "
-       "shows here (requirement R2, the style preserved). Fewer is better. Near-flat vertices (|K| L&sup2; "
-       "&le; 0.01, L the model's bounding-box diagonal: grey in the pictures) count as neither; \"any sign "
-       "change\" adds the moves into and out of flat, and \"where clearly curved\" counts again among the "
-       "vertices curved tighter than the given radius before the pull.</li>\n"
-       "<li><b>Sections</b>: planes across d at three places along the region, seen along d: the cut before "
-       "the pull (grey) and the same surface points after it (red). Where red leaves grey the section "
-       "changed "
-       "shape; a move along d does not show. The gap is the section's displacement across d.</li>\n"
+       "and its part across it (the paper's Fig. 13). ASAN is built to keep the part across d small (its "
+       "material is stiff across d, soft along it), so it says how much the surface moved sideways, not by "
+       "itself whether the style was kept. RMS is over the region's vertices, its fixed border "
+       "included.</li>\n"
+       "<li><b>Gaussian curvature sign reversals</b> (the paper's criterion for the style kept, section 5): "
+       "vertices of the region (its fixed border included; those on the mesh's boundary or a non-manifold "
+       "edge left out) whose surface went from dome-like (K &gt; 0, yellow) to saddle-like (K &lt; 0, blue) "
+       "or back: a convex bonnet turned saddle shows here (requirement R2). Fewer is better; a convex "
+       "surface "
+       "turned concave keeps K &gt; 0 and does not show. Near-flat vertices (|K| L&sup2; &le; 0.01, L the "
+       "model's bounding-box diagonal: a curvature radius over L / 0.1; grey in the pictures) count as "
+       "neither; \"any sign change\" adds the moves into and out of flat, and \"where clearly curved\" "
+       "counts "
+       "again among the vertices curved tighter than the given radius before the pull.</li>\n"
+       "<li><b>Sections</b>: planes across d at three places along the region (placed from p0), seen along "
+       "d: "
+       "the cut before the pull (grey) and the same surface points after it (red), their move across d drawn "
+       "enlarged by the factor given (the same for every method on one push/pull). Where red leaves grey the "
+       "section moved across d: bent, or shifted whole. A move along d does not show in the picture; the "
+       "caption gives its least and most: the paper's sections across d stay rigid, so a section carried "
+       "whole moves along d by one amount.</li>\n"
        "<li><b>Iterations, converged, error estimate</b>: the solver's estimate of the largest distance of "
        "any vertex to the exact minimiser of the method's energy, as a fraction of |d| and in mm; converged "
        "means it fell below the tolerance (1% of |d| by default).</li>\n"
-       "<li><b>Hash</b>: \"match\" means the replayed model is bit for bit the one the review "
-       "committed.</li>\n"
+       "<li><b>Hash</b>: \"match\" means the replayed model is bit for bit the one the review committed; "
+       "replayed with another method the hashes are not compared, and \"match (d)\" says the push/pull's d "
+       "was the recording's.</li>\n"
        "<li><b>Pictures</b>: before and after with the model's materials; the displacement of this push/pull "
-       "(its legend in mm per vertex); the curvature sign after (yellow +, blue -, grey near-flat). The "
-       "camera is the same before and after.</li>\n"
+       "(its legend in mm per vertex); the curvature sign after (yellow +, blue -, grey near-flat); the "
+       "magenta arrow is d, from p0 to p1. The camera is the same before and after.</li>\n"
        "</ul></details>\n";
 }
 
@@ -260,7 +306,7 @@ void write_replay_report(const std::string& path, const ReportSession& s, const 
       h << "<tr><th>grabbed</th><td>";
       if (c.handle_radius_mm)
         h << "the handle within " << number(*c.handle_radius_mm, "%.0f") << " mm of p0 along the surface ("
-          << c.handle_vertices << " vertices)"
+          << c.handle_vertices << (c.handle_vertices == 1 ? " vertex)" : " vertices)")
           << (c.roi_radius_mm ? ", the region " + number(*c.roi_radius_mm, "%.0f") + " mm further" : "")
           << "; ";
       if (c.angle_to_normal_deg)
@@ -297,7 +343,7 @@ void write_replay_report(const std::string& path, const ReportSession& s, const 
     h << "<tr><th>files</th><td><a href=\"" << escape(c.model_file) << "\">" << escape(c.model_file)
       << "</a>, <a href=\"" << escape(c.metrics_file) << "\">" << escape(c.metrics_file) << "</a></td></tr>\n";
     h << "</table>\n";
-    for (const deform::Section& section : m.sections) h << section_svg(section, c.d, c.up, c.scale);
+    for (const deform::Section& section : m.sections) h << section_svg(section, c.d, c.up, c.scale, c.p0);
     h << "<br>\n";
     for (const auto& [caption, file] : c.pictures)
       h << "<figure><img src=\"" << escape(file) << "\" alt=\"" << escape(caption) << "\"><figcaption>"

@@ -35,6 +35,7 @@ struct ReportCommit {
   std::vector<std::string> warnings;   // the commit's (as in its metrics file)
   deform::DeformationMetrics metrics;  // with sections (plotted before / after)
   Eigen::Vector3d d = Eigen::Vector3d::Zero();  // model units: the sections' planes are perpendicular to it
+  std::optional<Eigen::Vector3d> p0;            // the press's surface point (model units), where recorded
   double scale = 1.0;  // metres per model unit (metrics lengths are model units)
   // The model's up axis (model frame): the sections are drawn with it up where d is not along it.
   Eigen::Vector3d up = Eigen::Vector3d::UnitY();

@@ -603,6 +603,7 @@ void run_replay(const ReplayOptions& o) {
     rc.region_vertices = roi.size();
     rc.handle_vertices = std::size_t(std::max(0L, record.handle_count));
     if (record.handle_at) rc.handle_radius_mm = 1000.0 * scale * record.handle_radius;
+    rc.p0 = record.handle_at;
     if (record.roi_radius) rc.roi_radius_mm = 1000.0 * scale * *record.roi_radius;
     if (s.committed_request && s.d.norm() > 0.0)
       if (const auto* handle = std::get_if<deform::SurfaceHandle>(&s.committed_request->handle)) {
