@@ -236,7 +236,8 @@ void how_to_read(std::ostringstream& h) {
        "replayed with another method the hashes are not compared, and \"match (d)\" says the push/pull's d "
        "was the recording's.</li>\n"
        "<li><b>Pictures</b>: before and after with the model's materials; the displacement of this push/pull "
-       "(its legend in mm per vertex); the curvature sign after (yellow +, blue -, grey near-flat); the "
+       "(its legend in mm per vertex); the curvature sign before and after (yellow +, blue -, grey "
+       "near-flat); the "
        "magenta arrow is d, from p0 to p1. The camera is the same before and after.</li>\n"
        "</ul></details>\n";
 }

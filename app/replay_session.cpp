@@ -119,7 +119,7 @@ bool replay_clears(const std::string& name) {
   static const std::regex kNames(
       R"((commit-(0[1-9]|[1-9][0-9]+)(-before)?|final)\.(glb|off|obj|ply)|)"
       R"(commit-(0[1-9]|[1-9][0-9]+)\.metrics\.json|)"
-      R"(commit-(0[1-9]|[1-9][0-9]+)-(before|after|displacement|curvature)\.png|report\.html)");
+      R"(commit-(0[1-9]|[1-9][0-9]+)-(before|after|displacement|curvature|curvature-before)\.png|report\.html)");
   return std::regex_match(name, kNames);
 }
 bool replay_writes(const std::string& name) {
@@ -653,6 +653,8 @@ void run_replay(const ReplayOptions& o) {
           {"before", stem + "-before.png", "material", false, false},
           {"after", stem + "-after.png", "material", true, true},
           {"displacement (this push/pull)", stem + "-displacement.png", "displacement", true, true},
+          // Before beside after, as the paper's Fig. 12 compares them: where a sign reversed shows.
+          {"Gaussian curvature sign before", stem + "-curvature-before.png", "curvature-sign", false, false},
           {"Gaussian curvature sign after", stem + "-curvature.png", "curvature-sign", true, false}};
       const deform::Mesh before_shape{before_mesh.V, model.deform_mesh.F};
       // Prepared first, then drawn from one camera framing before and after (a push/pull that grows the

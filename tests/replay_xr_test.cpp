@@ -167,7 +167,8 @@ TEST(ReplayXr, ReplayReproducesEveryCommitHashAndTheSameMeshesTwice) {
   ASSERT_EQ(replayed.size(), 2u);
   for (size_t i = 0; i < 2; ++i) EXPECT_EQ(replayed[i].at("hash"), recorded[i].at("hash"));
   for (const char* file : {"commit-01.off", "commit-02.off", "final.off", "commit-01.metrics.json",
-                           "commit-02.metrics.json", "report.html", "commit-02-displacement.png"})
+                           "commit-02.metrics.json", "report.html", "commit-02-displacement.png",
+                           "commit-02-curvature-before.png", "commit-02-curvature.png"})
     EXPECT_TRUE(fs::exists(dir / "replay1" / file)) << file << "\n" << first.output;
   const auto metrics = nlohmann::json::parse(file_bytes(dir / "replay1" / "commit-01.metrics.json"));
   EXPECT_NEAR(double(metrics.at("d").at(1)), -0.1, 1e-6);
