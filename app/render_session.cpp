@@ -322,8 +322,7 @@ bool shows_nothing(const TextureRGBA8& image) {
     return false;
   const glm::vec4 clear = FrameSettings{}.clear_colour;
   auto encoded = [&](float linear) {
-    const float s = linear <= 0.0031308f ? 12.92f * linear : 1.055f * std::pow(linear, 1.0f / 2.4f) - 0.055f;
-    return int(std::lround(255.0f * std::clamp(image.srgb ? s : linear, 0.0f, 1.0f)));
+    return int(std::lround(255.0f * (image.srgb ? linear_to_srgb(linear) : std::clamp(linear, 0.0f, 1.0f))));
   };
   const int background[3] = {encoded(clear.r), encoded(clear.g), encoded(clear.b)};
   const LegendLayout legend = legend_layout(image.width, image.height);

@@ -37,12 +37,11 @@ std::string number(double v, const char* format = "%.3g") {
   return text;
 }
 
-// A round length for a scale bar about a fifth of `width` (mm): 1, 2 or 5 times a power of ten.
-double scale_bar_mm(double width) {
-  const double target = width > 0.0 ? width / 5.0 : 1.0;
-  const double power = std::pow(10.0, std::floor(std::log10(target)));
+// The largest 1, 2 or 5 times a power of ten at most `x` (> 0): a round scale-bar length or factor.
+double round_down_125(double x) {
+  const double power = std::pow(10.0, std::floor(std::log10(x)));
   for (const double step : {5.0, 2.0, 1.0})
-    if (step * power <= target) return step * power;
+    if (step * power <= x) return step * power;
   return power;
 }
 
@@ -114,13 +113,8 @@ std::string section_svg(const deform::Section& section, const Eigen::Vector3d& d
                             (H - 2 * margin) / std::max(view.y1 - view.y0, 1e-12));
   // A gap of 5% of |d| drawn as 8% of the view's width: 1, 2 or 5 times a power of ten, at least 1.
   const double view_width = (W - 2 * margin) / k;  // model units
-  double exaggeration = 1.0;
-  if (d.norm() > 0.0) {
-    const double wanted = 0.08 * view_width / (0.05 * d.norm());
-    for (double power = 1.0; power <= 1e6; power *= 10.0)
-      for (const double step : {1.0, 2.0, 5.0})
-        if (step * power <= wanted) exaggeration = step * power;
-  }
+  const double wanted = d.norm() > 0.0 ? 0.08 * view_width / (0.05 * d.norm()) : 1.0;
+  const double exaggeration = std::clamp(round_down_125(std::max(wanted, 1.0)), 1.0, 1e6);
   // Centred in the picture.
   const double cx = 0.5 * (view.x0 + view.x1), cy = 0.5 * (view.y0 + view.y1);
   auto px = [&](double x) { return 0.5 * W + (x - cx) * k; };
@@ -155,7 +149,7 @@ std::string section_svg(const deform::Section& section, const Eigen::Vector3d& d
     }
   // Scale bar, bottom left.
   const double view_mm = view_width * mm;
-  const double bar_mm = scale_bar_mm(view_mm);
+  const double bar_mm = round_down_125(view_mm > 0.0 ? view_mm / 5.0 : 1.0);
   const double bar_px = bar_mm / mm * k;
   svg << "<line x1=\"" << margin << "\" y1=\"" << H - margin << "\" x2=\"" << number(margin + bar_px, "%.1f")
       << "\" y2=\"" << H - margin << "\" stroke=\"#000\" stroke-width=\"2\"/><text x=\"" << margin

@@ -1,5 +1,7 @@
 #include "pushpull/assets/info.hpp"
 
+#include "pushpull/deform/mesh_components.hpp"
+
 #include <algorithm>
 #include <cstdio>
 #include <map>
@@ -26,40 +28,27 @@ std::string join(const std::vector<std::string>& items) {
   return out.empty() ? "none" : out;
 }
 
-// The deform mesh's connected components by faces: a label per vertex (-1 for a vertex no face uses),
-// labels numbered by decreasing size (0 the largest).
-std::vector<int> component_labels(const deform::Mesh& mesh, std::vector<std::size_t>& sizes) {
-  const auto n = static_cast<std::size_t>(mesh.V.rows());
-  std::vector<std::size_t> parent(n);
-  std::iota(parent.begin(), parent.end(), std::size_t{0});
-  auto find = [&](std::size_t v) {
-    while (parent[v] != v) v = parent[v] = parent[parent[v]];
-    return v;
-  };
-  std::vector<bool> used(n, false);
-  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
-    for (int c = 0; c < 3; ++c) {
-      const auto a = static_cast<std::size_t>(mesh.F(f, c)),
-                 b = static_cast<std::size_t>(mesh.F(f, (c + 1) % 3));
-      if (a >= n || b >= n) continue;
-      used[a] = used[b] = true;
-      parent[find(a)] = find(b);
-    }
-  std::map<std::size_t, std::size_t> count;
-  for (std::size_t v = 0; v < n; ++v)
-    if (used[v]) ++count[find(v)];
-  std::vector<std::pair<std::size_t, std::size_t>> by_size(count.begin(), count.end());  // root, size
-  std::stable_sort(by_size.begin(), by_size.end(),
-                   [](const auto& x, const auto& y) { return x.second > y.second; });
-  std::map<std::size_t, int> label_of_root;
-  sizes.clear();
-  for (const auto& [root, size] : by_size) {
-    label_of_root[root] = static_cast<int>(sizes.size());
-    sizes.push_back(size);
+// The deform mesh's connected components (deform::face_components) renumbered by decreasing size (0 the
+// largest; vertices counted); `sizes` by the new numbers.
+std::vector<int> components_by_size(const deform::Mesh& mesh, std::vector<std::size_t>& sizes) {
+  std::vector<int> labels = deform::face_components(mesh);
+  std::vector<std::size_t> count;
+  for (const int label : labels) {
+    if (static_cast<std::size_t>(label) >= count.size()) count.resize(static_cast<std::size_t>(label) + 1, 0);
+    ++count[static_cast<std::size_t>(label)];
   }
-  std::vector<int> labels(n, -1);
-  for (std::size_t v = 0; v < n; ++v)
-    if (used[v]) labels[v] = label_of_root[find(v)];
+  std::vector<int> order(count.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+    return count[static_cast<std::size_t>(a)] > count[static_cast<std::size_t>(b)];
+  });
+  std::vector<int> renumbered(count.size());
+  sizes.assign(count.size(), 0);
+  for (std::size_t rank = 0; rank < order.size(); ++rank) {
+    renumbered[static_cast<std::size_t>(order[rank])] = static_cast<int>(rank);
+    sizes[rank] = count[static_cast<std::size_t>(order[rank])];
+  }
+  for (int& label : labels) label = renumbered[static_cast<std::size_t>(label)];
   return labels;
 }
 
@@ -82,7 +71,7 @@ std::string part_name(const Primitive& p) {
 std::string describe_joined_parts(const Model& model) {
   if (model.primitives.size() < 2) return "";
   std::vector<std::size_t> sizes;
-  const std::vector<int> labels = component_labels(model.deform_mesh, sizes);
+  const std::vector<int> labels = components_by_size(model.deform_mesh, sizes);
   // Per part: its deform vertices, and how many of them lie in each component.
   std::map<std::string, std::set<int>> vertices_of_part;
   for (const Primitive& p : model.primitives)

@@ -12,40 +12,11 @@
 #include <string>
 
 #include "mesh_graph.hpp"
+#include "pushpull/deform/mesh_components.hpp"
 #include "pushpull/deform/triangle_bvh.hpp"
 
 namespace pushpull::deform {
 namespace {
-
-// Connected components over faces; vertices used by no face get their own component. Numbered in order of
-// their lowest vertex.
-std::vector<int> components(const Mesh& mesh) {
-  const int nv = static_cast<int>(mesh.V.rows());
-  std::vector<int> parent(static_cast<std::size_t>(nv));
-  std::iota(parent.begin(), parent.end(), 0);
-  auto find = [&](int v) {
-    while (parent[static_cast<std::size_t>(v)] != v) {
-      parent[static_cast<std::size_t>(v)] =
-          parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(v)])];
-      v = parent[static_cast<std::size_t>(v)];
-    }
-    return v;
-  };
-  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
-    for (int c = 1; c < 3; ++c) {
-      const int a = find(mesh.F(f, 0)), b = find(mesh.F(f, c));
-      if (a != b) parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
-    }
-  }
-  std::vector<int> label(static_cast<std::size_t>(nv), -1), id_of_root(static_cast<std::size_t>(nv), -1);
-  int next = 0;
-  for (int v = 0; v < nv; ++v) {
-    const int root = find(v);
-    if (id_of_root[static_cast<std::size_t>(root)] < 0) id_of_root[static_cast<std::size_t>(root)] = next++;
-    label[static_cast<std::size_t>(v)] = id_of_root[static_cast<std::size_t>(root)];
-  }
-  return label;
-}
 
 // The rotation that best maps the rest patch onto the moved one (Kabsch: polar factor of the covariance of
 // centred positions, det +1). A patch of a triangle's corners and their neighbours spans an area even when
@@ -84,7 +55,7 @@ AttachedParts::AttachedParts(const Mesh& rest, const RegionOfInterest& roi, cons
                                 " roles for a mesh of " + std::to_string(nv) + " vertices");
   }
   auto in_region = [&](int v) { return roi.role[static_cast<std::size_t>(v)] != VertexRole::Outside; };
-  const std::vector<int> label = components(rest);
+  const std::vector<int> label = face_components(rest);
   const int component_count = label.empty() ? 0 : *std::max_element(label.begin(), label.end()) + 1;
   std::vector<char> solved(static_cast<std::size_t>(component_count), 0);
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
