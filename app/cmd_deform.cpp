@@ -9,6 +9,7 @@
 #include "model_output.hpp"
 #include "number_checks.hpp"
 #include "output_guard.hpp"
+#include "point_text.hpp"
 #include "region_notes.hpp"
 #include "vertex_selection.hpp"
 
@@ -181,13 +182,7 @@ std::vector<int> pick_handle(const DeformCommandOptions& o, const LoadedModel& m
   }
   const double gap = (hit.point - point).stableNorm();
   if (gap > o.handle_radius) {
-    auto metres = [&](const Eigen::Vector3d& p) {
-      char text[128];
-      // Micrometres (no -5.7e-08), and no negative zero.
-      const Eigen::Vector3d m = ((p * scale * 1e6).array().round() / 1e6 + 0.0).matrix();
-      std::snprintf(text, sizeof text, "%.6g %.6g %.6g", m.x(), m.y(), m.z());
-      return std::string(text);
-    };
+    auto metres = [&](const Eigen::Vector3d& p) { return point_in_metres_text(p * scale); };
     char numbers[128];
     std::snprintf(numbers, sizeof numbers, "%.6g m from the surface, farther than --handle-radius %.6g m",
                   gap * scale, o.handle_radius * scale);

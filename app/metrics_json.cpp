@@ -149,7 +149,8 @@ std::string metrics_json(const DeformRunRecord& record) {
   }
   doc["attached_parts"] = {{"reach", record.attach_reach}, {"parts", parts}};
   doc["warnings"] = result.warnings;
-  return doc.dump(2) + "\n";
+  // (replace: a path that is not UTF-8 is written with U+FFFD, not thrown on after the work is done)
+  return doc.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 
 }  // namespace pushpull::app

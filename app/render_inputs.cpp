@@ -1,6 +1,7 @@
 #include "render_inputs.hpp"
 
 #include "commands.hpp"
+#include "point_text.hpp"
 #include "vertex_selection.hpp"
 
 #include "pushpull/deform/surface_point.hpp"
@@ -76,11 +77,9 @@ RenderInputs prepare_render_inputs(std::shared_ptr<const RenderModel> render, co
     if (const double gap = (hit.point - vec3(options.handle_at)).stableNorm(); gap > options.handle_radius)
       std::fprintf(stderr,
                    "pushpull render: warning: --handle-at is %.4g m from the surface, farther than "
-                   "--handle-radius %.4g m: the handle drawn is around the nearest surface point (%.4g %.4g "
-                   "%.4g)\n",
+                   "--handle-radius %.4g m: the handle drawn is around the nearest surface point (%s)\n",
                    gap * life_size_scale, options.handle_radius * life_size_scale,
-                   hit.point.x() * life_size_scale, hit.point.y() * life_size_scale,
-                   hit.point.z() * life_size_scale);
+                   point_in_metres_text(hit.point * life_size_scale).c_str());
     mark(deform::surface_handle(rest, hit, options.handle_radius), &renderer::OverlayWeights::handle);
   }
   if (any_overlay) {
@@ -102,7 +101,10 @@ RenderInputs prepare_render_inputs(std::shared_ptr<const RenderModel> render, co
         const double offset = lo + (hi - lo) * double(k) / double(options.sections + 1);
         for (const auto& curve : deform::plane_section(V, F, dn * offset, dn)) {
           std::vector<glm::vec3> line;
-          for (const auto& p : curve.points) line.emplace_back(float(p.x()), float(p.y()), float(p.z()));
+          for (const auto& p : curve.points) {
+            const Eigen::Vector3d q = p - model.origin;  // render frame
+            line.emplace_back(float(q.x()), float(q.y()), float(q.z()));
+          }
           if (curve.closed && !line.empty()) line.push_back(line.front());
           inputs.sections.push_back(std::move(line));
         }

@@ -51,7 +51,8 @@ struct RenderCommandOptions {
   LifeSizeOptions life_size;
 };
 
-// Everything on render vertices (#Vr), model frame.
+// Everything on render vertices (#Vr). Frames: positions, sections and frame in the render frame (the model
+// frame shifted by -render->origin, file units: render_model.hpp); arrow in the model frame.
 struct RenderInputs {
   std::shared_ptr<const RenderModel> render;                         // shared by the pictures of one model
   std::vector<float> positions;                                      // #Vr*3, deformed when `deformed`
@@ -63,7 +64,7 @@ struct RenderInputs {
   std::vector<std::vector<glm::vec3>> sections;
   bool deformed = false;
   double life_size_scale = 1.0;  // metres per model unit: legends in life-size mm
-  // The box the camera frames (model units); none: the box of `positions`. A before / after pair given the
+  // The box the camera frames (render frame); none: the box of `positions`. A before / after pair given the
   // box of both is drawn from one camera (a push/pull that grows the model moved the whole picture).
   std::optional<std::pair<glm::vec3, glm::vec3>> frame;  // min, max
 };

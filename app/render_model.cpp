@@ -131,6 +131,13 @@ RenderModel build_render_model(const assets::Model& model, double crease_deg) {
   TextureCache textures(model, out);
   for (const auto& m : model.materials) out.materials.push_back(convert_material(m, textures));
   renderer::RenderMesh& mesh = out.mesh;
+  // The render frame's origin: the centre of the model frame's bounding box, in double.
+  Eigen::AlignedBox3d box;
+  for (const assets::Primitive& prim : model.primitives)
+    for (Eigen::Index i = 0; i < prim.positions.rows(); ++i)
+      box.extend(
+          (prim.T_model_node * prim.positions.row(i).transpose().cast<double>().homogeneous()).head<3>());
+  if (!box.isEmpty()) out.origin = box.center();
 
   for (const assets::Primitive& prim : model.primitives) {
     const Eigen::Matrix4d& T = prim.T_model_node;
@@ -139,9 +146,10 @@ RenderModel build_render_model(const assets::Model& model, double crease_deg) {
     const auto n_in = static_cast<size_t>(prim.vertex_count());
     std::vector<Eigen::Vector3f> world(n_in);
     for (size_t i = 0; i < n_in; ++i)
-      world[i] = (T * prim.positions.row(Eigen::Index(i)).transpose().cast<double>().homogeneous())
-                     .head<3>()
-                     .cast<float>();
+      world[i] =
+          ((T * prim.positions.row(Eigen::Index(i)).transpose().cast<double>().homogeneous()).head<3>() -
+           out.origin)
+              .cast<float>();
 
     // Vertex list of this primitive after optional crease splitting.
     std::vector<uint32_t> to_original;
@@ -188,7 +196,7 @@ std::vector<float> render_positions(const RenderModel& render, const Eigen::Matr
   for (size_t r = 0; r < render.deform_vertex.size(); ++r) {
     const int d = render.deform_vertex[r];
     if (d < 0 || d >= V.rows()) continue;
-    for (int c = 0; c < 3; ++c) positions[3 * r + size_t(c)] = float(V(d, c));
+    for (int c = 0; c < 3; ++c) positions[3 * r + size_t(c)] = float(V(d, c) - render.origin(c));
   }
   return positions;
 }

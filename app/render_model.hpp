@@ -1,7 +1,9 @@
 // Converting a loaded model (pushpull::assets::Model) into renderer input, and deform-side per-vertex
 // data (deformed positions, displacement, curvature sign, overlays) onto the render vertices.
 //
-// Frames: the RenderMesh is in the model frame (every node transform applied), file units.
+// Frames: the RenderMesh is in the render frame: the model frame (every node transform applied, file units)
+// shifted by -RenderModel::origin, so that floats keep their precision on a model that lies far from its
+// file's origin (a part in site or vehicle coordinates); whoever draws it places it by translate(origin).
 // Shapes: deform-side arrays have #Vd rows (Model::deform_mesh.V); render-side arrays #Vr entries.
 // Thread-safety: pure functions on values.
 #pragma once
@@ -18,7 +20,9 @@
 namespace pushpull::app {
 
 struct RenderModel {
-  renderer::RenderMesh mesh;                  // one mesh, one submesh per primitive
+  renderer::RenderMesh mesh;  // one mesh, one submesh per primitive; positions relative to `origin`
+  // The centre of the model's bounding box (model frame, file units): render frame = model frame - origin.
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();
   std::vector<renderer::Material> materials;  // submesh material indices refer here; textures below
   std::vector<renderer::TextureRGBA8> textures;
   std::vector<int> deform_vertex;   // #Vr: row of deform_mesh.V, -1 when none
@@ -30,8 +34,8 @@ struct RenderModel {
 // sharper than crease_deg (flat CAD faces stay flat, smooth surfaces stay smooth).
 RenderModel build_render_model(const assets::Model& model, double crease_deg = 35.0);
 
-// Render positions from deform-side positions V (#Vd by 3); vertices without a deform vertex keep
-// their undeformed position.
+// Render positions (render frame) from deform-side positions V (#Vd by 3, model frame); vertices without a
+// deform vertex keep their undeformed position.
 std::vector<float> render_positions(const RenderModel& render, const Eigen::MatrixXd& V);
 
 // Normals for deformed render positions: the file normals rotated by how the surface turned

@@ -36,7 +36,9 @@ glm::vec3 to_glm(const Eigen::Vector3d& v) {
   return {float(v.x()), float(v.y()), float(v.z())};
 }
 
-View make_view(const RenderCommandOptions& o, const Bounds& bounds, float aspect) {
+// bounds in the render frame; o.eye and o.target in the model frame, moved by -origin (render_model.hpp).
+View make_view(const RenderCommandOptions& o, const Bounds& bounds, float aspect,
+               const Eigen::Vector3d& origin) {
   OrbitCamera orbit;
   // --up 1e300 1e300 1e300 is a direction, not three infinities: scaled by its stable norm first where the
   // plain one overflows (or underflows); other directions keep their bits.
@@ -55,8 +57,11 @@ View make_view(const RenderCommandOptions& o, const Bounds& bounds, float aspect
   }
   View view = frame_bounds(bounds, orbit, aspect);
   if (!o.eye.empty() || !o.target.empty()) {
-    const glm::vec3 target = o.target.empty() ? bounds.centre() : to_glm(o.target);
-    const glm::vec3 eye = o.eye.empty() ? glm::vec3(glm::inverse(view.view)[3]) : to_glm(o.eye);
+    auto render_frame = [&](const std::vector<double>& p) {
+      return to_glm(Eigen::Vector3d(p[0], p[1], p[2]) - origin);
+    };
+    const glm::vec3 target = o.target.empty() ? bounds.centre() : render_frame(o.target);
+    const glm::vec3 eye = o.eye.empty() ? glm::vec3(glm::inverse(view.view)[3]) : render_frame(o.eye);
     if (glm::length(eye - target) <= 0.0f) throw UsageError("--eye and --target coincide");
     // Looking along --up leaves the picture's up undefined (it came out blank).
     if (glm::length(glm::cross(glm::normalize(target - eye), orbit.up)) < 1e-4f)
@@ -81,19 +86,20 @@ void warn_if_inside(const View& view, const RenderInputs& inputs, const Bounds& 
   const double winding = winding_number(inputs.positions, inputs.render->mesh.indices, eye);
   const bool in_box = glm::all(glm::greaterThan(eye, bounds.min)) && glm::all(glm::lessThan(eye, bounds.max));
   const double s = inputs.life_size_scale;
+  const Eigen::Vector3d at = inputs.render->origin + Eigen::Vector3d(eye.x, eye.y, eye.z);  // model frame
   if (std::abs(winding) >= 0.5)
     std::fprintf(
         stderr,
         "pushpull render: warning: the camera is inside the model (eye at %.3g %.3g %.3g m, winding "
         "number %.2f): the picture shows the model from inside; use a smaller ZOOM in --camera or move "
         "--eye outside\n",
-        s * double(eye.x), s * double(eye.y), s * double(eye.z), winding);
+        s * at.x(), s * at.y(), s * at.z(), winding);
   else if (orbit && in_box)
     std::fprintf(
         stderr,
         "pushpull render: warning: the orbit camera ends inside the model's bounding box (eye at %.3g %.3g "
         "%.3g m): parts of the model are behind it; use a smaller ZOOM in --camera\n",
-        s * double(eye.x), s * double(eye.y), s * double(eye.z));
+        s * at.x(), s * at.y(), s * at.z());
 }
 
 // Side by side: left | right.
@@ -251,8 +257,9 @@ TextureRGBA8 PictureRenderer::render(const RenderInputs& inputs, const RenderCom
     // Thick enough to see at the model's size, thin enough to stay an arrow for a short pull.
     const float length = float((inputs.arrow->second - inputs.arrow->first).norm());
     const float radius = std::clamp(0.08f * length, 0.004f * size, 0.02f * size);
-    const RenderMesh arrow_mesh =
-        make_arrow(to_glm(inputs.arrow->first), to_glm(inputs.arrow->second), radius, p.arrow_material);
+    const RenderMesh arrow_mesh = make_arrow(to_glm(Eigen::Vector3d(inputs.arrow->first - p.render->origin)),
+                                             to_glm(Eigen::Vector3d(inputs.arrow->second - p.render->origin)),
+                                             radius, p.arrow_material);
     if (!arrow_mesh.indices.empty())
       draws.push_back({renderer.add_mesh(arrow_mesh), glm::mat4(1.0f), false, true});
   }
@@ -285,7 +292,7 @@ TextureRGBA8 PictureRenderer::render(const RenderInputs& inputs, const RenderCom
   }
 
   const float aspect = float(width) / float(height);
-  const View mono = make_view(o, bounds, aspect);
+  const View mono = make_view(o, bounds, aspect, p.render->origin);
   warn_if_inside(mono, inputs, bounds, o.eye.empty());
   std::vector<View> views{mono};
   if (o.ipd) {

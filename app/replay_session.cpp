@@ -23,10 +23,12 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -36,6 +38,10 @@
 #include <regex>
 #include <set>
 #include <variant>
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
 
 namespace pushpull::app {
 namespace {
@@ -131,6 +137,33 @@ bool replay_clears_eye_image(const std::string& name) {
   return std::regex_match(name, kNames);
 }
 
+// The --out folder held for one replay: two replays writing into one folder at once mixed their recordings
+// and reports (each then said "all checks passed"). An advisory lock on the folder itself (flock on its
+// descriptor: nothing is left in the folder), released when the replay ends, however it ends.
+class OutFolderLock {
+ public:
+  explicit OutFolderLock(const fs::path& folder)
+      : fd_(::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC)) {
+    if (fd_ < 0)
+      throw CommandError(folder.string() + ": cannot open the output folder (" + std::strerror(errno) + ")");
+    if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+      const int error = errno;
+      ::close(fd_);
+      throw CommandError(folder.string() + ": " +
+                         (error == EWOULDBLOCK
+                              ? std::string("another pushpull replay is writing into this folder; "
+                                            "wait for it to end or give --out another folder")
+                              : std::string("cannot lock it (") + std::strerror(error) + ")"));
+    }
+  }
+  OutFolderLock(const OutFolderLock&) = delete;
+  OutFolderLock& operator=(const OutFolderLock&) = delete;
+  ~OutFolderLock() { ::close(fd_); }
+
+ private:
+  int fd_;
+};
+
 // A .gltf's external files (its buffers' and images' URIs, data: URIs aside) beside it, read before the model
 // is loaded (the replay clears its --out first): only their names are needed here; the load checks the rest.
 std::vector<fs::path> external_files(const fs::path& model) {
@@ -184,15 +217,27 @@ void run_replay(const ReplayOptions& o) {
   std::string model_path = o.model.empty() ? header.at("model").get<std::string>() : o.model;
   if (o.model.empty() && header.contains("model_relative")) {
     const fs::path beside = fs::path(o.recording).parent_path() / header["model_relative"].get<std::string>();
-    if (fs::exists(beside)) model_path = beside.lexically_normal().string();
+    if (std::error_code ec; fs::exists(beside, ec)) model_path = beside.lexically_normal().string();
   }
-  if (!fs::exists(model_path))
+  if (model_path.empty())
+    throw CommandError(o.recording + ":1: the header's \"model\" is empty; pass --model FILE");
+  std::error_code status_error;
+  const fs::file_status model_status = fs::status(model_path, status_error);
+  if (status_error && status_error != std::errc::no_such_file_or_directory)
+    throw CommandError(model_path + ": cannot read the " +
+                       (o.model.empty() ? "recorded model file" : "--model file") + " (" +
+                       status_error.message() + "; recording " + o.recording + ")");
+  if (!fs::exists(model_status))
     throw CommandError(o.model.empty() ? model_path + ": the recorded model file does not exist (recording " +
                                              o.recording + "); pass --model FILE"
                                        : model_path + ": --model: no such file");
-  if (fs::is_directory(model_path))
+  if (fs::is_directory(model_status))
     throw CommandError(model_path + ": is a folder, not the recorded model file (recording " + o.recording +
                        ")");
+  // Hashed whole: a device (/dev/zero) never ended.
+  if (!fs::is_regular_file(model_status))
+    throw CommandError(model_path + ": is not a regular file (a device or a pipe), not a model (recording " +
+                       o.recording + ")");
   const std::string sha = sha256_file_hex(model_path);
   if (sha != header.at("model_sha256").get<std::string>())
     throw CommandError(model_path + ": SHA-256 " + sha + " differs from the recording's " +
@@ -216,6 +261,20 @@ void run_replay(const ReplayOptions& o) {
                        (fs::is_directory(out) ? "cannot write into the output folder (its eyes/ folder): "
                                               : "cannot create the output folder: ") +
                        ec.message());
+  const OutFolderLock lock(out);
+  // The eyes are captured by the runtime, which can only say on stderr that it could not write one: a folder
+  // the replay cannot write into is refused here, before the session (it went on to "all checks passed" with
+  // no eye images).
+  for (const fs::path& folder : {out, out / "eyes"}) {
+    const fs::path probe = folder / (".pushpull-replay-write-check-" + std::to_string(::getpid()));
+    errno = 0;
+    std::FILE* file = std::fopen(probe.c_str(), "wb");
+    if (file == nullptr)
+      throw CommandError(folder.string() + ": cannot write into it (" +
+                         (errno != 0 ? std::strerror(errno) : "unknown error") + ")");
+    std::fclose(file);
+    fs::remove(probe, ec);
+  }
   // What an earlier replay into the same folder wrote (it may have had more commits), said.
   std::size_t cleared = 0;
   for (const auto& [folder, clears] :
@@ -276,7 +335,7 @@ void run_replay(const ReplayOptions& o) {
   // How the recorded review behaved: its format's, or what a replay of an older one wrote down.
   if (rec.format_version > 0)
     review.behaviour_of_format =
-        header.value("behaviour_format", std::min(rec.format_version, kNewestRecordingFormat));
+        std::min(header.value("behaviour_format", rec.format_version), kNewestRecordingFormat);
   review.mu = o.mu.value_or(h.at("mu").get<double>());
   // Recordings made before the smooth start (and, from 2026-12-06, the coarse-to-fine start) existed solved
   // every cold start from rest: -1 when the key is missing.
@@ -336,6 +395,22 @@ void run_replay(const ReplayOptions& o) {
   } catch (const std::exception& e) {
     throw CommandError(e.what());
   }
+  {
+    // The header's life-size scale is the review's --length over the model's longest side, or its --scale:
+    // any other (1e308 printed |d| inf mm and NaN into the report) is a damaged header.
+    const double longest = model.bounds.isEmpty() ? 0.0 : model.bounds.sizes().maxCoeff();
+    const double expected = h.contains("length_m") && h["length_m"].is_number() && longest > 0.0
+                                ? h["length_m"].get<double>() / longest
+                                : h.value("scale", 1.0);
+    if (!(std::abs(life_size_scale / expected - 1.0) <= 1e-6))
+      throw CommandError(o.recording + ":1: the header's \"life_size_scale\" " +
+                         json(life_size_scale).dump() + " is not the review's (" + json(expected).dump() +
+                         (h.contains("length_m") && h["length_m"].is_number()
+                              ? ": its length_m over the model's "
+                                "longest side)"
+                              : ": its scale)") +
+                         "; the header is damaged");
+  }
   ProgressBar bar;
   std::vector<CommitRecord> commits;
   std::vector<std::string> checks;  // per commit: how it compared with the recording
@@ -391,16 +466,37 @@ void run_replay(const ReplayOptions& o) {
           r.value("method", header.at("options").at("method").get<std::string>());
       const bool as_recorded =
           same_mu && lower(recorded_method) == lower(std::string(deform::method_name(c.snapshot->method)));
-      if (as_recorded && on_recorded_path) {
+      const double gap = r.contains("d") ? (vec3(r["d"]) - c.snapshot->d).norm() : 0.0;
+      if (same_solver && !as_recorded) {
+        // Every push/pull is solved as recorded unless --method or --mu says otherwise: a method that
+        // differs from the commit record's is the replay's (or the recording's) mistake, not a choice.
+        on_recorded_path = false;
+        check = "MISMATCH (method)";
+        if (first_mismatch.empty())
+          first_mismatch = "commit " + std::to_string(c.index) + " (recording line " + std::to_string(line) +
+                           "): solved with " + std::string(deform::method_name(c.snapshot->method)) +
+                           ", recorded with " + recorded_method;
+      } else if (as_recorded && on_recorded_path) {
         check = r.at("hash") == hash_text(c.hash) ? "match" : "MISMATCH";
         on_recorded_path = check == "match";
         if (check != "match" && first_mismatch.empty())
           first_mismatch = "commit " + std::to_string(c.index) + " (recording line " + std::to_string(line) +
                            "): hash " + hash_text(c.hash) + " differs from the recorded " +
                            r.at("hash").get<std::string>() + " (tolerance: bit-identical positions)";
+        // The same positions from another d: the commit record itself is damaged.
+        if (check == "match" && gap > d_tolerance) {
+          check = "MISMATCH (d)";
+          if (first_mismatch.empty()) {
+            char text[128];
+            std::snprintf(text, sizeof text,
+                          "d differs from the recorded one by %.3g model units (tolerance %.3g)", gap,
+                          d_tolerance);
+            first_mismatch = "commit " + std::to_string(c.index) + " (recording line " +
+                             std::to_string(line) + "): its hash matches but " + text;
+          }
+        }
       } else {
         on_recorded_path = false;
-        const double gap = r.contains("d") ? (vec3(r["d"]) - c.snapshot->d).norm() : 0.0;
         check = gap <= d_tolerance ? "match (d)" : "MISMATCH (d)";
         if (gap > d_tolerance && first_mismatch.empty()) {
           char text[160];
@@ -713,7 +809,29 @@ void run_replay(const ReplayOptions& o) {
     // recorded one did not, and a recording cut before a commit landed has the replay make it).
     CommitHistory history;
     try {
-      history = commit_history(read_session_recording(review.record));
+      const SessionRecording replayed = read_session_recording(review.record);
+      history = commit_history(replayed);
+      // The session's end: what undo and redo left, against the recorded end (the commits compare each
+      // commit; only this compares the model the session ended with). Where every push/pull was solved as
+      // recorded and the recording was not cut.
+      auto end_of = [](const SessionRecording& r) -> const json* {
+        for (auto it = r.records.rbegin(); it != r.records.rend(); ++it)
+          if (it->value("record", "") == "end") return &*it;
+        return nullptr;
+      };
+      const json* recorded_end = end_of(rec);
+      const json* replayed_end = end_of(replayed);
+      if (same_solver && !rec.cut && first_mismatch.empty() && recorded_end != nullptr &&
+          replayed_end != nullptr && recorded_end->contains("hash") && replayed_end->contains("hash")) {
+        const json recorded_commits = recorded_end->value("commits", json());
+        const json replayed_commits = replayed_end->value("commits", json());
+        if ((*recorded_end)["hash"] != (*replayed_end)["hash"] || recorded_commits != replayed_commits)
+          first_mismatch = "the session's end (recording line " +
+                           std::to_string(recorded_end->value("line", 0)) + "): the final model has hash " +
+                           (*replayed_end)["hash"].dump() + " after " + replayed_commits.dump() +
+                           " commit(s), recorded " + (*recorded_end)["hash"].dump() + " after " +
+                           recorded_commits.dump() + " (the undos and redos went otherwise)";
+      }
     } catch (const std::exception& e) {
       std::fprintf(stderr,
                    "pushpull replay: warning: %s: %s; the report does not say which push/pulls were undone\n",

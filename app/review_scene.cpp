@@ -82,8 +82,11 @@ ReviewScene::ReviewScene(renderer::Renderer& renderer, const assets::Model& mode
 }
 
 void ReviewScene::set_placement(const StagePlacement& placement) {
+  // The mesh is in the render frame (render_model.hpp): stage <- model <- render, composed in double.
+  Eigen::Matrix4d T_stage_render = placement.T_stage_model;
+  T_stage_render.topRightCorner<3, 1>() += placement.T_stage_model.topLeftCorner<3, 3>() * render_.origin;
   for (int r = 0; r < 4; ++r)
-    for (int c = 0; c < 4; ++c) T_stage_model_[c][r] = float(placement.T_stage_model(r, c));
+    for (int c = 0; c < 4; ++c) T_stage_render_[c][r] = float(T_stage_render(r, c));
 }
 
 void ReviewScene::set_colour(ReviewColour colour) {
@@ -236,7 +239,7 @@ void ReviewScene::set_highlight(const std::vector<int>& vertices) {
 }
 
 std::vector<renderer::Draw> ReviewScene::draws() const {
-  return {renderer::Draw{mesh_, T_stage_model_}};
+  return {renderer::Draw{mesh_, T_stage_render_}};
 }
 
 renderer::FrameSettings ReviewScene::settings(bool legend) const {

@@ -92,7 +92,7 @@ class ReviewScene {
   Eigen::MatrixXd rest_V_;  // the model as loaded: displacement is measured from it
   Eigen::MatrixXi F_;
   renderer::MeshId mesh_ = 0;
-  glm::mat4 T_stage_model_{1.0f};
+  glm::mat4 T_stage_render_{1.0f};
   ReviewColour colour_;
   double scale_ = 1.0;
   double scalar_max_ = 0.0;

@@ -134,7 +134,9 @@ EventLog::EventLog(const std::string& path, bool print) : print_(print) {
 }
 
 void EventLog::write(const nlohmann::json& line) {
-  if (file_.is_open()) file_ << line.dump() << '\n' << std::flush;
+  // (replace: a path that is not UTF-8, from the command line, is written with U+FFFD, not thrown on)
+  if (file_.is_open())
+    file_ << line.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) << '\n' << std::flush;
 }
 
 void EventLog::write_start(const ReviewCommandOptions& o, const ReviewSetup& s, const std::string& runtime) {

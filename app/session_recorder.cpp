@@ -97,7 +97,8 @@ SessionRecorder::SessionRecorder(const std::string& path, bool required) : path_
 
 void SessionRecorder::write_line(const json& line) {
   if (!file_.is_open()) return;
-  file_ << line.dump() << '\n' << std::flush;
+  // (replace: a path that is not UTF-8, from the command line, is written with U+FFFD, not thrown on)
+  file_ << line.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) << '\n' << std::flush;
   if (!file_) throw CommandError(path_ + ": write failed (disk full?) while recording the session");
 }
 

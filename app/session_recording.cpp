@@ -180,6 +180,27 @@ SessionRecording read_lines(const std::string& path, const std::string& text, st
           corrupted(path, 1,
                     std::string("header option \"") + key + "\" must be a finite, non-zero direction");
       }
+      {
+        auto axis = [&](const char* key) {
+          const nlohmann::json& a = (*options)[key];
+          const Eigen::Vector3d v(a[0].get<double>(), a[1].get<double>(), a[2].get<double>());
+          return Eigen::Vector3d(v / v.stableNorm());
+        };
+        if (axis("up").cross(axis("front")).norm() < 1e-6)
+          corrupted(path, 1, "header options \"up\" and \"front\" are parallel: they place no model");
+      }
+      if (options->contains("colour") &&
+          !((*options)["colour"].is_string() && parse_colour((*options)["colour"].get<std::string>())))
+        corrupted(path, 1, "header option \"colour\" names no colour map: " + (*options)["colour"].dump());
+      if (j.contains("format") && !j["format"].is_string())
+        corrupted(path, 1, "the header's \"format\" is not a string: " + j["format"].dump());
+      // The review behaviour a replay of an older recording keeps (a newer one's: the newest this build has).
+      if (j.contains("behaviour_format") &&
+          !(j["behaviour_format"].is_number_integer() && j["behaviour_format"].get<long long>() >= 1 &&
+            j["behaviour_format"].get<long long>() <= 1000000))
+        corrupted(path, 1,
+                  "the header's \"behaviour_format\" must be a whole number >= 1, got " +
+                      j["behaviour_format"].dump());
       r.header = j;
       const std::string format =
           j.contains("format") && j["format"].is_string() ? j["format"].get<std::string>() : std::string();
@@ -360,8 +381,14 @@ SessionRecording read_lines(const std::string& path, const std::string& text, st
 
 SessionRecording read_session_recording(const std::string& path) {
   std::error_code error;
-  if (std::filesystem::is_directory(path, error))
+  const std::filesystem::file_status status = std::filesystem::status(path, error);
+  if (std::filesystem::is_directory(status))
     throw CommandError(path + ": is a folder, not a session recording");
+  // Read whole: a device or a pipe that never ends (/dev/zero) took all memory.
+  if (!error && std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
+    throw CommandError(path + ": is not a regular file (a device or a pipe), not a session recording");
+  if (error && error != std::errc::no_such_file_or_directory)
+    throw CommandError(path + ": cannot open the session recording (" + error.message() + ")");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw CommandError(path + ": cannot open the session recording");
   std::stringstream buffer;

@@ -86,7 +86,7 @@ TEST_F(CliMessages, AHandlePointOffTheSurfaceNamesTheNearestOneInLifeSizeMetres)
       << file_units.output;
   const CommandResult life_size = run_pushpull("deform " + kHemisphere.string() + " --length 4" + rest);
   EXPECT_NE(life_size.status, 0);
-  EXPECT_NE(life_size.output.find("the nearest surface point is --handle-at 0 0 2.00968 (life-size metres)"),
+  EXPECT_NE(life_size.output.find("the nearest surface point is --handle-at 0 0 2.009677 (life-size metres)"),
             std::string::npos)
       << life_size.output;
   EXPECT_FALSE(fs::exists(path("o.off")));

@@ -117,6 +117,41 @@ TEST_F(PictureRendererTest, APictureDoesNotDependOnThePicturesBeforeIt) {
   EXPECT_THROW((void)renderer.render(plain_inputs, plain), std::runtime_error);
 }
 
+// A model far from its file's origin (site coordinates) is drawn as it is at the origin: the picture of the
+// sheet moved by a million metres, with an arrow, sections, and an eye and target given in its coordinates,
+// matches the sheet's (floats in the model frame tore it apart: its cells 6 cm off, its normals striped).
+TEST_F(PictureRendererTest, AModelFarFromTheOriginIsDrawnAsAtTheOrigin) {
+  const Eigen::RowVector3d offset(1e6, -2e6, 3e5);
+  pushpull::deform::Mesh far = sheet;
+  far.V.rowwise() += offset;
+  const Eigen::MatrixXd far_V = V.rowwise() + offset;
+  const auto far_model = std::make_shared<const RenderModel>(
+      pushpull::app::build_render_model(pushpull::assets::model_from_mesh(far, "far sheet")));
+  auto options = [](const Eigen::RowVector3d& shift) {
+    RenderCommandOptions o = picture("displacement", 96, 64);
+    o.arrow = {0.5 + shift.x(), shift.y(),       0.5 + shift.z(),
+               0.5 + shift.x(), 0.2 + shift.y(), 0.5 + shift.z()};
+    o.sections = 3;
+    o.eye = {1.6 + shift.x(), 1.2 + shift.y(), 1.9 + shift.z()};
+    o.target = {0.5 + shift.x(), 0.05 + shift.y(), 0.5 + shift.z()};
+    return o;
+  };
+  const RenderCommandOptions here = options(Eigen::RowVector3d::Zero()), there = options(offset);
+  PictureRenderer near_renderer(model, 1, false), far_renderer(far_model, 1, false);
+  const TextureRGBA8 near_picture =
+      near_renderer.render(prepare_render_inputs(model, sheet, V, true, here, 1.0), here);
+  const TextureRGBA8 far_picture =
+      far_renderer.render(prepare_render_inputs(far_model, far, far_V, true, there, 1.0), there);
+  int differing = 0;  // pixels off by more than rounding
+  for (std::size_t k = 0; k + 3 < near_picture.pixels.size(); k += 4)
+    for (int c = 0; c < 3; ++c)
+      if (std::abs(near_picture.pixels[k + c] - far_picture.pixels[k + c]) > 8) {
+        ++differing;
+        break;
+      }
+  EXPECT_LE(differing, 10) << "of " << near_picture.pixels.size() / 4 << " pixels";
+}
+
 TEST_F(PictureRendererTest, InputsOfAnotherModelAreRefused) {
   PictureRenderer renderer(model, 1, false);
   const auto other = std::make_shared<const RenderModel>(*model);

@@ -90,10 +90,10 @@ TEST(RenderCli, WritesAPngOfAnOffModelWithValidationClean) {
 }
 
 // The same lit sheet at extreme scales and far from the origin: a sheet 2e-9 across (it came out blank: the
-// camera kept at least 1e-6 from it) and one 2e12 across (black: its normals' squared norms overflowed the
-// floats) look like the sheet 2 across; one 1e9 from the origin, beyond what 32-bit floats resolve for its
-// size, is refused instead of written as a picture of nothing.
-TEST(RenderCli, ExtremeScalesDrawLitAndAModelFloatsCannotPlaceIsRefused) {
+// camera kept at least 1e-6 from it), one 2e12 across (black: its normals' squared norms overflowed the
+// floats) and one 1e9 from the origin (beyond what 32-bit floats resolve for its size: refused as a picture
+// of nothing, until the model was drawn relative to its centre) look like the sheet 2 across.
+TEST(RenderCli, ExtremeScalesAndAModelFarFromTheOriginDrawLikeTheSheetAtTheOrigin) {
   const fs::path flat = temp_dir() / "scale_sheet.off", lifted = temp_dir() / "scale_sheet_lifted.off";
   write_sheets(flat, lifted, 8);
   auto scaled = [&](double scale, double offset, const std::string& name) {
@@ -116,24 +116,22 @@ TEST(RenderCli, ExtremeScalesDrawLitAndAModelFloatsCannotPlaceIsRefused) {
   const fs::path reference = temp_dir() / "scale_1.png";
   ASSERT_EQ(run("render " + scaled(1.0, 0.0, "s1.off") + " --out " + reference.string() + common).status, 0);
   const Png expected = load_png(reference);
-  for (const double scale : {1e-9, 1e12}) {
+  for (const auto& [scale, offset] : {std::pair{1e-9, 0.0}, std::pair{1e12, 0.0}, std::pair{1.0, 1e9}}) {
     const fs::path out = temp_dir() / "scale_x.png";
-    const Result r = run("render " + scaled(scale, 0.0, "sx.off") + " --out " + out.string() + common);
+    const Result r = run("render " + scaled(scale, offset, "sx.off") + " --out " + out.string() + common);
     ASSERT_EQ(r.status, 0) << scale << ": " << r.output;
     const Png png = load_png(out);
     ASSERT_EQ(png.width, 64);
-    for (const auto& [x, y] : {std::pair{32, 32}, std::pair{1, 1}})
-      for (int c = 0; c < 3; ++c)
-        EXPECT_NEAR(png.at(x, y)[c], expected.at(x, y)[c], 12)
-            << "scale " << scale << " at " << x << "," << y;
+    int differing = 0;  // every pixel: the sheet, its shading and the background
+    for (int y = 0; y < 64; ++y)
+      for (int x = 0; x < 64; ++x)
+        for (int c = 0; c < 3; ++c)
+          if (std::abs(png.at(x, y)[c] - expected.at(x, y)[c]) > 12) {
+            ++differing;
+            break;
+          }
+    EXPECT_LE(differing, 8) << "scale " << scale << ", offset " << offset;
   }
-  const fs::path far = temp_dir() / "far.png";
-  fs::remove(far);
-  const Result r = run("render " + scaled(1.0, 1e9, "far.off") + " --out " + far.string() + common);
-  EXPECT_EQ(r.status, 1) << r.output;
-  EXPECT_NE(r.output.find(far.string() + ": the picture would show nothing of the model"), std::string::npos)
-      << r.output;
-  EXPECT_FALSE(fs::exists(far));
 }
 
 TEST(RenderCli, DisplacementColourMapFollowsAKnownDisplacement) {

@@ -20,6 +20,10 @@
 #include <tuple>
 #include <vector>
 
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -391,21 +395,120 @@ TEST(ReplayXr, ADamagedHeaderValueIsNamedAsTheRecordings) {
   const fs::path session = record_session(dir);
   const auto recorded = text_lines(session);
   ASSERT_FALSE(recorded.empty());
-  const std::pair<std::string, std::string> cases[] = {{"\"method\":\"asan\"", "\"method\":\"bogus\""},
-                                                       {"\"mu\":100.0", "\"mu\":0.5"}};
-  for (const auto& [from, to] : cases) {
+  // (from, to, what the message names)
+  const std::tuple<std::string, std::string, std::string> cases[] = {
+      {"\"method\":\"asan\"", "\"method\":\"bogus\"", "header option \"method\""},
+      {"\"mu\":100.0", "\"mu\":0.5", "header option \"mu\""},
+      // Wrong types and values the replay read unchecked: a raw JSON library error naming nothing, an error
+      // blaming --up/--front the user never typed, "|d| inf mm" and NaN in the report.
+      {"\"colour\":\"displacement\"", "\"colour\":5", "header option \"colour\""},
+      {"\"format\":\"pushpull-session-", "\"format\":8,\"x\":\"", "the header's \"format\""},
+      {"\"behaviour_format\":", "\"behaviour_format\":\"new\",\"x\":", "the header's \"behaviour_format\""},
+      {"\"front\":[0.0,-1.0,0.0]", "\"front\":[0.0,0.0,2.0]",
+       "header options \"up\" and \"front\" are parallel"},
+      {"\"life_size_scale\":1.0", "\"life_size_scale\":1e308", "the header's \"life_size_scale\" 1e+308"}};
+  for (const auto& [from, to, named] : cases) {
+    SCOPED_TRACE(to);
     auto lines = recorded;
     ASSERT_NE(lines[0].find(from), std::string::npos) << from << " in " << lines[0];
-    for (std::size_t at = lines[0].find(from); at != std::string::npos; at = lines[0].find(from, at))
+    for (std::size_t at = lines[0].find(from); at != std::string::npos;
+         at = lines[0].find(from, at + to.size()))
       lines[0].replace(at, from.size(), to);
     write_lines(session, lines);
     const auto r = replay(session, dir / "out", "--no-pictures");
     EXPECT_NE(r.status, 0) << r.output;
-    EXPECT_NE(r.output.find(session.string() + ":1: corrupted line: header option \"" +
-                            (from[1] == 'm' && from[2] == 'e' ? "method" : "mu") + "\""),
+    EXPECT_NE(r.output.find(session.string() + ":1: "), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find(named), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("json.exception"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("inf mm"), std::string::npos) << r.output;
+  }
+}
+
+// What undo and redo left is compared too: the recording's end record holds the final model's hash and the
+// commit count (a replay that lost an undo, or a damaged end record, passed "all checks").
+TEST(ReplayXr, TheFinalModelIsComparedWithTheRecordedEnd) {
+  const fs::path dir = test_dir();
+  const fs::path session = record_session(dir);
+  const auto recorded = text_lines(session);
+  {  // The end record's hash damaged.
+    auto lines = recorded;
+    std::size_t line = 0;
+    for (std::size_t i = 0; i < lines.size(); ++i)
+      if (lines[i].find("\"record\":\"end\"") != std::string::npos) {
+        auto j = nlohmann::json::parse(lines[i]);
+        j["hash"] = "0x0123456789abcdef";
+        lines[i] = j.dump();
+        line = i + 1;
+      }
+    ASSERT_GT(line, 0u);
+    write_lines(session, lines);
+    const auto r = replay(session, dir / "out", "--no-pictures");
+    EXPECT_NE(r.status, 0) << r.output;
+    EXPECT_NE(r.output.find("mismatch at the session's end (recording line " + std::to_string(line) + ")"),
               std::string::npos)
         << r.output;
   }
+  {  // The redo record gone: the replay undoes the second push/pull and ends on the first.
+    auto lines = recorded;
+    const auto before = lines.size();
+    lines.erase(std::remove_if(
+                    lines.begin(), lines.end(),
+                    [](const std::string& l) { return l.find("\"record\":\"redo\"") != std::string::npos; }),
+                lines.end());
+    ASSERT_EQ(lines.size() + 1, before);
+    write_lines(session, lines);
+    const auto r = replay(session, dir / "out", "--no-pictures");
+    EXPECT_NE(r.status, 0) << r.output;
+    EXPECT_NE(r.output.find("mismatch at the session's end"), std::string::npos) << r.output;
+  }
+}
+
+// Without --method every push/pull is solved as its commit record says: a commit solved with another method
+// (a damaged record, a lost method change) is a mismatch, not a "match (d)".
+TEST(ReplayXr, ACommitSolvedWithAnotherMethodThanRecordedIsAMismatch) {
+  const fs::path dir = test_dir();
+  const fs::path session = record_session(dir);
+  auto lines = text_lines(session);
+  std::size_t line = 0;
+  for (std::size_t i = 0; i < lines.size() && line == 0; ++i)
+    if (lines[i].find("\"record\":\"commit\"") != std::string::npos) {
+      auto j = nlohmann::json::parse(lines[i]);
+      j["method"] = "arap-sr";
+      lines[i] = j.dump();
+      line = i + 1;
+    }
+  ASSERT_GT(line, 0u);
+  write_lines(session, lines);
+  const auto r = replay(session, dir / "out", "--no-pictures");
+  EXPECT_NE(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("mismatch at commit 1 (recording line " + std::to_string(line) +
+                          "): solved with asan, recorded with arap-sr"),
+            std::string::npos)
+      << r.output;
+}
+
+// One replay at a time in an output folder: two at once mixed their recordings and reports, and each said
+// "all checks passed". A running replay holds a lock on the folder (flock on its descriptor); here the test
+// holds it.
+TEST(ReplayXr, AFolderAnotherReplayIsWritingIntoIsRefused) {
+  const fs::path dir = test_dir();
+  const fs::path session = record_session(dir);
+  fs::create_directories(dir / "busy");
+  std::ofstream(dir / "busy" / "notes.txt") << "the user's\n";
+  const int fd = ::open((dir / "busy").c_str(), O_RDONLY | O_DIRECTORY);
+  ASSERT_GE(fd, 0);
+  ASSERT_EQ(::flock(fd, LOCK_EX | LOCK_NB), 0);
+  const auto held = replay(session, dir / "busy", "--no-pictures");
+  EXPECT_NE(held.status, 0) << held.output;
+  EXPECT_NE(
+      held.output.find((dir / "busy").string() + ": another pushpull replay is writing into this folder"),
+      std::string::npos)
+      << held.output;
+  EXPECT_FALSE(fs::exists(dir / "busy" / "replay-session.jsonl"));
+  ::close(fd);  // released: the replay runs
+  const auto free = replay(session, dir / "busy", "--no-pictures");
+  EXPECT_EQ(free.status, 0) << free.output;
+  EXPECT_TRUE(fs::exists(dir / "busy" / "notes.txt"));
 }
 
 TEST(ReplayXr, CorruptedLineIsNamedByItsNumber) {

@@ -336,7 +336,16 @@ std::vector<std::uint8_t> encode_glb(const Model& model, const Eigen::MatrixXd& 
     if (key.first >= 0 && key.first < static_cast<int>(nodes.size())) {
       nodes[static_cast<std::size_t>(key.first)]["mesh"] = mesh_index;
     } else {
-      nodes.push_back({{"name", first.name}, {"mesh", mesh_index}});
+      json node = {{"name", first.name}, {"mesh", mesh_index}};
+      // A plain mesh's primitive keeps its positions relative to its centre (load_model.cpp): the node
+      // carries the rest of its transform.
+      if (!first.T_model_node.isIdentity(0.0)) {
+        json matrix = json::array();
+        for (int c = 0; c < 4; ++c)
+          for (int r = 0; r < 4; ++r) matrix.push_back(first.T_model_node(r, c));  // column-major
+        node["matrix"] = std::move(matrix);
+      }
+      nodes.push_back(std::move(node));
       const int scene = document["scene"].is_number_integer() ? document["scene"].get<int>() : 0;
       document["scenes"][static_cast<std::size_t>(
           std::clamp(scene, 0, static_cast<int>(document["scenes"].size()) - 1))]["nodes"]
@@ -352,7 +361,9 @@ std::vector<std::uint8_t> encode_glb(const Model& model, const Eigen::MatrixXd& 
     document["buffers"] = json::array({json{{"byteLength", glb.bin_.size()}}});
   }
   if (warnings_out) *warnings_out = warnings;
-  return detail::write_glb_container(document.dump(), glb.bin_);
+  // (replace: a name from a file name that is not UTF-8 is written with U+FFFD; glTF JSON is UTF-8)
+  return detail::write_glb_container(document.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace),
+                                     glb.bin_);
 }
 
 std::vector<std::string> write_glb(const Model& model, const Eigen::MatrixXd& deformed_V,

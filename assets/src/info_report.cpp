@@ -3,6 +3,7 @@
 #include "pushpull/deform/mesh_components.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <map>
 #include <numeric>
@@ -16,6 +17,18 @@ namespace {
 std::string number(double value) {
   char text[64];
   std::snprintf(text, sizeof text, "%.6g", value);
+  return text;
+}
+
+// A bound's coordinate to 1e-6 of the model's size: a model far from its file's origin (site coordinates,
+// 1e6 m away) keeps the digits that say where it ends ("%.6g" printed 999999 and 1e+06 for a 1.5 m part).
+std::string coordinate(double value, double size) {
+  const double resolution = size > 0.0 ? 1e-6 * size : 1e-6 * std::abs(value);
+  int digits = 6;
+  if (resolution > 0.0 && std::abs(value) > resolution)
+    digits = std::clamp(int(std::ceil(std::log10(std::abs(value) / resolution))), 6, 17);
+  char text[64];
+  std::snprintf(text, sizeof text, "%.*g", digits, value);
   return text;
 }
 
@@ -128,10 +141,18 @@ std::string describe_model(const Model& model) {
   out << "model:        " << model.source_path.string() << " (" << report.format << ")\n";
   out << "size:         " << number(size.x()) << " x " << number(size.y()) << " x " << number(size.z())
       << " (file units, glTF: m; longest side " << number(size.maxCoeff()) << ")\n";
-  if (!model.bounds.isEmpty())
-    out << "bounds:       min (" << number(model.bounds.min().x()) << ", " << number(model.bounds.min().y())
-        << ", " << number(model.bounds.min().z()) << ") max (" << number(model.bounds.max().x()) << ", "
-        << number(model.bounds.max().y()) << ", " << number(model.bounds.max().z()) << ")\n";
+  if (!model.bounds.isEmpty()) {
+    const double across = size.maxCoeff();
+    auto at = [&](const Eigen::Vector3d& p) {
+      out << '(' << coordinate(p.x(), across) << ", " << coordinate(p.y(), across) << ", "
+          << coordinate(p.z(), across) << ')';
+    };
+    out << "bounds:       min ";
+    at(model.bounds.min());
+    out << " max ";
+    at(model.bounds.max());
+    out << '\n';
+  }
   out << "scale:        " << number(model.scale) << " (life size: longest side "
       << number(size.maxCoeff() * model.scale) << " m)\n";
   std::set<int> nodes, meshes;

@@ -73,6 +73,20 @@ void load_draco_file(std::span<const std::uint8_t> bytes, const std::string& nam
 }
 
 // OFF/OBJ/PLY through deform's reader: one primitive, and the deform mesh keeps double precision.
+// A plain mesh's primitive: its positions relative to the centre of its bounding box, the centre in the node
+// transform (double). Stored as floats, a mesh far from its file's origin (1e6 m: site or vehicle
+// coordinates) lost its shape to their 24-bit mantissa (drawn torn, normals striped); relative to its centre
+// it keeps it.
+void set_centred_positions(Primitive& primitive, const Eigen::MatrixXd& V) {
+  Eigen::AlignedBox3d box;
+  for (Eigen::Index v = 0; v < V.rows(); ++v) box.extend(V.row(v).transpose());
+  const Eigen::Vector3d centre =
+      box.isEmpty() ? Eigen::Vector3d(Eigen::Vector3d::Zero()) : Eigen::Vector3d(box.center());
+  primitive.positions = (V.rowwise() - centre.transpose()).cast<float>();
+  primitive.T_model_node = Eigen::Matrix4d::Identity();
+  primitive.T_model_node.topRightCorner<3, 1>() = centre;
+}
+
 void load_plain_mesh(std::span<const std::uint8_t> bytes, const std::string& name,
                      const std::string& extension, Model& model, deform::Mesh& exact) {
   const std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
@@ -101,7 +115,7 @@ void load_plain_mesh(std::span<const std::uint8_t> bytes, const std::string& nam
                       static_cast<long long>(v), exact.V(v, axis));
         throw AssetError(name + text);
       }
-  primitive.positions = exact.V.cast<float>();
+  set_centred_positions(primitive, exact.V);
   std::vector<std::uint32_t> indices;
   indices.reserve(static_cast<std::size_t>(exact.F.size()));
   for (Eigen::Index f = 0; f < exact.F.rows(); ++f)
@@ -203,7 +217,7 @@ Model model_from_mesh(const deform::Mesh& mesh, const std::string& name) {
   model.report.format = "mesh";
   Primitive primitive;
   primitive.name = name;
-  primitive.positions = mesh.V.cast<float>();
+  set_centred_positions(primitive, mesh.V);
   std::vector<std::uint32_t> indices;
   indices.reserve(static_cast<std::size_t>(mesh.F.size()));
   for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)

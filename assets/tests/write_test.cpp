@@ -6,6 +6,7 @@
 
 #include <Eigen/Geometry>
 
+#include <cmath>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -177,6 +178,35 @@ TEST(AssetsWrite, PlainMeshBecomesAValidGlb) {
   const Model again = load_model(dir / "quad.glb");
   EXPECT_NEAR(again.bounds.max().z(), 0.5, 1e-6);
   EXPECT_TRUE(testing::validates_with_zero_errors(dir / "quad.glb"));
+}
+
+// A plain mesh far from its file's origin (site coordinates: 1e6 m) keeps its shape through the float
+// positions a GLB holds: they are relative to the mesh's centre, which the node's matrix carries in double.
+// (Stored as absolute floats, its 10 cm cells came back up to 6 cm off.)
+TEST(AssetsWrite, APlainMeshFarFromTheOriginKeepsItsShape) {
+  testing::ScratchDir dir;
+  deform::Mesh mesh;
+  const int n = 11;
+  mesh.V.resize(n * n, 3);
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i)
+      mesh.V.row(j * n + i) << 1e6 + 0.1 * i + 1e-4 * j, -2e6 + 0.1 * j, 3e5 + 0.01 * std::sin(double(i * j));
+  mesh.F.resize(2 * (n - 1) * (n - 1), 3);
+  int f = 0;
+  for (int j = 0; j + 1 < n; ++j)
+    for (int i = 0; i + 1 < n; ++i) {
+      const int a = j * n + i;
+      mesh.F.row(f++) << a, a + 1, a + n;
+      mesh.F.row(f++) << a + 1, a + n + 1, a + n;
+    }
+  const Model model = model_from_mesh(mesh, "far");
+  Eigen::MatrixXd V = mesh.V;
+  V(60, 2) += 0.05;  // one vertex moved: written rebuilt; the others as stored
+  write_glb(model, V, dir / "far.glb");
+  const Model again = load_model(dir / "far.glb");
+  ASSERT_EQ(again.deform_mesh.V.rows(), V.rows());
+  EXPECT_LT((again.deform_mesh.V - V).cwiseAbs().maxCoeff(), 1e-6);  // metres, on a 1 m mesh at 1e6 m
+  EXPECT_TRUE(testing::validates_with_zero_errors(dir / "far.glb"));
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #include <stb/stb_image_write.h>
 
+#include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -32,12 +33,18 @@ XrResult check_space(const Session& s, XrSpace handle) {
   return (space == nullptr || space->session != &s) ? XR_ERROR_HANDLE_INVALID : XR_SUCCESS;
 }
 
-bool capture_view(const Session& s, const XrSwapchainSubImage& sub, const std::string& file) {
+// Writes the view's image to `file`; false with `why` set when it could not.
+bool capture_view(const Session& s, const XrSwapchainSubImage& sub, const std::string& file,
+                  std::string& why) {
   const Swapchain* sc = lookup<Swapchain>(sub.swapchain);
   const VkFormat f = sc->format;
   const bool bgra = f == VK_FORMAT_B8G8R8A8_SRGB || f == VK_FORMAT_B8G8R8A8_UNORM;
   const bool rgba = f == VK_FORMAT_R8G8B8A8_SRGB || f == VK_FORMAT_R8G8B8A8_UNORM;
-  if (!bgra && !rgba) return false;
+  if (!bgra && !rgba) {
+    why = "8-bit RGBA/BGRA swapchains only";
+    return false;
+  }
+  why = "the copy from the swapchain image failed";
   const VulkanBinding& vk = s.vk;
   const uint32_t w = static_cast<uint32_t>(sub.imageRect.extent.width);
   const uint32_t h = static_cast<uint32_t>(sub.imageRect.extent.height);
@@ -101,10 +108,14 @@ bool capture_view(const Session& s, const XrSwapchainSubImage& sub, const std::s
       // Whole or not at all: written beside it, then renamed into place (a process killed mid-write leaves no
       // half picture under the capture's name).
       const std::string part = file + ".part";
+      errno = 0;
       ok = stbi_write_png(part.c_str(), static_cast<int>(w), static_cast<int>(h), 4, pixels.data(),
                           static_cast<int>(w * 4)) != 0 &&
            std::rename(part.c_str(), file.c_str()) == 0;
-      if (!ok) std::remove(part.c_str());
+      if (!ok) {
+        why = std::string("cannot write it: ") + (errno != 0 ? std::strerror(errno) : "unknown error");
+        std::remove(part.c_str());
+      }
     }
   }
   if (memory != VK_NULL_HANDLE) vkFreeMemory(vk.device, memory, nullptr);
@@ -156,11 +167,10 @@ int capture_frame(Session& s, const XrFrameEndInfo& info, int64_t frame_index) {
     std::snprintf(name, sizeof name, "frame_%06lld_%s.png", static_cast<long long>(frame_index),
                   what.c_str());
     const std::string file = (std::filesystem::path(c.capture_dir) / name).string();
-    if (capture_view(s, sub, file))
+    if (std::string why; capture_view(s, sub, file, why))
       ++written;
     else
-      std::fprintf(stderr, "pushpull xr sim: could not capture %s (8-bit RGBA/BGRA swapchains only)\n",
-                   file.c_str());
+      std::fprintf(stderr, "pushpull xr sim: could not capture %s (%s)\n", file.c_str(), why.c_str());
   };
   bool projection_written = false;
   int quads = 0;

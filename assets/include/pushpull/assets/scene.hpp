@@ -76,7 +76,8 @@ struct Image {
 // Only triangles are kept (strips and fans become lists; points and lines are skipped with a warning).
 struct Primitive {
   std::string name;   // "<node name>/<mesh name>#<primitive>"
-  int node = -1;      // glTF node index (-1 for files without nodes, e.g. .drc)
+  int node = -1;      // glTF node index (-1 for files without nodes, e.g. .drc; a plain mesh, OFF/OBJ/PLY,
+                      // holds its positions relative to its bounding-box centre, the centre in T_model_node)
   int mesh = -1;      // glTF mesh index
   int primitive = 0;  // index of the primitive in that mesh
   int material = -1;  // index into Model::materials, -1 = glTF default material
