@@ -1,6 +1,10 @@
 #include "commit_reports.hpp"
+#include "region_notes.hpp"
 
 #include <cstdio>
+#include <optional>
+#include <string>
+#include <vector>
 
 namespace pushpull::app {
 
@@ -18,6 +22,20 @@ void take_commits(CommitWatch& commits, SessionRecorder& recorder, double t,
           stderr,
           "pushpull review: commit %zu (%s) is not converged after %d iterations (%s); undo takes it back\n",
           c.index, std::string(deform::method_name(s.method)).c_str(), s.iteration, estimate);
+    }
+    // What `pushpull deform` and the replay's report say of the same push/pull (a whole part moved, a handle
+    // torn out, the solver's own warnings), said here too: the supervisor at the terminal saw none of it.
+    // (The solver's checks of the whole model, "mesh: 83 connected components ...", are the model's, the
+    // same for every commit, and `pushpull info` lists them: left out here.)
+    if (!quiet) {
+      std::vector<std::string> warnings;
+      for (const std::string& w : s.warnings)
+        if (w.rfind("mesh: ", 0) != 0) warnings.push_back(w);
+      if (s.region)
+        if (const std::optional<UnheldRegion> unheld = unheld_region(*s.region))
+          warnings.insert(warnings.begin(), unheld_region_text(*unheld));
+      for (const std::string& w : warnings)
+        std::fprintf(stderr, "pushpull review: commit %zu: warning: %s\n", c.index, w.c_str());
     }
     if (on_commit) on_commit(c);
   }

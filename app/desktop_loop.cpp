@@ -356,6 +356,7 @@ void run_desktop(const ReviewCommandOptions& given, const ReviewSetup& setup) {
           for (int i = 0; i < colour_steps; ++i) colour = next_colour(colour);
           scene.set_colour(colour);
           recorder.write_colour(t, scene.colour());
+          log.write_colour(scene.colour());
         }
         scene.set_highlight(interaction.hover_handle(1));
         // M pressed as the button went up (its release still queued): applied once the drag has ended.

@@ -1,5 +1,7 @@
 #include "render_session.hpp"
 
+#include "point_text.hpp"
+
 #include "commands.hpp"
 
 #include "pushpull/deform/mesh_io.hpp"
@@ -90,16 +92,15 @@ void warn_if_inside(const View& view, const RenderInputs& inputs, const Bounds& 
   if (std::abs(winding) >= 0.5)
     std::fprintf(
         stderr,
-        "pushpull render: warning: the camera is inside the model (eye at %.3g %.3g %.3g m, winding "
-        "number %.2f): the picture shows the model from inside; use a smaller ZOOM in --camera or move "
-        "--eye outside\n",
-        s * at.x(), s * at.y(), s * at.z(), winding);
+        "pushpull render: warning: the camera is inside the model (eye at %s m, winding number %.2f): the "
+        "picture shows the model from inside; use a smaller ZOOM in --camera or move --eye outside\n",
+        point_in_metres_text(s * at).c_str(), winding);
   else if (orbit && in_box)
     std::fprintf(
         stderr,
-        "pushpull render: warning: the orbit camera ends inside the model's bounding box (eye at %.3g %.3g "
-        "%.3g m): parts of the model are behind it; use a smaller ZOOM in --camera\n",
-        s * at.x(), s * at.y(), s * at.z());
+        "pushpull render: warning: the orbit camera ends inside the model's bounding box (eye at %s m): "
+        "parts of the model are behind it; use a smaller ZOOM in --camera\n",
+        point_in_metres_text(s * at).c_str());
 }
 
 // Side by side: left | right.
@@ -370,9 +371,8 @@ void render_to_png(const RenderInputs& inputs, const RenderCommandOptions& o) {
   if (shows_nothing(image)) {
     if (o.eye.empty() && o.target.empty() && o.camera.size() < 3)  // framed by us: our failure, not a result
       throw CommandError(o.out +
-                         ": the picture would show nothing of the model (framed automatically; its "
-                         "coordinates may be beyond what 32-bit floats draw: a model far from the origin "
-                         "for its size, or of an extreme scale); nothing written");
+                         ": the picture would show nothing of the model (framed automatically: a model of "
+                         "an extreme scale, beyond what 32-bit floats draw?); nothing written");
     std::fprintf(stderr,
                  "pushpull render: warning: the picture shows nothing of the model (--eye/--target "
                  "look away from it, or --camera's zoom leaves it too small to see)\n");

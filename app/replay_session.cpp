@@ -148,12 +148,19 @@ class OutFolderLock {
       throw CommandError(folder.string() + ": cannot open the output folder (" + std::strerror(errno) + ")");
     if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
       const int error = errno;
-      ::close(fd_);
-      throw CommandError(folder.string() + ": " +
-                         (error == EWOULDBLOCK
-                              ? std::string("another pushpull replay is writing into this folder; "
-                                            "wait for it to end or give --out another folder")
-                              : std::string("cannot lock it (") + std::strerror(error) + ")"));
+      if (error == EWOULDBLOCK) {
+        ::close(fd_);
+        throw CommandError(
+            folder.string() +
+            ": another pushpull replay is writing into this folder; wait for it to end or give "
+            "--out another folder");
+      }
+      // A file system that cannot lock a folder (NFS emulates flock with byte-range locks, which a folder
+      // opened for reading cannot take): said, and the replay goes on unguarded.
+      std::fprintf(
+          stderr,
+          "pushpull replay: warning: %s: cannot lock the folder against a second replay (%s); going on\n",
+          folder.c_str(), std::strerror(error));
     }
   }
   OutFolderLock(const OutFolderLock&) = delete;
@@ -255,13 +262,15 @@ void run_replay(const ReplayOptions& o) {
     refuse_inputs_in_out_folder(out, inputs);
   }
   std::error_code ec;
+  fs::create_directories(out, ec);  // (an error is said below, with eyes/)
+  std::optional<OutFolderLock> lock;
+  if (fs::is_directory(out, ec)) lock.emplace(out);  // before anything is written there
   fs::create_directories(out / "eyes", ec);
   if (ec)
     throw CommandError(out.string() + ": " +
                        (fs::is_directory(out) ? "cannot write into the output folder (its eyes/ folder): "
                                               : "cannot create the output folder: ") +
                        ec.message());
-  const OutFolderLock lock(out);
   // The eyes are captured by the runtime, which can only say on stderr that it could not write one: a folder
   // the replay cannot write into is refused here, before the session (it went on to "all checks passed" with
   // no eye images).
@@ -825,12 +834,13 @@ void run_replay(const ReplayOptions& o) {
           replayed_end != nullptr && recorded_end->contains("hash") && replayed_end->contains("hash")) {
         const json recorded_commits = recorded_end->value("commits", json());
         const json replayed_commits = replayed_end->value("commits", json());
+        auto text = [](const json& v) { return v.is_string() ? v.get<std::string>() : v.dump(); };
         if ((*recorded_end)["hash"] != (*replayed_end)["hash"] || recorded_commits != replayed_commits)
-          first_mismatch = "the session's end (recording line " +
-                           std::to_string(recorded_end->value("line", 0)) + "): the final model has hash " +
-                           (*replayed_end)["hash"].dump() + " after " + replayed_commits.dump() +
-                           " commit(s), recorded " + (*recorded_end)["hash"].dump() + " after " +
-                           recorded_commits.dump() + " (the undos and redos went otherwise)";
+          first_mismatch =
+              "the session's end (recording line " + std::to_string(recorded_end->value("line", 0)) +
+              "): the final model has hash " + text((*replayed_end)["hash"]) + " after " +
+              text(replayed_commits) + " commit(s), recorded " + text((*recorded_end)["hash"]) + " after " +
+              text(recorded_commits) + " (the undos and redos went otherwise, or the end record is damaged)";
       }
     } catch (const std::exception& e) {
       std::fprintf(stderr,

@@ -307,12 +307,16 @@ void run_review(const ReviewCommandOptions& o) {
       if (c == scene.colour()) return;  // e.g. a replayed record, then the panel's choice it came from
       scene.set_colour(c);
       recorder.write_colour(t, c);
+      log.write_colour(c);
     };
     std::size_t next_colour_change = 0;  // into o.colour_changes
     std::size_t next_size_change = 0;    // into o.size_changes
     // A pull longer than the whole model (a tracking jump at the release, a hand thrown): committed as asked,
     // and said, with the way back.
-    const double model_size = deform::curvature_reference_length(rest->V);  // the bounding box's diagonal
+    // Its longest side, as the review prints the model's size (the diagonal let a 1.5 m pull of a 1 m cube
+    // pass unsaid).
+    const double model_size =
+        rest->V.rows() > 0 ? (rest->V.colwise().maxCoeff() - rest->V.colwise().minCoeff()).maxCoeff() : 0.0;
     auto log_event = [&](const InteractionEvent& e) {
       if (e.kind == InteractionEvent::Kind::Committed) commits.expect_commit(e.request);
       log.write_interaction(e, life);
@@ -320,9 +324,9 @@ void run_review(const ReviewCommandOptions& o) {
       if (e.kind == InteractionEvent::Kind::Committed && model_size > 0.0 && e.d.norm() > model_size)
         std::fprintf(
             stderr,
-            "pushpull review: warning: a pull of %.2f m, %.1f times the model's size (a tracking jump "
-            "at the release?); undo takes it back\n",
-            life.scale() * e.d.norm(), e.d.norm() / model_size);
+            "pushpull review: warning: a pull of %.2f m, %.1f times the model's longest side (%.2f m): a "
+            "tracking jump at the release?; undo takes it back\n",
+            life.scale() * e.d.norm(), e.d.norm() / model_size, life.scale() * model_size);
     };
 
     // Ctrl-C or SIGTERM: the review ends as with Esc (the committed work is written); a second one ends it at

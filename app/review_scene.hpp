@@ -3,7 +3,8 @@
 // curvature-sign scalars; while a drag's previews show, its handle red, fixed border blue and region
 // tinted), and the eye views of an XR frame.
 //
-// Frames: the mesh is in model space (file units); draws place it with T_stage_model; views come from
+// Frames: the mesh is in the render frame (model space, file units, less RenderModel::origin); draws place
+// it with T_stage_model * translate(origin), composed in double; views come from
 // T_stage_eye poses (stage metres). Shapes: snapshot positions are #Vd by 3 (the welded deform mesh);
 // the render mesh has #Vr vertices mapped by RenderModel::deform_vertex.
 // Ownership: borrows the Renderer (outlives this). Thread-safety: the renderer's thread only.

@@ -161,6 +161,11 @@ void EventLog::write_method(deform::Method method) {
   if (print_) std::printf("pushpull review: method %s for the next push/pulls\n", name.c_str());
 }
 
+void EventLog::write_colour(ReviewColour colour) {
+  write({{"event", "colour"}, {"colour", colour_name(colour)}});
+  if (print_) std::printf("pushpull review: colour map %s\n", colour_name(colour));
+}
+
 void EventLog::write_interaction(const InteractionEvent& e, const LifeSize& life) {
   static const char* names[] = {"press", "commit", "cancel"};
   nlohmann::json line{{"event", names[int(e.kind)]},

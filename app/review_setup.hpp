@@ -51,6 +51,9 @@ class EventLog {
   // {"event": "method", "method": NAME}: the method of the push/pulls from here on; printed ("method NAME for
   // the next push/pulls") unless quiet.
   void write_method(deform::Method method);
+  // {"event": "colour", "colour": NAME}: the colour map shown from here on; printed ("colour map NAME")
+  // unless quiet.
+  void write_colour(ReviewColour colour);
 
  private:
   std::ofstream file_;

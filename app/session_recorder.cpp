@@ -105,6 +105,16 @@ void SessionRecorder::write_line(const json& line) {
 void SessionRecorder::write_header(const ReviewCommandOptions& o, const ReviewSetup& s,
                                    const RecordingContext& c) {
   if (!file_.is_open()) return;
+  // JSON holds UTF-8: a model path that is not (a Latin-1 file name) is written with U+FFFD and names no
+  // file.
+  try {
+    (void)json(fs::absolute(o.model).string()).dump();
+  } catch (const json::type_error&) {
+    std::fprintf(stderr,
+                 "pushpull review: warning: %s: the model's path is not UTF-8; the recording names it with "
+                 "U+FFFD in its place: replay it with --model FILE\n",
+                 path_.c_str());
+  }
   std::vector<double> T;
   for (int r = 0; r < 4; ++r)
     for (int col = 0; col < 4; ++col) T.push_back(s.placement.T_stage_model(r, col));

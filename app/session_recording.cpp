@@ -3,6 +3,7 @@
 #include "commands.hpp"
 #include "review_colour.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 
@@ -181,12 +182,15 @@ SessionRecording read_lines(const std::string& path, const std::string& text, st
                     std::string("header option \"") + key + "\" must be a finite, non-zero direction");
       }
       {
+        // place_on_stage's rule (stage_placement.cpp), so that every review it placed replays.
         auto axis = [&](const char* key) {
           const nlohmann::json& a = (*options)[key];
           const Eigen::Vector3d v(a[0].get<double>(), a[1].get<double>(), a[2].get<double>());
-          return Eigen::Vector3d(v / v.stableNorm());
+          const double plain = v.norm();
+          return plain > 0.0 && std::isfinite(plain) ? v : Eigen::Vector3d(v / v.stableNorm());
         };
-        if (axis("up").cross(axis("front")).norm() < 1e-6)
+        const Eigen::Vector3d up = axis("up").normalized(), front = axis("front");
+        if ((front - front.dot(up) * up).norm() < 1e-9 * std::max(1.0, front.norm()))
           corrupted(path, 1, "header options \"up\" and \"front\" are parallel: they place no model");
       }
       if (options->contains("colour") &&
@@ -384,9 +388,11 @@ SessionRecording read_session_recording(const std::string& path) {
   const std::filesystem::file_status status = std::filesystem::status(path, error);
   if (std::filesystem::is_directory(status))
     throw CommandError(path + ": is a folder, not a session recording");
-  // Read whole: a device or a pipe that never ends (/dev/zero) took all memory.
-  if (!error && std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
-    throw CommandError(path + ": is not a regular file (a device or a pipe), not a session recording");
+  // Read whole: a device that never ends (/dev/zero) took all memory. (A pipe, replay <(zcat rec.gz), is
+  // read.)
+  if (!error && std::filesystem::exists(status) && !std::filesystem::is_regular_file(status) &&
+      !std::filesystem::is_fifo(status))
+    throw CommandError(path + ": is a device or a socket, not a session recording");
   if (error && error != std::errc::no_such_file_or_directory)
     throw CommandError(path + ": cannot open the session recording (" + error.message() + ")");
   std::ifstream in(path, std::ios::binary);

@@ -50,6 +50,13 @@ std::optional<renderer::RenderPass> SupervisorMirror::pass(
   hud_.place_top_left(camera_, 0.03);
   if (!copy && hand_label != nullptr)
     if (auto d = hand_label->draw()) {
+      // Turned to face this view's eye (it faces the headset, which this view is not), at least as tall a
+      // line as the HUD's small print, kept inside the image, then moved clear of the HUD.
+      const float w = hand_label->width(), h = hand_label->height();
+      d->T_world_mesh = facing_view(d->T_world_mesh, camera_);
+      d->T_world_mesh =
+          at_least_lines_tall(d->T_world_mesh, w, h, int(hand_label->lines().size()), camera_, 0.02f);
+      d->T_world_mesh = inside_image(d->T_world_mesh, w, h, camera_, 0.02f);
       if (const auto hud = label_image_rect(hud_.transform(), hud_.width(), hud_.height(), camera_))
         d->T_world_mesh =
             clear_of_hud(d->T_world_mesh, hand_label->width(), hand_label->height(), *hud, camera_);

@@ -89,4 +89,66 @@ TEST(HudClearance, ATiltedPanelSeenFromATurnedCameraClearsTheHud) {
     for (int r = 0; r < 3; ++r) EXPECT_NEAR(moved[c][r], T[c][r], 1e-5f);
 }
 
+// A window's own view sees the readout facing the headset, at a slant; turned to face the view, it keeps its
+// place and size, and lies parallel to the image with its text along the image's x.
+TEST(HudClearance, APanelTurnedToFaceTheViewKeepsItsPlaceAndSize) {
+  const auto view = camera();
+  const glm::mat4 tilted = glm::rotate(glm::scale(panel_at({0.3f, -0.4f, -2.0f}), glm::vec3(1.5f)),
+                                       glm::radians(60.0f), glm::vec3(1.0f, 0.3f, 0.0f));
+  const glm::mat4 facing = pushpull::app::facing_view(tilted, view);
+  for (int r = 0; r < 3; ++r) EXPECT_FLOAT_EQ(facing[3][r], tilted[3][r]);  // the same bottom centre
+  EXPECT_NEAR(facing[0][0], 1.5f, 1e-5f);                                   // text along +x, the same size
+  EXPECT_NEAR(facing[1][1], 1.5f, 1e-5f);                                   // lines up +y
+  EXPECT_NEAR(facing[2][2], 1.5f, 1e-5f);                                   // facing the eye (+z)
+  // Its image: as wide as a 0.3 x 0.15 m panel 2 m away is (no slant foreshortens it).
+  const auto rect = label_image_rect(facing, 0.2f, 0.1f, view);
+  ASSERT_TRUE(rect);
+  const float expected_width = 0.3f / 2.0f * view.projection[0][0];
+  EXPECT_NEAR(rect->high.x - rect->low.x, expected_width, 1e-4f);
+}
+
+// Seen from farther off than the headset sees it, the readout is scaled up about its bottom centre until a
+// line is the height asked for; a panel already as tall keeps its size.
+TEST(HudClearance, APanelTooSmallInTheImageIsScaledUpToALineHeight) {
+  const auto view = camera();
+  const glm::mat4 far = panel_at({0.2f, 0.0f, -20.0f});  // two lines of 0.05 m, 20 m away
+  const auto before = label_image_rect(far, 0.2f, 0.1f, view);
+  ASSERT_TRUE(before);
+  ASSERT_LT((before->high.y - before->low.y) / 2.0f, 2.0f * 0.02f);
+  const glm::mat4 scaled = pushpull::app::at_least_lines_tall(far, 0.2f, 0.1f, 2, view, 0.02f);
+  const auto after = label_image_rect(scaled, 0.2f, 0.1f, view);
+  ASSERT_TRUE(after);
+  EXPECT_NEAR((after->high.y - after->low.y) / 2.0f, 2.0f * 0.02f, 1e-4f);
+  for (int r = 0; r < 3; ++r) EXPECT_FLOAT_EQ(scaled[3][r], far[3][r]);
+  const glm::mat4 near = panel_at({0.2f, 0.0f, -0.5f});
+  EXPECT_EQ(pushpull::app::at_least_lines_tall(near, 0.2f, 0.1f, 2, view, 0.02f), near);
+}
+
+// A readout by a hand held low (below the image's bottom edge) is moved up just inside it; one inside stays;
+// one larger than the image shows its top-left corner.
+TEST(HudClearance, APanelOutsideTheImageIsMovedJustInside) {
+  const auto view = camera();
+  const float margin = 0.02f;
+  const glm::mat4 low = panel_at({0.1f, -2.0f, -2.0f});  // far below: image y > 1 (Vulkan's y is down)
+  const auto before = label_image_rect(low, 0.2f, 0.1f, view);
+  ASSERT_TRUE(before);
+  ASSERT_GT(before->low.y, 1.0f);
+  const glm::mat4 moved = pushpull::app::inside_image(low, 0.2f, 0.1f, view, margin);
+  const auto after = label_image_rect(moved, 0.2f, 0.1f, view);
+  ASSERT_TRUE(after);
+  EXPECT_NEAR(after->high.y, 1.0f - margin, 1e-4f);  // just inside the bottom edge
+  EXPECT_NEAR(after->low.x, before->low.x, 1e-5f);   // not moved sideways
+  EXPECT_NEAR(moved[3][2], low[3][2], 1e-5f);        // at its depth
+  const glm::mat4 inside = panel_at({0.1f, 0.1f, -2.0f});
+  EXPECT_EQ(pushpull::app::inside_image(inside, 0.2f, 0.1f, view, margin), inside);
+  const auto huge =
+      label_image_rect(pushpull::app::inside_image(inside, 20.0f, 10.0f, view, margin), 20.0f, 10.0f, view);
+  ASSERT_TRUE(huge);
+  EXPECT_NEAR(huge->low.x, -1.0f + margin, 1e-4f);
+  EXPECT_NEAR(huge->low.y, -1.0f + margin, 1e-4f);
+  // Behind the eye: left as it is.
+  const glm::mat4 behind = panel_at({0.0f, 0.0f, 2.0f});
+  EXPECT_EQ(pushpull::app::inside_image(behind, 0.2f, 0.1f, view, margin), behind);
+}
+
 }  // namespace

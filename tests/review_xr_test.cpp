@@ -1316,14 +1316,15 @@ TEST(ReviewXr, ButtonsThatDoNothingMidDragSaySo) {
   expect_replays_with_commits(recording);
 }
 
-// A pull longer than the whole model (a tracking jump at the release) commits as asked and is warned of; no
-// controller bound at all is said by the review after 5 s, and a profile xr/sim is asked for but cannot make
-// current by xr/sim.
+// A pull longer than the whole model (a tracking jump at the release) commits as asked and is warned of: 1.7
+// m on the 1.5 m bonnet (longer than its longest side, shorter than its 1.9 m diagonal, which let it pass);
+// no controller bound at all is said by the review after 5 s, and a profile xr/sim is asked for but cannot
+// make current by xr/sim.
 TEST(ReviewXr, APullLongerThanTheModelIsWarnedOf) {
   const fs::path dir = test_dir();
   const std::string script =
       script_start() +
-      R"({"t":1.1,"path":"/user/hand/right/input/aim/pose","pose":{"p":[0.0123,1000,5000],"q":[-0.70710678,0,0,0.70710678]}}
+      R"({"t":1.1,"path":"/user/hand/right/input/aim/pose","pose":{"p":[0.0123,0.5,1.05],"q":[-0.70710678,0,0,0.70710678]}}
 {"t":1.2,"path":"/user/hand/right/input/trigger/value","value":0.0}
 {"t":2.0,"event":"exit"}
 )";
@@ -1331,7 +1332,8 @@ TEST(ReviewXr, APullLongerThanTheModelIsWarnedOf) {
   ASSERT_EQ(run.result.status, 0) << run.result.output;
   ASSERT_EQ(run.of("commit").size(), 1u) << run.result.output;
   EXPECT_NE(
-      run.result.output.find("times the model's size (a tracking jump at the release?); undo takes it back"),
+      run.result.output.find("pushpull review: warning: a pull of 1.70 m, 1.1 times the model's longest side "
+                             "(1.50 m): a tracking jump at the release?; undo takes it back"),
       std::string::npos)
       << run.result.output;
   // No controller on at all (hand tracking alone): said after 5 s.

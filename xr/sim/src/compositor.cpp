@@ -107,14 +107,29 @@ bool capture_view(const Session& s, const XrSwapchainSubImage& sub, const std::s
       }
       // Whole or not at all: written beside it, then renamed into place (a process killed mid-write leaves no
       // half picture under the capture's name).
+      // Encoded in memory, then written with every write, flush and close checked (stb's own file writer
+      // ignores them: a full disk renamed a truncated picture into place).
+      std::vector<unsigned char> png;
+      const auto append = [](void* context, void* data, int size) {
+        auto& out = *static_cast<std::vector<unsigned char>*>(context);
+        const auto* bytes = static_cast<const unsigned char*>(data);
+        out.insert(out.end(), bytes, bytes + size);
+      };
       const std::string part = file + ".part";
-      errno = 0;
-      ok = stbi_write_png(part.c_str(), static_cast<int>(w), static_cast<int>(h), 4, pixels.data(),
-                          static_cast<int>(w * 4)) != 0 &&
-           std::rename(part.c_str(), file.c_str()) == 0;
-      if (!ok) {
-        why = std::string("cannot write it: ") + (errno != 0 ? std::strerror(errno) : "unknown error");
-        std::remove(part.c_str());
+      ok = stbi_write_png_to_func(append, &png, static_cast<int>(w), static_cast<int>(h), 4, pixels.data(),
+                                  static_cast<int>(w * 4)) != 0;
+      if (!ok) why = "the PNG encoder failed";
+      if (ok) {
+        errno = 0;
+        std::FILE* out = std::fopen(part.c_str(), "wb");
+        ok = out != nullptr && std::fwrite(png.data(), 1, png.size(), out) == png.size() &&
+             std::fflush(out) == 0;
+        if (out != nullptr && std::fclose(out) != 0) ok = false;
+        ok = ok && std::rename(part.c_str(), file.c_str()) == 0;
+        if (!ok) {
+          why = std::string("cannot write it: ") + (errno != 0 ? std::strerror(errno) : "unknown error");
+          std::remove(part.c_str());
+        }
       }
     }
   }
