@@ -54,6 +54,10 @@ void run_render(RenderCommandOptions options) {
   (void)messages_off_stdout({options.out});
   if (options.up.size() == 3 && options.up[0] == 0.0 && options.up[1] == 0.0 && options.up[2] == 0.0)
     throw UsageError("--up: the up direction must not be zero");
+  if (options.color == "curvature-reversal" && options.deformed.empty())
+    throw UsageError(
+        "--color curvature-reversal needs --deformed: it shows where the sign reversed from MODEL "
+        "to the deformed shape");
   if (const std::string problem = deform::output_path_problem(options.out); !problem.empty())
     throw CommandError((options.out.empty() ? std::string("--out") : options.out) + ": " + problem);
   // The picture is PNG whatever the name says: a name that promises another format (x.jpg) is refused
@@ -120,8 +124,11 @@ void add_render_command(CLI::App& root) {
   cmd->add_option("--size", options->size, "Image width and height in pixels (per eye with --stereo)")
       ->expected(2)
       ->check(whole_number_in(1, 16384));
-  cmd->add_option("--color", options->color, "What the colours show")
-      ->check(CLI::IsMember({"material", "displacement", "curvature-sign"}));
+  cmd->add_option(
+         "--color", options->color,
+         "What the colours show (curvature-reversal: where the sign of the Gaussian curvature reversed "
+         "from MODEL to --deformed, in its new sign's colour)")
+      ->check(CLI::IsMember({"material", "displacement", "curvature-sign", "curvature-reversal"}));
   cmd->add_option(
          "--camera", options->camera,
          "Orbit camera: AZIMUTH ELEVATION [ZOOM] (degrees around --up from the model's front +Z towards "

@@ -1,5 +1,7 @@
 #include "desktop_loop.hpp"
 
+#include "drag_notes.hpp"
+
 #include "commands.hpp"
 #include "commit_reports.hpp"
 #include "frame_stats.hpp"
@@ -130,10 +132,18 @@ void run_desktop(const ReviewCommandOptions& given, const ReviewSetup& setup) {
     recorder.write_record("clock", 0.0, {{"rate_hz", kRecordingRate}});
     Eigen::Vector3d hand_origin = Eigen::Vector3d::Zero(), hand_direction(0, 0, -1);
     Eigen::Vector3d press_origin = Eigen::Vector3d::Zero(), press_direction(0, 0, -1);
+    // A drag released off the window pulls metres: committed as asked, and said, as in the headset.
+    const double longest_side =
+        setup.rest->V.rows() > 0
+            ? (setup.rest->V.colwise().maxCoeff() - setup.rest->V.colwise().minCoeff()).maxCoeff()
+            : 0.0;
     auto record_interaction = [&](const InteractionEvent& e) {
       if (e.kind == InteractionEvent::Kind::Committed) commits.expect_commit(e.request);
       log.write_interaction(e, life);
       recorder.write_interaction(t, e, interaction.handle_radius(), interaction.roi_radius());
+      if (e.kind == InteractionEvent::Kind::Committed && !o.quiet)
+        if (const auto warning = long_pull_warning(e.d.norm(), longest_side, life.scale()))
+          std::fprintf(stderr, "pushpull review: warning: %s\n", warning->c_str());
     };
     auto take_commits = [&] {
       app::take_commits(commits, recorder, t, o.on_commit, o.on_failed_commit, o.quiet);
@@ -252,7 +262,15 @@ void run_desktop(const ReviewCommandOptions& given, const ReviewSetup& setup) {
             zoom_towards = setup.placement.to_stage_point(hit->point);
         }
         const float scale_before = orbit.distance_scale;
-        orbit_with_pointer(orbit, p, last, p.right && last.right);
+        // The wheel mid-drag moved the cursor's ray and with it the pull (92 to 186 mm with the mouse still):
+        // zoom acts between drags, as undo and the sizes do. (Turning stays: along the normal it is how a
+        // pull is aimed.)
+        renderer::MirrorWindow::Pointer pointer = p;
+        if (interaction.dragging() && pointer.scroll != 0.0) {
+          pointer.scroll = 0.0;
+          say("zoom acts between drags");
+        }
+        orbit_with_pointer(orbit, pointer, last, p.right && last.right);
         if (zoom_towards) {
           const glm::vec3 target = bounds.centre() + orbit.target_offset;
           const float kept = orbit.distance_scale / scale_before;  // the distance's ratio, at most 1
@@ -296,6 +314,9 @@ void run_desktop(const ReviewCommandOptions& given, const ReviewSetup& setup) {
             press_origin = origin;
             press_direction = direction;
             said_along_normal = false;
+          } else {
+            // A press beside the model grabs nothing; a first-time user expected it to turn the view.
+            say("the left button pushes and pulls the model's surface; the right button turns the view");
           }
         }
         if (interaction.dragging() && p.left) {

@@ -25,4 +25,15 @@ std::vector<std::string> drag_notes(double pull, double handle_radius, const def
   return lines;
 }
 
+std::optional<std::string> long_pull_warning(double pull, double longest_side, double scale) {
+  if (!(longest_side > 0.0) || !(pull > longest_side)) return std::nullopt;
+  char text[200];
+  std::snprintf(
+      text, sizeof text,
+      "a pull of %.2f m, %.1f times the model's longest side (%.2f m): a tracking jump at the release?; "
+      "undo takes it back",
+      scale * pull, pull / longest_side, scale * longest_side);
+  return std::string(text);
+}
+
 }  // namespace pushpull::app

@@ -3,6 +3,7 @@
 // no unit). Thread-safety: pure functions.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -22,5 +23,10 @@ inline constexpr double kOvershoot = 1.5;
 // region too small for the triangles around it: "only the handle moves: no region beyond it").
 [[nodiscard]] std::vector<std::string> drag_notes(double pull, double handle_radius,
                                                   const deform::Snapshot& s);
+
+// A committed pull longer than the model's longest side (a tracking jump at the release, a drag released off
+// the desktop window): the warning, with the way back; none for a shorter one. pull and longest_side in model
+// units, scale in metres per model unit (the lengths are said in life-size metres).
+[[nodiscard]] std::optional<std::string> long_pull_warning(double pull, double longest_side, double scale);
 
 }  // namespace pushpull::app

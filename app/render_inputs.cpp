@@ -47,6 +47,21 @@ RenderInputs prepare_render_inputs(std::shared_ptr<const RenderModel> render, co
     for (size_t i = 0; i < signs.size(); ++i)
       if (!after.defined_at(i)) signs[i] = 0;  // the boundary's turn, sheets meeting: not surface curvature
     inputs.scalars = curvature_signs_on_render_vertices(model, V, signs);
+  } else if (options.color == "curvature-reversal") {
+    // Where the sign reversed from rest to V (+ to -, - to +: the paper's sign flips, as deform's metrics
+    // count them: the same rule, threshold and L), drawn in its new sign's colour; every other vertex "kept"
+    // (0).
+    const deform::GaussianCurvature before = deform::gaussian_curvature(V0, F);
+    const deform::GaussianCurvature after = deform::gaussian_curvature(V, F);
+    const double threshold =
+        deform::flat_curvature_threshold(deform::curvature_reference_length(V0), options.dead_band);
+    const std::vector<std::int8_t> sign_before = deform::curvature_signs(before, threshold);
+    const std::vector<std::int8_t> sign_after = deform::curvature_signs(after, threshold);
+    Eigen::VectorXd reversed = Eigen::VectorXd::Zero(Eigen::Index(sign_after.size()));
+    for (std::size_t i = 0; i < sign_after.size(); ++i)
+      if (before.defined_at(i) && sign_before[i] * sign_after[i] < 0)
+        reversed(Eigen::Index(i)) = sign_after[i];
+    inputs.scalars = to_render_vertices(model, reversed);
   }
 
   // Overlays on deform vertices.

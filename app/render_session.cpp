@@ -284,6 +284,18 @@ TextureRGBA8 PictureRenderer::render(const RenderInputs& inputs, const RenderCom
       renderer.set_legend(
           make_displacement_legend(float(max * unit_scale), "|d| " + unit, legend.width_px, legend.height_px),
           legend.rect);
+  } else if (o.color == "curvature-reversal") {
+    settings.color_mode = ColorMode::curvature_sign;
+    settings.curvature_epsilon = 0.5f;  // scalars: the new sign where it reversed, 0 where it was kept
+    if (!o.no_legend) {
+      // Wider than the sign legend: its labels are longer.
+      const float widen = 1.6f;
+      glm::vec4 rect = legend.curvature_rect;
+      rect.z = rect.x + widen * (rect.z - rect.x);
+      renderer.set_legend(make_sign_legend(uint32_t(widen * float(legend.width_px)), legend.height_px / 2,
+                                           {"to K > 0", "to K < 0", "kept"}),
+                          rect);
+    }
   } else if (o.color == "curvature-sign") {
     settings.color_mode = ColorMode::curvature_sign;
     settings.curvature_epsilon = 0.5f;  // scalars are the signs -1 / 0 / +1

@@ -231,8 +231,9 @@ void how_to_read(std::ostringstream& h) {
        "was the recording's.</li>\n"
        "<li><b>Pictures</b>: before and after with the model's materials; the displacement of this push/pull "
        "(its legend in mm per vertex); the curvature sign before and after (yellow +, blue -, grey "
-       "near-flat); the "
-       "magenta arrow is d, from p0 to p1. The camera is the same before and after.</li>\n"
+       "near-flat), and where it reversed (the reversals counted above, in the colour of the new sign; grey: "
+       "kept); the magenta arrow is d, from p0 to p1. The camera looks at the push/pull's region along the "
+       "surface at p0, the same before and after.</li>\n"
        "</ul></details>\n";
 }
 

@@ -1,4 +1,5 @@
 #include "replay_session.hpp"
+#include "region_camera.hpp"
 #include "region_notes.hpp"
 
 #include "commands.hpp"
@@ -125,7 +126,7 @@ bool replay_clears(const std::string& name) {
   static const std::regex kNames(
       R"((commit-(0[1-9]|[1-9][0-9]+)(-before)?|final)\.(glb|off|obj|ply)|)"
       R"(commit-(0[1-9]|[1-9][0-9]+)\.metrics\.json|)"
-      R"(commit-(0[1-9]|[1-9][0-9]+)-(before|after|displacement|curvature|curvature-before)\.png|report\.html)");
+      R"(commit-(0[1-9]|[1-9][0-9]+)-(before|after|displacement|curvature|curvature-before|reversals)\.png|report\.html)");
   return std::regex_match(name, kNames);
 }
 bool replay_writes(const std::string& name) {
@@ -538,8 +539,11 @@ void run_replay(const ReplayOptions& o) {
       ++failed_where_committed;
       on_recorded_path = false;
     }
-    // Named by its place among the session's releases (the report numbers commits, which it is not).
-    const std::string which = "push/pull " + std::to_string(k + 1) + " of the recording";
+    // Named by its place among the session's releases, with the commit before it: the report's "Push/pull N"
+    // are its commits, which this is not (a failed release 2 and the committed push/pull 2 read as one).
+    const std::string which =
+        "release " + std::to_string(k + 1) + " of the recording (after " +
+        (commits.empty() ? std::string("no commit") : "commit " + std::to_string(commits.size())) + ")";
     not_committed.push_back(which + ": " + f.error);
     bar.print("pushpull replay: " + which + " not committed (the model stays as it was): " + f.error);
   };
@@ -750,6 +754,19 @@ void run_replay(const ReplayOptions& o) {
       base.size = o.picture_size;
       base.samples = 1;
       base.up = review.up;
+      // Looking at the push/pull's region (before and after), from outside along the surface at p0.
+      if (s.region && !s.region->handle.empty() && review.up.size() == 3) {
+        std::vector<int> region = s.region->handle;
+        region.insert(region.end(), s.region->free.begin(), s.region->free.end());
+        region.insert(region.end(), s.region->fixed.begin(), s.region->fixed.end());
+        if (const auto camera =
+                region_camera(deform::Mesh{before_mesh.V, model.deform_mesh.F}, *s.positions, region,
+                              s.region->handle.front(),
+                              Eigen::Vector3d(review.up[0], review.up[1], review.up[2]), base.fov_deg)) {
+          base.eye = {camera->eye.x(), camera->eye.y(), camera->eye.z()};
+          base.target = {camera->target.x(), camera->target.y(), camera->target.z()};
+        }
+      }
       struct Picture {
         std::string caption, file, color;
         bool after, arrow;
@@ -760,7 +777,9 @@ void run_replay(const ReplayOptions& o) {
           {"displacement (this push/pull)", stem + "-displacement.png", "displacement", true, true},
           // Before beside after, as the paper's Fig. 12 compares them: where a sign reversed shows.
           {"Gaussian curvature sign before", stem + "-curvature-before.png", "curvature-sign", false, false},
-          {"Gaussian curvature sign after", stem + "-curvature.png", "curvature-sign", true, false}};
+          {"Gaussian curvature sign after", stem + "-curvature.png", "curvature-sign", true, false},
+          // Where the two differ by a reversal (the metrics' "sign reversals"), in the new sign's colour.
+          {"where the curvature sign reversed", stem + "-reversals.png", "curvature-reversal", true, false}};
       const deform::Mesh before_shape{before_mesh.V, model.deform_mesh.F};
       // Prepared first, then drawn from one camera framing before and after (a push/pull that grows the
       // model used to move the whole after picture against the before one).

@@ -27,6 +27,17 @@ void finish_review(std::optional<std::string>& failure, SessionRecorder& recorde
     }
     if (print_out || failure)
       std::printf("pushpull review: wrote %s (%zu committed push/pull(s))\n", out.c_str(), commits);
+  } else if (commits > 0 && print_out) {
+    // Without --out the shape lives only in the recording, whose path scrolled past at the start: said.
+    if (!recorder.path().empty())
+      std::printf(
+          "pushpull review: %zu committed push/pull(s) not written to a model file (no --out); the "
+          "session is recorded in %s: `pushpull replay %s --out DIR` writes them\n",
+          commits, recorder.path().c_str(), recorder.path().c_str());
+    else
+      std::printf(
+          "pushpull review: %zu committed push/pull(s) not written anywhere (no --out, no recording)\n",
+          commits);
   }
   if (failure)
     throw CommandError("the review ended on an error: " + *failure + kept_work_note(out, recorder));

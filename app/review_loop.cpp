@@ -1,5 +1,7 @@
 #include "review_loop.hpp"
 
+#include "drag_notes.hpp"
+
 #include "commands.hpp"
 #include "commit_reports.hpp"
 #include "desktop_loop.hpp"
@@ -321,12 +323,9 @@ void run_review(const ReviewCommandOptions& o) {
       if (e.kind == InteractionEvent::Kind::Committed) commits.expect_commit(e.request);
       log.write_interaction(e, life);
       recorder.write_interaction(t, e, interaction.handle_radius(), interaction.roi_radius());
-      if (e.kind == InteractionEvent::Kind::Committed && model_size > 0.0 && e.d.norm() > model_size)
-        std::fprintf(
-            stderr,
-            "pushpull review: warning: a pull of %.2f m, %.1f times the model's longest side (%.2f m): a "
-            "tracking jump at the release?; undo takes it back\n",
-            life.scale() * e.d.norm(), e.d.norm() / model_size, life.scale() * model_size);
+      if (e.kind == InteractionEvent::Kind::Committed)
+        if (const auto warning = long_pull_warning(e.d.norm(), model_size, life.scale()))
+          std::fprintf(stderr, "pushpull review: warning: %s\n", warning->c_str());
     };
 
     // Ctrl-C or SIGTERM: the review ends as with Esc (the committed work is written); a second one ends it at

@@ -17,9 +17,16 @@ std::vector<std::string> window_hud_lines(const ReviewInteraction& interaction,
                                           const std::vector<std::string>& keys, const std::string& history,
                                           const std::string& notice) {
   const std::string method(deform::method_name(interaction.method()));
-  char state[160];
+  char state[256];
   if (snapshot.kind == deform::Snapshot::Kind::Error) {
-    std::snprintf(state, sizeof state, "%s  error: %s", method.c_str(), error_gist(snapshot.error).c_str());
+    // The error is its solve's method's: after M the next push/pull's method is ready, the error said as the
+    // old one's ("arap-sr  error: the energy is negative" read as arap-sr's failure).
+    const std::string failed(deform::method_name(snapshot.method));
+    if (failed == method || interaction.dragging())
+      std::snprintf(state, sizeof state, "%s  error: %s", failed.c_str(), error_gist(snapshot.error).c_str());
+    else
+      std::snprintf(state, sizeof state, "%s  ready  (%s failed: %s)", method.c_str(), failed.c_str(),
+                    error_gist(snapshot.error).c_str());
   } else if (interaction.dragging()) {
     std::snprintf(state, sizeof state, "%s  |d| %.1f mm  %d it  %s", method.c_str(),
                   life.to_mm(interaction.current_d().norm()), drag_iterations(snapshot),
@@ -40,8 +47,12 @@ std::vector<std::string> window_hud_lines(const ReviewInteraction& interaction,
   if (!notice.empty() &&
       (interaction.dragging() || !snapshot.final || snapshot.kind == deform::Snapshot::Kind::Error))
     first += "  " + notice;
-  std::vector<std::string> lines{first,
-                                 "colour: " + colour + (view_mode.empty() ? "" : "   view: " + view_mode)};
+  // The sizes a press would grab with, in every state (shown by the hover readout only on the surface).
+  char sizes[96];
+  std::snprintf(sizes, sizeof sizes, "   handle %.0f mm  region %.0f mm",
+                life.to_mm(interaction.handle_radius()), life.to_mm(interaction.roi_radius()));
+  std::vector<std::string> lines{
+      first, "colour: " + colour + (view_mode.empty() ? "" : "   view: " + view_mode) + sizes};
   lines.insert(lines.end(), keys.begin(), keys.end());
   return lines;
 }

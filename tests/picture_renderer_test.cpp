@@ -8,17 +8,21 @@
 
 #include "pushpull/assets/model.hpp"
 #include "pushpull/deform/mesh.hpp"
+#include "pushpull/deform/metrics.hpp"
 #include "pushpull/renderer/image_io.hpp"
 
 #include <gtest/gtest.h>
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace {
 
@@ -150,6 +154,35 @@ TEST_F(PictureRendererTest, AModelFarFromTheOriginIsDrawnAsAtTheOrigin) {
         break;
       }
   EXPECT_LE(differing, 10) << "of " << near_picture.pixels.size() / 4 << " pixels";
+}
+
+// The reversal picture marks exactly the vertices deform's metrics count as sign reversals (the paper's sign
+// flips), each in the colour of its new sign, and nothing else.
+TEST_F(PictureRendererTest, TheReversalPictureMarksTheReversalsTheMetricsCount) {
+  const RenderCommandOptions o = picture("curvature-reversal", 64, 64);
+  const RenderInputs inputs = prepare_render_inputs(model, sheet, V, true, o, 1.0);
+  ASSERT_EQ(inputs.scalars.size(),
+            std::size_t(sheet.V.rows()));  // a plain mesh: render vertex = deform vertex
+  const pushpull::deform::DeformationMetrics metrics =
+      pushpull::deform::evaluate_deformation(sheet, V, Eigen::Vector3d::UnitY(), {});
+  const pushpull::deform::GaussianCurvature after = pushpull::deform::gaussian_curvature(V, sheet.F);
+  const std::vector<std::int8_t> signs_after =
+      pushpull::deform::curvature_signs(after, metrics.curvature_threshold);
+  std::size_t marked = 0;
+  for (std::size_t v = 0; v < inputs.scalars.size(); ++v)
+    if (inputs.scalars[v] != 0.0f) {
+      ++marked;
+      EXPECT_EQ(inputs.scalars[v], float(signs_after[v])) << "vertex " << v;
+    }
+  EXPECT_GT(metrics.sign_reversals, 0u);  // the bump reverses some of the wavy sheet's signs
+  EXPECT_EQ(marked, metrics.sign_reversals);
+  // Drawn: the legend's three swatches and the sheet's reversed patches, in a picture of its own.
+  PictureRenderer renderer(model, 1, false);
+  const TextureRGBA8 image = renderer.render(inputs, o);
+  EXPECT_EQ(image.width, 64u);
+  // The rest shape against itself reverses nothing.
+  const RenderInputs none = prepare_render_inputs(model, sheet, sheet.V, false, o, 1.0);
+  EXPECT_TRUE(std::all_of(none.scalars.begin(), none.scalars.end(), [](float x) { return x == 0.0f; }));
 }
 
 TEST_F(PictureRendererTest, InputsOfAnotherModelAreRefused) {

@@ -215,6 +215,11 @@ TEST(RenderCli, ErrorsNameTheFileAndTheProblem) {
             std::string::npos)
       << r.output;
   EXPECT_FALSE(fs::exists(jpeg));
+  // Where the curvature sign reversed needs a deformed shape to compare with.
+  r = run("render " + flat.string() + " --out " + (temp_dir() / "reversal.png").string() +
+          " --color curvature-reversal --size 16 16");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.output.find("--color curvature-reversal needs --deformed"), std::string::npos) << r.output;
 }
 
 }  // namespace

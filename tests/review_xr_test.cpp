@@ -2032,6 +2032,47 @@ wait $pid
   expect_replays_with_commits(recording, 3);
 }
 
+// The wheel turned mid-drag moved the cursor's ray and with it the pull (92 to 186 mm with the mouse held
+// still): zoom acts between drags, said as the keys that wait are. The same drag with and without the wheel
+// pulls the same d. A drag released far off the window (a pull longer than the model) is warned of, as a
+// tracking jump in the headset is.
+TEST(ReviewXrWindow, TheWheelMidDragChangesNeitherViewNorPullAndAPullOffTheWindowIsWarnedOf) {
+  if (std::getenv("DISPLAY") == nullptr) GTEST_SKIP() << "no DISPLAY (ctest runs this under xvfb-run)";
+  ASSERT_EQ(run_command("command -v xdotool").status, 0) << "xdotool is missing (scripts/setup installs it)";
+  const fs::path dir = test_dir();
+  const fs::path recording = dir / "desktop.jsonl", out = dir / "desktop.off";
+  std::ofstream(dir / "drive.sh") << desktop_hood_review_script(dir, recording, out) << R"SH(
+xdotool mousemove --window $wid 200 150; sleep 0.3; xdotool mousedown 1; await press 1
+xdotool mousemove_relative -- 0 -20; sleep 0.3; xdotool click 4; sleep 0.2; xdotool click 4; sleep 0.3
+xdotool mouseup 1; await release 1; await commit 1
+key u undo 1
+xdotool mousemove --window $wid 200 150; sleep 0.3; xdotool mousedown 1; await press 2
+xdotool mousemove_relative -- 0 -20; sleep 0.6
+xdotool mouseup 1; await release 2; await commit 2
+drag 200 150 150 0 3; await commit 3
+xdotool key Escape
+wait $pid
+)SH";
+  const auto driven = run_drive_script(dir);
+  ASSERT_EQ(driven.status, 0) << driven.output;
+  std::ifstream log_file(dir / "review.log");
+  const std::string log((std::istreambuf_iterator<char>(log_file)), std::istreambuf_iterator<char>());
+  EXPECT_NE(log.find("zoom acts between drags"), std::string::npos) << log;
+  const auto releases = recording_records(recording, "release");
+  ASSERT_EQ(releases.size(), 3u) << log;
+  const auto d1 = releases[0].at("d").get<std::vector<double>>(),
+             d2 = releases[1].at("d").get<std::vector<double>>();
+  EXPECT_GT(std::hypot(d2[0], d2[1], d2[2]), 0.01) << releases[1].dump();
+  for (int k = 0; k < 3; ++k)
+    EXPECT_EQ(d1[std::size_t(k)], d2[std::size_t(k)]) << "with and without the wheel";
+  // 1,200 pixels to the right (the pointer stops at the screen's edge): metres on a 400-pixel view.
+  const auto d3 = releases[2].at("d").get<std::vector<double>>();
+  ASSERT_GT(std::hypot(d3[0], d3[1], d3[2]), 1.5) << releases[2].dump();  // the bonnet's longest side
+  EXPECT_NE(log.find("times the model's longest side (1.50 m): a tracking jump at the release?"),
+            std::string::npos)
+      << log;
+}
+
 // A desktop review of the bonnet (desktop_hood_review_script) whose push/pull commits, then whose window
 // `xdotool_command` ends from outside ("windowclose", "windowkill"): the drive script's status and output,
 // ending with "review exit status N" and the review's log.

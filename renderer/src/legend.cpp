@@ -127,18 +127,22 @@ TextureRGBA8 make_displacement_legend(float max_value, const std::string& title,
 }
 
 TextureRGBA8 make_curvature_legend(uint32_t width, uint32_t height) {
+  return make_sign_legend(width, height,
+                          {"K > 0", "K < 0", "flat"});  // flat: |K| L^2 within the sign rule's band
+}
+
+TextureRGBA8 make_sign_legend(uint32_t width, uint32_t height, const std::array<std::string, 3>& labels) {
   Canvas canvas(width, height, kPanel);
   // Three rows of a swatch and its label fill the panel: 0.6 line margins above and below, rows 1.5 lines
   // apart (5.2 lines in all); the text as large as a row holds, at least the font's own size.
   const float line = std::max(10.0f, float(height) / 5.2f);
   const float scale = std::max(1.0f, std::floor(line / 10.0f));
-  const char* labels[3] = {"K > 0", "K < 0", "flat"};  // flat: |K| L^2 within the sign rule's band
   const glm::vec3 colours[3] = {curvature_sign_colour(1.0f, 0.0f), curvature_sign_colour(-1.0f, 0.0f),
                                 curvature_sign_colour(0.0f, 0.0f)};
   for (int i = 0; i < 3; ++i) {
     const float y = line * (0.6f + 1.5f * float(i));
     canvas.fill(int(line * 0.6f), int(y), int(line * 1.8f), int(y + line), glm::vec4(colours[i], 1.0f));
-    canvas.text(line * 2.4f, y + 0.5f * (line - 7.0f * scale), labels[i], scale, kText);
+    canvas.text(line * 2.4f, y + 0.5f * (line - 7.0f * scale), labels[size_t(i)].c_str(), scale, kText);
   }
   return canvas.image;
 }

@@ -6,6 +6,7 @@
 
 #include <glm/glm.hpp>
 
+#include <array>
 #include <span>
 #include <string>
 #include <vector>
@@ -48,6 +49,9 @@ TextureRGBA8 make_displacement_legend(float max_value, const std::string& title,
 
 // A legend for the curvature sign: yellow "K > 0", blue "K < 0", grey "K = 0".
 TextureRGBA8 make_curvature_legend(uint32_t width, uint32_t height);
+// The same three swatches (yellow, blue, grey) with other labels (at most 12 characters each), e.g. where the
+// sign reversed: "to K > 0", "to K < 0", "kept". Text that does not fit the width is cut at the panel's edge.
+TextureRGBA8 make_sign_legend(uint32_t width, uint32_t height, const std::array<std::string, 3>& labels);
 
 // Where the legends go in a view of view_width x view_height pixels (Renderer::set_legend rectangles, 0..1, y
 // down): the lower-left corner, the displacement legend about a third of the view high (`rect`, a texture of
