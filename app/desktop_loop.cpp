@@ -411,10 +411,15 @@ void run_desktop(const ReviewCommandOptions& given, const ReviewSetup& setup) {
         // any camera distance: a line about 3.5% of the view's height.
         std::vector<renderer::Draw> draws = scene.draws();
         {
+          // M names the method it steps to: eight methods in a cycle are otherwise a guess.
+          const std::string m_key =
+              o.fixed_method ? "M method"
+                             : "M method (next " +
+                                   std::string(deform::method_name(next_method(interaction.method()))) + ")";
           hud.set_text(window_hud_lines(
               interaction, *snapshot, life, colour_name(scene.colour()), "",
               {"left drag: push/pull (Shift: along the normal)  right drag: turn  wheel: zoom",
-               "[ ] handle  - = region  U undo  R redo  C colour  M method  F first view  Esc end"},
+               "[ ] handle  - = region  U undo  R redo  C colour  " + m_key + "  F first view  Esc end"},
               history_text(), notice.text(now())));
           const auto& hover = interaction.hovers()[1];
           const Eigen::Vector3d camera = to_eigen(glm::vec3(glm::inverse(view.view)[3]));

@@ -772,8 +772,13 @@ void run_review(const ReviewCommandOptions& o) {
         if (mirror) {
           const std::optional<renderer::RenderPass> pass = mirror->pass(
               last_eyes, draws,
-              window_hud_lines(interaction, *snapshot, life, colour_name(scene.colour()), mirror->mode_text(),
-                               {"V view  C colour  M method  Esc end"}, history_text(), notice.text(t)),
+              window_hud_lines(
+                  interaction, *snapshot, life, colour_name(scene.colour()), mirror->mode_text(),
+                  {o.fixed_method ? std::string("V view  C colour  M method  Esc end")
+                                  : "V view  C colour  M method (next " +
+                                        std::string(deform::method_name(next_method(interaction.method()))) +
+                                        ")  Esc end"},
+                  history_text(), notice.text(t)),
               scene.settings(/*legend=*/true), rendered ? &eye_targets : nullptr, xr.eye(0).transfer_source(),
               &hand_label);
           if (pass) {
