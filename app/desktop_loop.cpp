@@ -133,10 +133,7 @@ void run_desktop(const ReviewCommandOptions& given, const ReviewSetup& setup) {
     Eigen::Vector3d hand_origin = Eigen::Vector3d::Zero(), hand_direction(0, 0, -1);
     Eigen::Vector3d press_origin = Eigen::Vector3d::Zero(), press_direction(0, 0, -1);
     // A drag released off the window pulls metres: committed as asked, and said, as in the headset.
-    const double longest_side =
-        setup.rest->V.rows() > 0
-            ? (setup.rest->V.colwise().maxCoeff() - setup.rest->V.colwise().minCoeff()).maxCoeff()
-            : 0.0;
+    const double longest_side = setup.model.bounds.isEmpty() ? 0.0 : setup.model.bounds.sizes().maxCoeff();
     auto record_interaction = [&](const InteractionEvent& e) {
       if (e.kind == InteractionEvent::Kind::Committed) commits.expect_commit(e.request);
       log.write_interaction(e, life);

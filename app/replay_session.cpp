@@ -750,6 +750,8 @@ void run_replay(const ReplayOptions& o) {
                                      ? Eigen::Vector3d(before_mesh.V.row(s.region->handle.front()).transpose())
                                      : Eigen::Vector3d::Zero();
       const Eigen::Vector3d p1 = p0 + s.d;
+      const deform::Mesh before_shape{before_mesh.V,
+                                      model.deform_mesh.F};  // the pictures' rest, the camera's
       RenderCommandOptions base;
       base.size = o.picture_size;
       base.samples = 1;
@@ -760,8 +762,7 @@ void run_replay(const ReplayOptions& o) {
         region.insert(region.end(), s.region->free.begin(), s.region->free.end());
         region.insert(region.end(), s.region->fixed.begin(), s.region->fixed.end());
         if (const auto camera =
-                region_camera(deform::Mesh{before_mesh.V, model.deform_mesh.F}, *s.positions, region,
-                              s.region->handle.front(),
+                region_camera(before_shape, *s.positions, region, s.region->handle.front(),
                               Eigen::Vector3d(review.up[0], review.up[1], review.up[2]), base.fov_deg)) {
           base.eye = {camera->eye.x(), camera->eye.y(), camera->eye.z()};
           base.target = {camera->target.x(), camera->target.y(), camera->target.z()};
@@ -780,7 +781,6 @@ void run_replay(const ReplayOptions& o) {
           {"Gaussian curvature sign after", stem + "-curvature.png", "curvature-sign", true, false},
           // Where the two differ by a reversal (the metrics' "sign reversals"), in the new sign's colour.
           {"where the curvature sign reversed", stem + "-reversals.png", "curvature-reversal", true, false}};
-      const deform::Mesh before_shape{before_mesh.V, model.deform_mesh.F};
       // Prepared first, then drawn from one camera framing before and after (a push/pull that grows the
       // model used to move the whole after picture against the before one).
       std::vector<std::optional<std::pair<RenderInputs, RenderCommandOptions>>> prepared;

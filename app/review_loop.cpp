@@ -317,8 +317,7 @@ void run_review(const ReviewCommandOptions& o) {
     // and said, with the way back.
     // Its longest side, as the review prints the model's size (the diagonal let a 1.5 m pull of a 1 m cube
     // pass unsaid).
-    const double model_size =
-        rest->V.rows() > 0 ? (rest->V.colwise().maxCoeff() - rest->V.colwise().minCoeff()).maxCoeff() : 0.0;
+    const double model_size = model.bounds.isEmpty() ? 0.0 : model.bounds.sizes().maxCoeff();
     auto log_event = [&](const InteractionEvent& e) {
       if (e.kind == InteractionEvent::Kind::Committed) commits.expect_commit(e.request);
       log.write_interaction(e, life);
