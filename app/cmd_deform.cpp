@@ -11,6 +11,7 @@
 #include "output_guard.hpp"
 #include "point_text.hpp"
 #include "region_notes.hpp"
+#include "signals_held.hpp"
 #include "vertex_selection.hpp"
 
 #include "pushpull/assets/model.hpp"
@@ -489,6 +490,10 @@ void run_deform(DeformCommandOptions o) {
   metrics_options.section_offsets = section_offsets(*mesh, omega, d, o.sections);
   record.metrics = deform::evaluate_deformation(*mesh, record.result.V, d, omega, metrics_options);
 
+  // The model and its metrics are written as a pair: Ctrl-C or SIGTERM between them is acted on after both
+  // (signals_held.hpp).
+  std::optional<SignalsHeld> pair_written;
+  pair_written.emplace();
   for (std::string& warning : write_deformed_model(o.out, o.mesh, *model.mesh, &model.scene, record.result.V))
     record.result.warnings.push_back(std::move(warning));
 
@@ -510,6 +515,7 @@ void run_deform(DeformCommandOptions o) {
   } catch (const std::exception& error) {  // the model is written by now: said, as it is on disk
     throw CommandError(std::string(error.what()) + " (the deformed model was written to " + o.out + ")");
   }
+  pair_written.reset();
 
   const deform::DeformResult& r = record.result;
   const deform::DeformationMetrics& m = record.metrics;

@@ -148,9 +148,10 @@ void add_render_command(CLI::App& root) {
       ->expected(3)
       ->check(finite_number());
   cmd->add_option("--fov", options->fov_deg, "Vertical field of view, degrees")->check(finite_in(1.0, 170.0));
-  cmd->add_option(
-         "--scalar-max", options->scalar_max,
-         "Displacement shown as the top of the colour map (metres at life size; default: the largest)")
+  cmd->add_option("--scalar-max", options->scalar_max,
+                  "Displacement shown as the top of the colour map (metres at life size; default: the "
+                  "largest; the paper's "
+                  "Fig. 1 and the replay report use |d|, the same colour for the same move in every method)")
       ->check(finite_above(0.0));
   cmd->add_option(
          "--weld-tolerance", options->weld_tolerance,
@@ -178,9 +179,12 @@ void add_render_command(CLI::App& root) {
                   "Draw the push/pull arrow p0 -> p1: X0 Y0 Z0 X1 Y1 Z1 (model frame, metres at life size)")
       ->expected(6)
       ->check(finite_number());
-  cmd->add_option(
-         "--sections", options->sections,
-         "Draw N section curves of the (deformed) surface, planes orthogonal to the --arrow direction")
+  cmd->add_option("--sections", options->sections,
+                  "Draw N section curves of the (deformed) surface, planes orthogonal to the --arrow "
+                  "direction spread evenly "
+                  "over the deformed model's extent along it (`pushpull deform --sections` spreads its "
+                  "planes over the "
+                  "region before the pull instead: METRICS.json sections[].offset)")
       ->check(whole_number_in(0, 1000));
   add_life_size_options(*cmd, options->life_size);
   cmd->add_flag("--no-legend", options->no_legend, "Leave out the colour-map legend");

@@ -57,9 +57,9 @@ void add_review_command(CLI::App& root) {
                   "Region grown this far from the handle along the surface (metres at life size)")
       ->capture_default_str()
       ->check(finite_above(0.0));
-  cmd->add_option("--up", o->up, "The model's up axis X Y Z (default 0 1 0, glTF)")
-      ->expected(3)
-      ->check(finite_number());
+  CLI::Option* up = cmd->add_option("--up", o->up, "The model's up axis X Y Z (default 0 1 0, glTF)")
+                        ->expected(3)
+                        ->check(finite_number());
   cmd->add_option("--front", o->front,
                   "The model's front axis X Y Z, turned towards you (default 0 0 1, glTF)")
       ->expected(3)
@@ -104,7 +104,8 @@ void add_review_command(CLI::App& root) {
       "--desktop", o->desktop,
       "No headset: the window is the workspace (also when no OpenXR runtime or headset is found). Right "
       "drag turns, scroll zooms, left drag on the surface pushes/pulls (Shift: along the normal); U undo, R "
-      "redo, C colour map, M method, [ ] handle size, - = region size, F or Home the first view, Esc quit");
+      "redo, C colour map, M method, [ ] handle size, - = region size, F or Home the first view, Esc cancels "
+      "a drag in progress, else ends the review");
   cmd->add_option("--frames", o->frames, "Desktop mode: stop after N frames (0: when the window closes)");
   cmd->add_flag("--benchmark", o->benchmark, "Print the frame time, idle versus with the solver running");
   cmd->add_option(
@@ -148,8 +149,9 @@ void add_review_command(CLI::App& root) {
           },
           "CPU list");
   add_life_size_options(*cmd, o->life_size);
-  cmd->callback([o, samples] {
+  cmd->callback([o, samples, up] {
     o->samples_given = samples->count() > 0;
+    o->up_given = up->count() > 0;
     (void)messages_off_stdout({o->out, o->record, o->events});
     // A recording is the one copy of a session: one already at --record is not replaced (a replay's own
     // recording, which it rewrites each time, does not come this way).

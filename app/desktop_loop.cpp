@@ -232,7 +232,18 @@ void run_desktop(const ReviewCommandOptions& given, const ReviewSetup& setup) {
               report_sizes(interaction, log, life, !o.quiet);
             }
           }
-          quit = quit || key == 256 /* GLFW_KEY_ESCAPE */;
+          // Esc mid-drag cancels the drag (the model stays as before it; a "cancel" record, which a replay
+          // applies at this frame); between drags it ends the review. (A first-time user pressed Esc to drop
+          // a pull and lost the session.)
+          if (key == 256 /* GLFW_KEY_ESCAPE */) {
+            if (interaction.dragging() && window.pointer().left && !window.pointer().left_release_queued) {
+              if (const auto e = interaction.cancel()) record_interaction(*e);
+              recorder.write_record("cancel", t);
+              say("push/pull cancelled: the model is as before it (Esc again ends the review)");
+            } else {
+              quit = true;
+            }
+          }
           if (key == 'U' || key == 'R') {
             // Mid-drag: refused, unless the button is already up (its release shown within two frames ends
             // the drag first; the undo then steps back over it).
@@ -416,7 +427,8 @@ void run_desktop(const ReviewCommandOptions& given, const ReviewSetup& setup) {
           hud.set_text(window_hud_lines(
               interaction, *snapshot, life, colour_name(scene.colour()), "",
               {"left drag: push/pull (Shift: along the normal)  right drag: turn  wheel: zoom",
-               "[ ] handle  - = region  U undo  R redo  C colour  " + m_key + "  F first view  Esc end"},
+               "[ ] handle  - = region  U undo  R redo  C colour  " + m_key + "  F first view  " +
+                   (interaction.dragging() ? "Esc cancel" : "Esc end")},
               history_text(), notice.text(now())));
           const auto& hover = interaction.hovers()[1];
           const Eigen::Vector3d camera = to_eigen(glm::vec3(glm::inverse(view.view)[3]));

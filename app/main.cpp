@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <exception>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace {
@@ -62,6 +63,12 @@ int main(int argc, char** argv) {
       if (dynamic_cast<const CLI::RequiredError*>(&e) != nullptr && !left.empty())
         message = "unknown argument '" + left.front() + "'";
     }
+    // An option given twice: CLI11 says "--roi-radius: At Most 1 required but received 2".
+    if (const std::size_t at = message.find(": At Most 1 required but received ");
+        at != std::string::npos && dynamic_cast<const CLI::ArgumentMismatch*>(&e) != nullptr)
+      message = message.substr(0, at) + " is given " +
+                message.substr(at + std::string_view(": At Most 1 required but received ").size()) +
+                " times; give it once";
     std::fprintf(stderr, "pushpull%s: error: %s\n(pushpull%s --help lists the options)\n", command.c_str(),
                  message.c_str(), command.c_str());
     return kUsageError;

@@ -51,9 +51,13 @@ std::string metrics_json(const DeformRunRecord& record) {
     region["fixed_file"] = record.fixed_file.empty() ? json(nullptr) : json(record.fixed_file);
     doc["region"] = region;
   }
-  doc["units"] = {{"lengths", "model units (life_size_scale metres each)"},
-                  {"error_estimate", "fraction of |d|"},
-                  {"times", "milliseconds"}};
+  doc["units"] = {
+      {"lengths", "model units (life_size_scale metres each)"},
+      {"error_estimate", "fraction of |d|"},
+      {"curvature_threshold", "1 / model unit^2 (Gaussian curvature)"},
+      {"section_offset",
+       "the section's plane: p . d / |d| = offset (model units, measured from the model's origin)"},
+      {"times", "milliseconds"}};
   doc["stretch_direction"] = options.stretch_direction ? vec3(*options.stretch_direction) : json(nullptr);
   doc["sr_arap_alpha"] = options.sr_arap_alpha;
   doc["arap_h_lambda"] = options.arap_h_lambda;
@@ -109,30 +113,32 @@ std::string metrics_json(const DeformRunRecord& record) {
                            {"radius_below", band.radius_below},
                            {"compared", band.compared},
                            {"reversals", band.reversals}});
-  doc["curvature"] =
-      json{{"evaluated_vertices", metrics.curvature_vertices},
-           {"threshold", metrics.curvature_threshold},
-           {"dead_band_fraction", record.dead_band_fraction},
-           {"sign_flips", metrics.sign_flips},
-           {"sign_reversals", metrics.sign_reversals},
-           {"positive_before", metrics.positive_before},
-           {"negative_before", metrics.negative_before},
-           {"positive_after", metrics.positive_after},
-           {"negative_after", metrics.negative_after},
-           {"area", "mixed Voronoi (Meyer et al. 2003)"},
-           {"boundary", "mesh-boundary vertices excluded"},
-           {"flat_band", record.dead_band_fraction},
-           {"reference_length", metrics.reference_length},
-           {"into_flat", metrics.into_flat},
-           {"out_of_flat", metrics.out_of_flat},
-           {"sign_reversal_fraction", metrics.sign_reversal_fraction},
-           {"reversals_by_band", by_band},
-           {"flat_rule",
-            "|K| * reference_length^2 <= flat_band (reference_length: bounding-box diagonal of the "
-            "model); sign_flips counts every change, sign_reversals only + to - and - to +; "
-            "reversals_by_band: the reversals again among the vertices signed before the pull with "
-            "flat_band raised to band (curvature radius below radius_below: compared), signed the other way "
-            "after it under flat_band; vertices on the mesh boundary or a non-manifold edge are left out"}};
+  doc["curvature"] = json{
+      {"evaluated_vertices", metrics.curvature_vertices},
+      {"threshold", metrics.curvature_threshold},
+      {"dead_band_fraction", record.dead_band_fraction},
+      {"sign_flips", metrics.sign_flips},
+      {"sign_reversals", metrics.sign_reversals},
+      {"positive_before", metrics.positive_before},
+      {"negative_before", metrics.negative_before},
+      {"positive_after", metrics.positive_after},
+      {"negative_after", metrics.negative_after},
+      {"area", "mixed Voronoi (Meyer et al. 2003)"},
+      {"boundary", "vertices on the mesh boundary or a non-manifold edge excluded"},
+      {"flat_band", record.dead_band_fraction},
+      {"reference_length", metrics.reference_length},
+      {"into_flat", metrics.into_flat},
+      {"out_of_flat", metrics.out_of_flat},
+      {"sign_reversal_fraction", metrics.sign_reversal_fraction},
+      {"reversals_by_band", by_band},
+      {"flat_rule",
+       "|K| * reference_length^2 <= flat_band (reference_length: bounding-box diagonal of the "
+       "model); sign_flips counts every change, sign_reversals only + to - and - to +; "
+       "reversals_by_band: the reversals again among the vertices signed before the pull with "
+       "flat_band raised to band (curvature radius below radius_below: compared), signed the other way "
+       "after it under flat_band; vertices on the mesh boundary or a non-manifold edge are left out; "
+       "evaluated_vertices: the region's vertices whose signs were compared (the fractions' denominator; "
+       "the region's size is roi_vertices); dead_band_fraction: flat_band under its earlier name"}};
   json sections = json::array();
   for (const deform::Section& section : metrics.sections) {
     sections.push_back(json{{"offset", section.offset},

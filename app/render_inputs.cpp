@@ -48,7 +48,7 @@ RenderInputs prepare_render_inputs(std::shared_ptr<const RenderModel> render, co
       if (!after.defined_at(i)) signs[i] = 0;  // the boundary's turn, sheets meeting: not surface curvature
     inputs.scalars = curvature_signs_on_render_vertices(model, V, signs);
   } else if (options.color == "curvature-reversal") {
-    // Where the sign reversed from rest to V (+ to -, - to +: the paper's sign flips, as deform's metrics
+    // Where the sign reversed from rest to V (+ to -, - to +: the paper's sign changes, as deform's metrics
     // count them: the same rule, threshold and L), drawn in its new sign's colour; every other vertex "kept"
     // (0).
     const deform::GaussianCurvature before = deform::gaussian_curvature(V0, F);

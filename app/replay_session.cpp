@@ -341,6 +341,7 @@ void run_replay(const ReplayOptions& o) {
   if (o.method.empty()) review.method_changes = rec.method_changes;  // with --method: that one throughout
   review.colour_changes = rec.colour_changes;
   review.size_changes = rec.size_changes;
+  review.cancels = rec.cancels;
   review.history_steps = rec.history_steps;
   // How the recorded review behaved: its format's, or what a replay of an older one wrote down.
   if (rec.format_version > 0)
@@ -354,6 +355,7 @@ void run_replay(const ReplayOptions& o) {
   review.handle_radius_m = h.at("handle_radius_m");
   review.roi_radius_m = h.at("roi_radius_m");
   review.up = h.at("up").get<std::vector<double>>();
+  review.up_given = true;
   review.front = h.at("front").get<std::vector<double>>();
   review.distance_m = h.at("distance_m");
   review.samples = 1;
@@ -775,7 +777,10 @@ void run_replay(const ReplayOptions& o) {
       const std::vector<Picture> list{
           {"before", stem + "-before.png", "material", false, false},
           {"after", stem + "-after.png", "material", true, true},
-          {"displacement (this push/pull)", stem + "-displacement.png", "displacement", true, true},
+          // The colour map's top at |d|, as the paper's Fig. 1 sets dist_max = |d|: the same colour is the
+          // same move in every commit and every method of a --compare (a vertex moved more than |d| is red).
+          {"displacement (this push/pull; red at |d| or more)", stem + "-displacement.png", "displacement",
+           true, true},
           // Before beside after, as the paper's Fig. 12 compares them: where a sign reversed shows.
           {"Gaussian curvature sign before", stem + "-curvature-before.png", "curvature-sign", false, false},
           {"Gaussian curvature sign after", stem + "-curvature.png", "curvature-sign", true, false},
@@ -789,6 +794,7 @@ void run_replay(const ReplayOptions& o) {
         RenderCommandOptions po = base;
         po.color = picture.color;
         if (picture.arrow) po.arrow = {p0.x(), p0.y(), p0.z(), p1.x(), p1.y(), p1.z()};  // file units
+        if (picture.color == "displacement" && s.d.norm() > 0.0) po.scalar_max = s.d.norm();  // file units
         try {
           // The before shape is the original model's for the first commit, a deformed one after.
           const bool moved = picture.after || c.before != nullptr;

@@ -71,6 +71,9 @@ double change_time(const std::pair<double, std::string>& change) {
 double change_time(const SizeChange& change) {
   return change.time;
 }
+double change_time(double time) {
+  return time;
+}
 
 // Replay: the recorded changes due by `until`, from `next` on, each given to apply in order.
 template <class Change, class Apply>
@@ -313,6 +316,7 @@ void run_review(const ReviewCommandOptions& o) {
     };
     std::size_t next_colour_change = 0;  // into o.colour_changes
     std::size_t next_size_change = 0;    // into o.size_changes
+    std::size_t next_cancel = 0;         // into o.cancels
     // A pull longer than the whole model (a tracking jump at the release, a hand thrown): committed as asked,
     // and said, with the way back.
     // Its longest side, as the review prints the model's size (the diagonal let a 1.5 m pull of a 1 m cube
@@ -649,6 +653,15 @@ void run_review(const ReviewCommandOptions& o) {
           interaction.set_sizes(c.handle_radius, c.roi_radius);
           recorder.write_sizes(t, interaction.handle_radius(), interaction.roi_radius());
         });
+        // Replay: a drag the recorded reviewer cancelled (Esc in the desktop window), before the gesture.
+        apply_due(o.cancels, next_cancel, due_until, [&](double) {
+          if (!interaction.dragging()) return;
+          if (const auto e = interaction.cancel()) log_event(*e);
+          recorder.write_record("cancel", t);
+        });
+        // A trigger pulled while aiming beside the model grabs nothing: said, as the desktop window says a
+        // click beside it (a reviewer pulled and saw nothing happen).
+        const bool pressing = xr.focused() && interaction.would_press(hands);
         // Input is ours only while focused (unfocused, every input reads as released): no gestures then.
         for (const InteractionEvent& e :
              xr.focused() ? interaction.update(hands) : std::vector<InteractionEvent>{}) {
@@ -657,6 +670,9 @@ void run_review(const ReviewCommandOptions& o) {
           if (e.kind != InteractionEvent::Kind::Cancelled) input->haptic_pulse(xr::Hand(e.hand), 0.6f, 0.03);
         }
         if (interaction.dragging()) recorder.write_drag(t, interaction.current_d());
+        if (pressing && !interaction.dragging())
+          announce(notice, "the trigger pushes and pulls where the ray meets the model: aim at its surface",
+                   t, !o.quiet);
         for (int h = 0; h < 2 && !interaction.dragging(); ++h) {
           const xr::HandInput& in = input->hand(xr::Hand(h));
           if (in.undo_pressed && grab.grabbing()) {  // undo while holding it: the session's first placement

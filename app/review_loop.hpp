@@ -34,6 +34,9 @@ struct ReviewCommandOptions {
   double roi_radius_m = 0.6;
   std::vector<double> up{0.0, 1.0, 0.0};     // model frame
   std::vector<double> front{0.0, 0.0, 1.0};  // model frame
+  // Whether --up was given: a plain mesh file (OFF, OBJ, PLY) names no up axis, and one standing on its thin
+  // side under the default up is said (review_setup.cpp). A replay gives the recording's.
+  bool up_given = false;
   double distance_m = 0.6;
   std::vector<int> eye_size;  // W H, empty: the runtime's recommendation
   int samples = 4;
@@ -88,6 +91,9 @@ struct ReviewCommandOptions {
   std::vector<std::pair<double, std::string>> colour_changes;
   // Headset loop (replay): sizes the recorded session's keys set, applied before the gesture of their frame.
   std::vector<SizeChange> size_changes;
+  // Headset loop (replay): the times (s) the recorded reviewer cancelled a drag (Esc mid-drag in the desktop
+  // window), in order; each cancels the drag in progress before the gesture of its frame, as the key did.
+  std::vector<double> cancels;
   // Headset loop (replay): the undo and redo the recorded session sent ("undo"/"redo" records: time s, kind).
   // Set: an undo or redo button sends the step exactly when the recording did at that frame (live, whether it
   // is sent depends on whether the service was busy, history_steps.hpp); unset: decided live.

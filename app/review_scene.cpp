@@ -211,7 +211,7 @@ void ReviewScene::update_legend() {
   const renderer::LegendLayout legend = renderer::legend_layout(legend_width_, legend_height_);
   if (colour_ == ReviewColour::Displacement) {
     renderer_.set_legend(
-        renderer::make_displacement_legend(float(top_mm), "|d| mm", legend.width_px, legend.height_px),
+        renderer::make_displacement_legend(float(top_mm), "moved mm", legend.width_px, legend.height_px),
         legend.rect);
   } else if (colour_ == ReviewColour::CurvatureSign) {
     renderer_.set_legend(renderer::make_curvature_legend(legend.width_px, legend.height_px / 2),

@@ -3,6 +3,7 @@
 #include "commands.hpp"
 #include "model_output.hpp"
 #include "output_guard.hpp"
+#include "up_axis_note.hpp"
 
 #include "pushpull/assets/write.hpp"
 #include "pushpull/deform/file_output.hpp"
@@ -95,6 +96,9 @@ ReviewSetup prepare_review(const ReviewCommandOptions& o) {
                    "(a car: --length 4.2), --scale S sets metres per file unit\n",
                    longest);
   }
+  if (!o.quiet && !o.up_given && deform::mesh_format_from_path(o.model))
+    if (const auto note = plain_mesh_up_note(o.model, s.model.bounds.sizes() * s.life.scale()))
+      std::fprintf(stderr, "pushpull review: note: %s\n", note->c_str());
   s.rest = std::make_shared<const deform::Mesh>(s.model.deform_mesh);
   PlacementOptions placement;
   placement.up_model = vec3(o.up);

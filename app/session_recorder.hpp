@@ -14,6 +14,7 @@
 //                                                            (head_anchor.hpp; T_stage_model is before it)
 //   {"record":"colour","time":..,"colour":"curvature-sign"}   the colour map shown from this frame on
 //   {"record":"sizes","time":..,"handle_radius":..,"roi_radius":..}   sizes set by a key (desktop)
+//   {"record":"cancel","time":..}   the reviewer cancelled the drag in progress (desktop: Esc mid-drag)
 // Format 2 adds "press held" (headset recordings; the desktop shows a hold as its trigger staying released),
 // format 3 "anchor" (headset recordings), format 4 "colour" (every colour-map change; desktop recordings no
 // longer press the left menu button for the colour key), format 5 "sizes" (the desktop's size keys), format 6
@@ -52,17 +53,18 @@
 
 namespace pushpull::app {
 
-// The format this version writes ("pushpull-session-8") and the newest `pushpull replay` knows. Format 6:
+// The format this version writes ("pushpull-session-9") and the newest `pushpull replay` knows. Format 6:
 // two-grip scaling keeps the model on its floor (grab_placement.hpp), and a trigger the grip or the menu
 // panel gives back still pulled must be let go before it presses; a replay of format 1-5 scales about the
 // hands' midpoint and lets such a trigger press at once, as those reviews did. Format 7: the right trackpad
 // (htc/vive) steps the sizes by clicks on its rim instead of steering them while touched
 // (size_steering.hpp); a replay of format 1-6 steers them as those reviews did. Format 8: a grip squeezed
 // during a drag, or held through a lost session, must be let go before it grabs the model (it grabbed at
-// the trigger's release); a replay of format 1-7 lets it grab at once. The header's "behaviour_format" says
-// which behaviour the recorded review had (a replay of an older recording writes the older number), and a
-// replay follows it.
-inline constexpr int kNewestRecordingFormat = 8;
+// the trigger's release); a replay of format 1-7 lets it grab at once. Format 9 adds "cancel" (Esc mid-drag
+// in the desktop window cancels the drag; a replay cancels it at that frame). The header's "behaviour_format"
+// says which behaviour the recorded review had (a replay of an older recording writes the older number), and
+// a replay follows it.
+inline constexpr int kNewestRecordingFormat = 9;
 
 struct ReviewCommandOptions;
 struct ReviewSetup;

@@ -306,6 +306,10 @@ SessionRecording read_lines(const std::string& path, const std::string& text, st
           corrupted(path, number,
                     std::string(kind == "undo" ? "an undo" : "a redo") + " record needs \"time\"");
         r.history_steps.emplace_back(j["time"].get<double>(), kind);
+      } else if (kind == "cancel") {
+        if (!j.contains("time") || !j["time"].is_number())
+          corrupted(path, number, "a cancel record needs \"time\"");
+        r.cancels.push_back(j["time"].get<double>());
       } else if (kind == "colour") {
         const bool valid = j.contains("colour") && j["colour"].is_string() && j.contains("time") &&
                            j["time"].is_number() && parse_colour(j["colour"].get<std::string>());

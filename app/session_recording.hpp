@@ -39,6 +39,7 @@ struct SessionRecording {
       colour_changes;                        // "colour" records: (time s, colour map), in order
   std::vector<SizeChange> size_changes;      // "sizes" records, in order
   std::vector<std::pair<double, std::string>> history_steps;  // "undo"/"redo" records: (time s, kind)
+  std::vector<double> cancels;                                // "cancel" records: time s, in order
   std::vector<PressHold> press_holds;        // "press held" records, in order
   std::optional<HeadAnchor> anchor;          // the "anchor" record, if any (at most one)
   std::string script;                        // the complete lines before any cut, '\n'-terminated (for xr/sim)

@@ -32,6 +32,9 @@ std::vector<int> read_index_file(const std::filesystem::path& path, Eigen::Index
       const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
       const std::string where = path.string() + ":" + std::to_string(line_no) + ": ";
       if (ec != std::errc{} || end != token.data() + token.size()) {
+        // (A damaged file's control bytes, NUL among them, are not sent to the terminal.)
+        for (char& c : token)
+          if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
         throw CommandError(where + "'" + token + "' is not a vertex index (expected a 0-based integer)");
       }
       if (value < 0 || value >= vertex_count) {

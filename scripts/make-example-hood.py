@@ -3,8 +3,9 @@
 
 1.5 m wide (x), 1.2 m long (y), crown at (0, 0.6, 0.95) falling 6 cm to the sides and 5 cm to the
 front and back edges; 81 x 61 vertices, triangulated with alternating diagonals so the mesh has no
-preferred direction. It is the bundled default of `scripts/demo`: pulling the crown up must keep the
-bonnet convex (the ASAN paper's Fig. 4 claim on a dome).
+preferred direction (--diagonals uniform splits every square the same way, for measuring how much the
+curvature-sign counts depend on the tessellation: interior vertices here meet 4 or 8 triangles, there 6).
+It is the bonnet of `scripts/demo-hood` (the paper's Fig. 12a/13 case: its front edge pulled 10 cm forward).
 """
 import argparse
 import pathlib
@@ -20,6 +21,8 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--nx", type=int, default=81, help="vertices across (default 81)")
     parser.add_argument("--ny", type=int, default=61, help="vertices along (default 61)")
+    parser.add_argument("--diagonals", choices=["alternating", "uniform"], default="alternating",
+                        help="how each grid square is split (default alternating, as examples/hood.off)")
     parser.add_argument("--out", help="output .off (default examples/hood.off)")
     args = parser.parse_args()
     NX, NY = args.nx, args.ny
@@ -33,7 +36,7 @@ def main():
         for i in range(NX - 1):
             a, b = j * NX + i, j * NX + i + 1
             c, d = a + NX, b + NX
-            if (i + j) % 2 == 0:
+            if args.diagonals == "uniform" or (i + j) % 2 == 0:
                 faces += [(a, b, d), (a, d, c)]
             else:
                 faces += [(a, b, c), (b, d, c)]

@@ -277,6 +277,8 @@ TEST_F(CliMessages, UnusableCommandLinesNameTheCommandAndExitTwo) {
        "pushpull render: error: --arrow: nan must be a finite number"},
       {"render " + model + " --out " + path("r.png") + " --size 0 16", "pushpull render: error: --size"},
       {"deform --bogus", "pushpull deform: error: unknown argument '--bogus'"},
+      {"deform " + model + " --roi-radius 1 --roi-radius 2 --displacement 0 0 1 --out " + path("o.off"),
+       "pushpull deform: error: --roi-radius is given 2 times; give it once"},
       {"deform " + model + " --out " + path("o.off"), "pushpull deform: error: --displacement is required"},
       {"deform " + model + " --sections 1.5 --displacement 0 0 1 --out " + path("o.off"),
        "pushpull deform: error: --sections: '1.5' is not a whole number (expected a whole number from 0 to "

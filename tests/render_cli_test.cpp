@@ -222,4 +222,38 @@ TEST(RenderCli, ErrorsNameTheFileAndTheProblem) {
   EXPECT_NE(r.output.find("--color curvature-reversal needs --deformed"), std::string::npos) << r.output;
 }
 
+// A sample count the device cannot render (lavapipe: 1 and 4) wrote a picture of noise and exit status 0; it
+// is refused with the counts the device has (a GPU that has it draws the sheet). A picture that would show
+// nothing says its likely cause: too small, or a model with no triangle of non-zero area.
+TEST(RenderCli, WhatCannotBeDrawnIsRefusedWithItsCause) {
+  const fs::path flat = temp_dir() / "sheet_c.off", lifted = temp_dir() / "sheet_d.off";
+  write_sheets(flat, lifted, 4);
+  for (const char* samples : {"2", "8"}) {
+    const fs::path out = temp_dir() / (std::string("samples") + samples + ".png");
+    fs::remove(out);
+    const Result r = run("render " + flat.string() + " --out " + out.string() +
+                         " --size 64 48 --up 0 0 1 --samples " + samples);
+    if (r.status == 0) {  // the device renders that count: the sheet is drawn
+      const Png png = load_png(out);
+      EXPECT_NE(png.at(32, 24), png.at(1, 1)) << samples;
+      continue;
+    }
+    EXPECT_EQ(r.status, 1) << r.output;
+    EXPECT_NE(r.output.find(std::string("MSAA with ") + samples + " samples: "), std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find(" renders 1"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(out)) << samples;
+  }
+  Result r = run("render " + flat.string() + " --out " + (temp_dir() / "tiny.png").string() +
+                 " --size 2 2 --up 0 0 1 --no-legend");
+  if (r.status != 0) {
+    EXPECT_NE(r.output.find("--size 2 2 is too small"), std::string::npos) << r.output;
+  }
+  const fs::path line = temp_dir() / "line.off";
+  std::ofstream(line) << "OFF\n3 1 0\n0 0 0\n1 0 0\n2 0 0\n3 0 1 2\n";
+  r = run("render " + line.string() + " --out " + (temp_dir() / "line.png").string() + " --size 64 48");
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("the model has no triangle of non-zero area"), std::string::npos) << r.output;
+}
+
 }  // namespace

@@ -1289,6 +1289,7 @@ TEST(ReviewXr, AGripSqueezedDuringADragGrabsOnlyWhenSqueezedAgain) {
 
 // In the headset, buttons that do nothing mid-drag say so (undo, the panel's menu button, the sizes' stick),
 // as the desktop's keys do; the drag commits as if they had not been pressed.
+// (And a trigger pulled aiming beside the model, which grabs nothing, says where to aim.)
 TEST(ReviewXr, ButtonsThatDoNothingMidDragSaySo) {
   const fs::path dir = test_dir();
   const std::string script = script_start() + R"({"t":0.7,"path":"/user/hand/left/input/x/click","value":true}
@@ -1298,7 +1299,10 @@ TEST(ReviewXr, ButtonsThatDoNothingMidDragSaySo) {
 {"t":1.2,"path":"/user/hand/left/input/menu/click","value":true}
 {"t":1.3,"path":"/user/hand/left/input/menu/click","value":false}
 {"t":1.4,"path":"/user/hand/right/input/trigger/value","value":0.0}
-{"t":2.0,"event":"exit"}
+{"t":1.5,"path":"/user/hand/right/input/aim/pose","pose":{"p":[0.0123,0.5,-0.55],"q":[0.70710678,0,0,0.70710678]}}
+{"t":2.6,"path":"/user/hand/right/input/trigger/value","value":1.0}
+{"t":2.7,"path":"/user/hand/right/input/trigger/value","value":0.0}
+{"t":3.0,"event":"exit"}
 )";
   const fs::path recording = dir / "session.jsonl";
   const ReviewRun run = run_review(dir, script, "--record " + recording.string());
@@ -1306,7 +1310,9 @@ TEST(ReviewXr, ButtonsThatDoNothingMidDragSaySo) {
   ASSERT_EQ(run.of("commit").size(), 1u) << run.result.output;
   EXPECT_TRUE(run.of("undo").empty()) << run.result.output;
   for (const char* said :
-       {"undo and redo act between drags", "sizes change between drags", "the panel opens between drags"})
+       {"undo and redo act between drags", "sizes change between drags", "the panel opens between drags",
+        // The trigger pulled at 2.6 s with the ray pointing up, beside the model.
+        "the trigger pushes and pulls where the ray meets the model: aim at its surface"})
     EXPECT_NE(run.result.output.find(said), std::string::npos) << said << "\n" << run.result.output;
   // Which controllers the runtime bound is said.
   EXPECT_NE(
@@ -2071,6 +2077,45 @@ wait $pid
   EXPECT_NE(log.find("times the model's longest side (1.50 m): a tracking jump at the release?"),
             std::string::npos)
       << log;
+}
+
+// Esc mid-drag cancels the drag (a first-time user pressed it to drop a pull and lost the session): the model
+// stays as before the drag, a "cancel" record is written, the button still held grabs nothing more, and the
+// next drag and a second Esc work as before. The replay cancels at the same frame and reproduces both
+// commits bit for bit.
+TEST(ReviewXrWindow, EscMidDragCancelsTheDragAndTheReplayCancelsItToo) {
+  if (std::getenv("DISPLAY") == nullptr) GTEST_SKIP() << "no DISPLAY (ctest runs this under xvfb-run)";
+  ASSERT_EQ(run_command("command -v xdotool").status, 0) << "xdotool is missing (scripts/setup installs it)";
+  const fs::path dir = test_dir();
+  const fs::path recording = dir / "desktop.jsonl", out = dir / "desktop.off";
+  std::ofstream(dir / "drive.sh") << desktop_hood_review_script(dir, recording, out) << R"SH(
+drag 200 150 3 0 1; await commit 1
+xdotool mousemove --window $wid 150 170; sleep 0.3; xdotool mousedown 1; await press 2
+for i in 1 2 3 4 5 6; do xdotool mousemove_relative -- 0 -4; sleep 0.05; done
+key Escape cancel 1
+for i in 1 2 3; do xdotool mousemove_relative -- 0 -4; sleep 0.05; done
+xdotool mouseup 1; sleep 0.5
+drag 250 130 0 3 3; await commit 2
+xdotool key Escape
+wait $pid
+)SH";
+  const auto driven = run_drive_script(dir);
+  ASSERT_EQ(driven.status, 0) << driven.output;
+  EXPECT_NE(driven.output.find("push/pull cancelled: the model is as before it (Esc again ends the review)"),
+            std::string::npos)
+      << driven.output;
+  const auto releases = recording_records(recording, "release");
+  ASSERT_EQ(releases.size(), 3u) << driven.output;
+  EXPECT_FALSE(releases[1].value("committed", true)) << releases[1].dump();
+  EXPECT_EQ(recording_records(recording, "press").size(), 3u) << "the held button grabbed nothing more";
+  ASSERT_EQ(recording_records(recording, "commit").size(), 2u) << driven.output;
+  ASSERT_EQ(recording_records(recording, "cancel").size(), 1u);
+  expect_replays_with_commits(recording, 2);
+  EXPECT_EQ(recording_records(dir / "replay" / "replay-session.jsonl", "cancel").size(), 1u)
+      << "the replay cancels the drag at the recorded frame";
+  const auto desktop_model = pushpull::deform::read_mesh(out);
+  const auto replayed_model = pushpull::deform::read_mesh(dir / "replay" / "final.off");
+  EXPECT_EQ((desktop_model.V - replayed_model.V).cwiseAbs().maxCoeff(), 0.0);
 }
 
 // A desktop review of the bonnet (desktop_hood_review_script) whose push/pull commits, then whose window

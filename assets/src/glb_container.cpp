@@ -43,7 +43,8 @@ std::optional<std::uint64_t> declared_end(std::span<const std::uint8_t> bytes, s
 GlbChunks parse_glb(std::span<const std::uint8_t> bytes, const std::string& name) {
   auto fail = [&](const std::string& what) { throw AssetError(name + ": invalid GLB: " + what); };
   if (bytes.size() < 20)
-    fail("truncated header (" + std::to_string(bytes.size()) + " bytes, a GLB header has 20)");
+    fail("truncated header (" + std::to_string(bytes.size()) +
+         " bytes; a GLB begins with a 12-byte header and its JSON chunk's 8-byte header)");
   if (read_u32(bytes, 0) != kMagic) fail("bad magic");
   if (read_u32(bytes, 4) != 2)
     fail("version " + std::to_string(read_u32(bytes, 4)) + " (only 2 is supported)");

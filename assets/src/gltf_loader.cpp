@@ -32,6 +32,18 @@ const std::set<std::string> kInterpretedExtensions = {"KHR_draco_mesh_compressio
 // Extensions without which the geometry cannot be read: refused when required.
 const std::set<std::string> kGeometryExtensions = {"EXT_meshopt_compression", "KHR_meshopt_compression"};
 
+// A required extension pushpull does not interpret is refused (glTF 2.0: a loader must not load an asset
+// whose required extension it does not support), except those that change only how the model looks (its
+// materials, textures, lights, metadata): without them the shape under review is the file's, drawn with the
+// base material. Any other (EXT_mesh_gpu_instancing places copies of meshes; an unknown one may move
+// vertices) could leave the reviewed shape other than the file's.
+bool appearance_only(const std::string& extension) {
+  for (const char* prefix : {"KHR_materials_", "KHR_texture_", "EXT_texture_", "EXT_materials_"})
+    if (extension.rfind(prefix, 0) == 0) return true;
+  return extension == "KHR_lights_punctual" || extension == "KHR_xmp_json_ld" || extension == "KHR_xmp" ||
+         extension == "EXT_lights_image_based";
+}
+
 // ---- file access under the URI policy (tinygltf FsCallbacks) ----
 
 struct FsContext {
@@ -469,8 +481,13 @@ void load_gltf(std::span<const std::uint8_t> bytes, const std::string& name, con
   model.report.extensions_used = string_list(document, "extensionsUsed");
   model.report.extensions_required = string_list(document, "extensionsRequired");
   for (const std::string& extension : model.report.extensions_required)
-    if (kGeometryExtensions.count(extension))
+    if (kGeometryExtensions.count(extension)) {
       throw AssetError(name + ": requires extension " + extension + ", which pushpull cannot decode");
+    } else if (!kInterpretedExtensions.count(extension) && !appearance_only(extension)) {
+      throw AssetError(name + ": requires extension " + extension +
+                       ", which pushpull does not support (it may change the model's geometry; extensions "
+                       "that change only materials, textures or lights are drawn without)");
+    }
   for (const std::string& extension : model.report.extensions_used)
     if (!kInterpretedExtensions.count(extension)) {
       model.report.unsupported_extensions.push_back(extension);

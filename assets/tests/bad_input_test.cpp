@@ -120,6 +120,28 @@ TEST(AssetsBadInput, NoAssetAndAMissingSceneAreNamed) {
   expect_refused(dir, old, "glTF version \"1.0\": only glTF 2.x is read");
 }
 
+// A required extension that may change the geometry and that pushpull does not interpret is refused (it was
+// only warned of, and the model loaded without it); one that changes only the look is warned of and loads.
+TEST(AssetsBadInput, ARequiredExtensionThatMayChangeTheGeometryIsRefused) {
+  ScratchDir dir;
+  for (const char* extension : {"KHR_foo", "EXT_mesh_gpu_instancing"}) {
+    json document = triangle_gltf();
+    document["extensionsUsed"] = {extension};
+    document["extensionsRequired"] = {extension};
+    expect_refused(dir, document,
+                   std::string("requires extension ") + extension + ", which pushpull does not support");
+  }
+  json looks = triangle_gltf();
+  looks["extensionsUsed"] = {"KHR_texture_transform", "KHR_foo"};
+  looks["extensionsRequired"] = {"KHR_texture_transform"};
+  const Model model = load_document(dir, looks);
+  EXPECT_EQ(model.deform_mesh.F.rows(), 1);
+  ASSERT_EQ(model.report.warnings.size(), 2u);
+  EXPECT_NE(model.report.warnings[0].find("KHR_texture_transform (required) is not supported"),
+            std::string::npos)
+      << model.report.warnings[0];
+}
+
 // Positions that are not floats without KHR_mesh_quantization (unsigned integers were read as metres, a model
 // 1e9 long), and a node transform that puts the vertices beyond the 32-bit floats they are drawn in (drawn as
 // nothing, solved into non-finite positions), are refused by name.

@@ -76,7 +76,11 @@ class MeshBuilder {
     }
     for (const std::int64_t index : polygon) {
       if (index < 0 || index > INT32_MAX) {
-        fail(name_, line, "vertex index " + std::to_string(index) + " out of range");
+        fail(name_, line,
+             "vertex index " + std::to_string(index) + " out of range (" +
+                 (index < 0 ? std::string("indices are 0-based")
+                            : "the file has " + std::to_string(vertex_count()) + " vertices so far") +
+                 ")");
       }
     }
     for (std::size_t k = 1; k + 1 < polygon.size(); ++k) {

@@ -99,11 +99,10 @@ class BodyReader {
     while (pos_ < body_.size() && !detail::is_space(body_[pos_]) && body_[pos_] != '\n') ++pos_;
     const std::string_view token = body_.substr(start, pos_ - start);
     double value = 0.0;
-    if (!detail::parse_double(token, value))
-      fail(name_, line_, "'" + std::string(token) + "' is not a number");
+    if (!detail::parse_double(token, value)) fail(name_, line_, detail::not_a_number_text(token));
     if (type != ScalarType::float32 && type != ScalarType::float64 &&
         value != static_cast<double>(static_cast<std::int64_t>(value))) {
-      fail(name_, line_, "'" + std::string(token) + "' is not an integer");
+      fail(name_, line_, detail::quoted_token(token) + " is not an integer");
     }
     return value;
   }

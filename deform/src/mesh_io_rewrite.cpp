@@ -224,9 +224,9 @@ PositionRewrite rewrite_ply(std::string_view contents, const Eigen::MatrixXd& V,
           }
           std::int64_t length = 0;
           if (!detail::parse_int64(token, length) || length < 0)
-            fail(
-                name, 0,
-                element.name + " " + std::to_string(item) + ": bad list length '" + std::string(token) + "'");
+            fail(name, 0,
+                 element.name + " " + std::to_string(item) + ": bad list length " +
+                     detail::quoted_token(token));
           for (std::int64_t k = 0; k < length; ++k)
             if (!next_token(token)) fail(name, 0, "truncated: the data ends before the vertices were read");
         }

@@ -31,7 +31,7 @@ std::vector<std::int64_t> read_ints(std::string_view line, const std::string& na
     std::int64_t value = 0;
     if (!detail::parse_int64(token, value)) {
       fail(name, line_no,
-           std::string("expected an integer in the ") + what + ", found '" + std::string(token) + "'");
+           std::string("expected an integer in the ") + what + ", found " + detail::quoted_token(token));
     }
     values.push_back(value);
   }
@@ -93,7 +93,7 @@ Mesh parse_off(std::string_view contents, const std::string& name) {
         fail(name, cursor.line_number(), "vertex " + std::to_string(i) + " has fewer than 3 coordinates");
       if (!detail::parse_double(token, value)) {
         fail(name, cursor.line_number(),
-             "vertex " + std::to_string(i) + ": '" + std::string(token) + "' is not a number");
+             "vertex " + std::to_string(i) + ": " + detail::not_a_number_text(token));
       }
     }
     builder.add_vertex(xyz[0], xyz[1], xyz[2], cursor.line_number());
@@ -110,7 +110,7 @@ Mesh parse_off(std::string_view contents, const std::string& name) {
     std::int64_t n = 0;
     if (!detail::parse_int64(token, n) || n < 0) {
       fail(name, cursor.line_number(),
-           "face " + std::to_string(f) + ": bad vertex count '" + std::string(token) + "'");
+           "face " + std::to_string(f) + ": bad vertex count " + detail::quoted_token(token));
     }
     if (static_cast<std::size_t>(n) > line.size()) {
       fail(name, cursor.line_number(),
@@ -124,7 +124,7 @@ Mesh parse_off(std::string_view contents, const std::string& name) {
       }
       if (!detail::parse_int64(token, polygon[static_cast<std::size_t>(k)])) {
         fail(name, cursor.line_number(),
-             "face " + std::to_string(f) + ": '" + std::string(token) + "' is not an index");
+             "face " + std::to_string(f) + ": " + detail::quoted_token(token) + " is not an index");
       }
     }
     builder.add_polygon(polygon, cursor.line_number());  // trailing colour values are ignored
@@ -163,7 +163,7 @@ Mesh parse_obj(std::string_view contents, const std::string& name) {
         std::string_view token;
         if (!tokens.next(token)) fail(name, cursor.line_number(), "vertex with fewer than 3 coordinates");
         if (!detail::parse_double(token, value)) {
-          fail(name, cursor.line_number(), "'" + std::string(token) + "' is not a number");
+          fail(name, cursor.line_number(), detail::not_a_number_text(token));
         }
       }
       builder.add_vertex(xyz[0], xyz[1], xyz[2], cursor.line_number());
@@ -175,7 +175,7 @@ Mesh parse_obj(std::string_view contents, const std::string& name) {
         const std::string_view position = token.substr(0, token.find('/'));
         std::int64_t index = 0;
         if (!detail::parse_int64(position, index) || index == 0) {
-          fail(name, cursor.line_number(), "bad face vertex '" + std::string(token) + "'");
+          fail(name, cursor.line_number(), "bad face vertex " + detail::quoted_token(token));
         }
         // Positive indices are 1-based; negative ones count back from the latest vertex.
         polygon.push_back(index > 0 ? index - 1 : static_cast<std::int64_t>(builder.vertex_count()) + index);

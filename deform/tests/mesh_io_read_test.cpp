@@ -96,6 +96,28 @@ TEST(MeshIoRead, OffRefusals) {
             std::string::npos);
 }
 
+// What a refused token is: a number beyond a double's range is said to be one (1e-400 was "not a number"),
+// a control byte is quoted as \xNN (a NUL reached the terminal), a huge index names the vertices there are.
+TEST(MeshIoRead, RefusedTokensAreNamedForWhatTheyAre) {
+  const std::string under =
+      error_of([] { (void)pd::parse_off("OFF\n3 1 0\n1e-400 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "u.off"); });
+  EXPECT_NE(under.find("u.off:3: vertex 0: '1e-400' is out of a double's range (it underflows to 0)"),
+            std::string::npos)
+      << under;
+  const std::string over =
+      error_of([] { (void)pd::parse_obj("v 1e400 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "o.obj"); });
+  EXPECT_NE(over.find("'1e400' is out of a double's range (it overflows)"), std::string::npos) << over;
+  const std::string nul = error_of(
+      [] { (void)pd::parse_off(std::string("OFF\n3 1 0\n0 0 0\n1 x\0y 0\n0 1 0\n3 0 1 2\n", 38), "z.off"); });
+  EXPECT_NE(nul.find("'x\\x00y' is not a number"), std::string::npos) << nul;
+  EXPECT_EQ(nul.find('\0'), std::string::npos);
+  const std::string huge =
+      error_of([] { (void)pd::parse_off("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 4294967296\n", "h.off"); });
+  EXPECT_NE(huge.find("vertex index 4294967296 out of range (the file has 3 vertices so far)"),
+            std::string::npos)
+      << huge;
+}
+
 TEST(MeshIoRead, ObjSlashesNegativeIndicesAndIgnoredRecords) {
   const std::string text =
       "# square\nmtllib x.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0 1.0\nvt 0 0\nvn 0 0 1\n"

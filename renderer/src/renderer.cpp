@@ -279,6 +279,21 @@ Renderer::Renderer(const Context& context, const RendererOptions& options)
   Impl& r = *impl_;
   if (options.frames_in_flight == 0)
     throw std::invalid_argument("RendererOptions::frames_in_flight must be >= 1");
+  {
+    // A sample count the device cannot render (lavapipe: 1 and 4) drew noise without an error: refused here,
+    // with the counts it has.
+    const VkPhysicalDeviceLimits& limits = context.properties().limits;
+    const VkSampleCountFlags supported =
+        limits.framebufferColorSampleCounts & limits.framebufferDepthSampleCounts;
+    const auto bits = static_cast<VkSampleCountFlags>(options.samples);
+    if (bits == 0 || (bits & (bits - 1)) != 0 || (supported & bits) == 0) {
+      std::string counts;
+      for (VkSampleCountFlags b = 1; b <= VK_SAMPLE_COUNT_64_BIT; b <<= 1)
+        if (supported & b) counts += (counts.empty() ? "" : ", ") + std::to_string(b);
+      throw std::invalid_argument("MSAA with " + std::to_string(bits) + " samples: " +
+                                  context.properties().deviceName + " renders " + counts + " (--samples)");
+    }
+  }
   VkDevice device = context.device();
   r.layouts = create_pipeline_layouts(context);
   r.sampler = create_sampler(context, VK_SAMPLER_ADDRESS_MODE_REPEAT);

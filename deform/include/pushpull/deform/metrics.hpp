@@ -14,27 +14,30 @@
 //    car and a 4 m car read alike, and unlike a fraction of max |K| it does not depend on the sharpest tiny
 //    part (a lamp's rim made every body vertex "flat"). Why 1e-2: a car bonnet is convex but gentle; the
 //    demo's bonnet (examples/hood.off) has |K| L^2 between 1e-2 and 1 everywhere, and the paper's Fig. 12
-//    finding (ARAP-s&r turns part of it saddle-shaped, ASAN keeps it convex) holds with 1e-2 (37.8% vs 0%
-//    reversals) but vanishes with 0.1 (half of ASAN's bonnet ends "flat") or 1 (the whole bonnet is flat
-//    before the pull). Float32 positions give planar panels an angle-defect noise estimated at 1e-3 .. 1e-2
-//    in these units for 1-5 cm triangles on a car, and the display rule below draws flat panels flat.
-//    Near-developable panels (doors) are where the sign is least stable; a larger --dead-band (0.1 .. 1)
-//    draws them flat at the price above. The paper's yellow/blue sign maps become +1 / -1 / 0 here.
+//    finding (ARAP-s&r turns part of it saddle-shaped, ASAN keeps it convex) holds with 1e-2 (29% vs 0%
+//    reversals on its alternating-diagonal grid; 22% vs 6.8% with uniform diagonals: the README) but vanishes
+//    with 0.1 (half of ASAN's bonnet ends "flat") or 1 (the whole bonnet is flat before the pull). Float32
+//    positions give planar panels an angle-defect noise estimated at 1e-3 .. 1e-2 in these units for 1-5 cm
+//    triangles on a car, and the display rule below draws flat panels flat. Near-developable panels (doors)
+//    are where the sign is least stable; a larger --dead-band (0.1 .. 1) draws them flat at the price above.
+//    The paper's yellow/blue sign maps become +1 / -1 / 0 here.
 //  - Flat panels shown flat: the angle defect at a vertex where only flat panels meet (creases meeting at a
 //    corner of a coarse CAD panel) is not the curvature of those panels, yet interpolating vertex colours
 //    paints the whole panel with it. flat_panel_faces() marks the faces whose every edge is a boundary, a
 //    crease (dihedral angle >= crease angle) or shared with a coplanar face (dihedral <= kCoplanarDihedral);
 //    displays draw those faces flat and a vertex with its vertex sign only where one of its faces is not a
 //    flat-panel face (display_curvature_signs). Statistics keep the vertex signs.
-//  - Sign changes are reported apart: strict reversals (+ to -, - to +) are what the paper's "sign flips"
-//    mean (surface collapse); moves into or out of flat are counted separately (into_flat, out_of_flat).
+//  - Sign changes are reported apart: strict reversals (+ to -, - to +) are the paper's "curvature sign
+//  changes"
+//    (Fig. 4) that mark surface collapse (section 5); moves into or out of flat are counted separately
+//    (into_flat, out_of_flat).
 //  - Reversals by band: the same strict reversals counted again among the vertices clearly curved before
 //    the pull, signed under the sign rule's band raised (MetricsOptions::reversal_bands, default 0.1, 1 and
 //    10: curvature radius below L / sqrt(band), on a 4.4 m car 14 m, 4.4 m and 1.4 m; the "compared"
 //    count), and signed the other way after it under the sign rule's own band (a clearly curved vertex
 //    that turns gently curved the other way has reversed). They tell where a method's reversals lie: on
 //    gently curved surface, on clearly curved
-//    surface, or where the surface is nearly developable and the sign least stable (the paper's section 7
+//    surface, or where the surface is nearly developable and the sign least stable (the paper's section 6
 //    names areas of null Gaussian curvature as its criterion's weak spot). The README gives the bundled car's
 //    session's figures.
 //  - Displacement u_i = p'_i - p_i split along the unit push/pull direction d^ = d/|d|:
@@ -196,7 +199,7 @@ struct DeformationMetrics {
   double reference_length = 0.0;        // L of the sign rule: bounding-box diagonal of `before` (model units)
   double curvature_threshold = 0.0;     // flat_band / L^2, 1/length^2: |K| at most this is flat
   std::size_t sign_flips = 0;           // vertices whose sign changed (any of +,-,0 to another)
-  std::size_t sign_reversals = 0;       // strict reversals: + to - or - to + (the paper's sign flips)
+  std::size_t sign_reversals = 0;       // strict reversals: + to - or - to + (the paper's sign changes)
   std::size_t into_flat = 0;            // + or - before, flat after
   std::size_t out_of_flat = 0;          // flat before, + or - after
   double sign_flip_fraction = 0.0;      // sign_flips / curvature_vertices (0 when there are none)
