@@ -456,15 +456,9 @@ void run_deform(DeformCommandOptions o) {
     record.result.warnings.insert(record.result.warnings.begin(), load_warnings.begin(), load_warnings.end());
   }
   // The review's readout says it of a pull over kSteepPull handle radii; so does deform.
-  if (!o.handle_at.empty() && d.norm() > kSteepPull * o.handle_radius) {
-    char text[160];
-    std::snprintf(
-        text, sizeof text,
-        "steep: |d| is %.0fx the handle radius, a spike rather than a bulge (a larger --handle-radius "
-        "spreads it)",
-        d.norm() / o.handle_radius);
-    record.result.warnings.insert(record.result.warnings.begin(), text);
-  }
+  if (!o.handle_at.empty())
+    if (const auto steep = steep_pull_warning(d.norm(), o.handle_radius))
+      record.result.warnings.insert(record.result.warnings.begin(), *steep);
   // Parts on the solved surface (lamps, plates, trims) follow it; the metrics below stay those of the region.
   if (o.attached_parts) {
     const deform::AttachedParts parts(*mesh, roi, {.reach = o.attach_reach});
@@ -633,10 +627,12 @@ void add_deform_command(CLI::App& root) {
       ->capture_default_str()
       ->check(finite_above(0.0, false));
   cmd->add_option("--lambda", o->lambda,
-                  "arap-h, arap-sr-h: bending weight (relative to the mean vertex area)")
+                  "arap-h, arap-sr-h: bending weight against the membrane (0: arap-m; relative to the mean "
+                  "vertex area; the paper's lambda runs the other way)")
       ->capture_default_str()
       ->check(finite_above(0.0, false));
-  cmd->add_option("--rings", o->rings, "arap-n: neighbourhood size n")
+  cmd->add_option("--rings", o->rings,
+                  "arap-n: neighbourhood size n (1: the one-ring with its rims, arap-sr)")
       ->capture_default_str()
       ->check(whole_number_in(1, 1000));
   CLI::Option* iterations = cmd->add_option("--iterations", o->iterations, "Maximum local-global iterations")

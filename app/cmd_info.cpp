@@ -2,9 +2,11 @@
 #include "commands.hpp"
 #include "life_size.hpp"
 #include "number_checks.hpp"
+#include "up_axis_note.hpp"
 
 #include <pushpull/assets/info.hpp>
 #include <pushpull/assets/model.hpp>
+#include <pushpull/deform/mesh_io.hpp>
 
 #include <CLI/CLI.hpp>
 
@@ -27,9 +29,16 @@ void run_info(const InfoArguments& arguments) {
   options.scale = arguments.life_size.scale;
   options.target_length_m = arguments.life_size.length_m;
   options.weld.relative_tolerance = arguments.weld_tolerance;
+  options.refuse_unsupported_required = false;  // info names such an extension (the other commands refuse)
   try {
     const pushpull::assets::Model model = pushpull::assets::load_model(arguments.model, options);
     std::fputs(pushpull::assets::describe_model(model).c_str(), stdout);
+    // What the review would say before a session: other units than metres, a plain mesh on its side.
+    const Eigen::Vector3d size_m = model.bounds.sizes() * model.scale;
+    if (const auto hint = size_hint(size_m.maxCoeff())) std::printf("note:         %s\n", hint->c_str());
+    if (pushpull::deform::mesh_format_from_path(arguments.model))
+      if (const auto note = plain_mesh_up_note(arguments.model, size_m))
+        std::printf("note:         %s (render and review take --up)\n", note->c_str());
   } catch (const pushpull::assets::AssetError& e) {
     throw CommandError(e.what());
   }

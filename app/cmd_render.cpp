@@ -131,8 +131,9 @@ void add_render_command(CLI::App& root) {
       ->check(CLI::IsMember({"material", "displacement", "curvature-sign", "curvature-reversal"}));
   cmd->add_option(
          "--camera", options->camera,
-         "Orbit camera: AZIMUTH ELEVATION [ZOOM] (degrees around --up from the model's front +Z towards "
-         "+X; ZOOM > 1 moves closer). Default 35 20 1 frames the whole model")
+         "Orbit camera: AZIMUTH ELEVATION [ZOOM] (degrees around --up, azimuth 0 looking from +Z, or from -Y "
+         "when --up is along Z, turning towards --up x that axis; ZOOM > 1 moves closer). Default 35 20 1 "
+         "frames the whole model")
       ->expected(2, 3)
       ->check(finite_number())
       ->type_name("AZIMUTH ELEVATION [ZOOM]");

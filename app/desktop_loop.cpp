@@ -177,6 +177,7 @@ void run_desktop(const ReviewCommandOptions& given, const ReviewSetup& setup) {
     bool said_along_normal = false;  // this drag's Shift pull was held for a view along the normal
     std::optional<HistoryStep> stepped_last_frame;
     bool dragging = false;
+    bool end_after_release = false;  // Esc pressed as the button went up: end once the release committed
     Eigen::Vector3d p0_stage = Eigen::Vector3d::Zero(), normal_stage = Eigen::Vector3d::UnitY();
     Eigen::Vector3d plane_normal = Eigen::Vector3d::UnitZ();
     std::string title;
@@ -206,6 +207,7 @@ void run_desktop(const ReviewCommandOptions& given, const ReviewSetup& setup) {
         std::printf("pushpull review: interrupted; ending the review (again to quit at once)\n");
         break;
       }
+      if (end_after_release && !interaction.dragging()) break;  // Esc came with the release: now committed
       try {
         window.poll_events();
         if (window.lost()) break;  // its pointer and size would be garbage this frame
@@ -235,11 +237,15 @@ void run_desktop(const ReviewCommandOptions& given, const ReviewSetup& setup) {
           // Esc mid-drag cancels the drag (the model stays as before it; a "cancel" record, which a replay
           // applies at this frame); between drags it ends the review. (A first-time user pressed Esc to drop
           // a pull and lost the session.)
+          // With the button already up (its release shown this frame or queued), the release commits first
+          // and the review ends after this frame (ending at once cancelled the pull just released).
           if (key == 256 /* GLFW_KEY_ESCAPE */) {
             if (interaction.dragging() && window.pointer().left && !window.pointer().left_release_queued) {
               if (const auto e = interaction.cancel()) record_interaction(*e);
               recorder.write_record("cancel", t);
               say("push/pull cancelled: the model is as before it (Esc again ends the review)");
+            } else if (interaction.dragging()) {
+              end_after_release = true;
             } else {
               quit = true;
             }

@@ -25,6 +25,16 @@ std::vector<std::string> drag_notes(double pull, double handle_radius, const def
   return lines;
 }
 
+std::optional<std::string> steep_pull_warning(double pull, double handle_radius) {
+  if (!(handle_radius > 0.0) || !(pull > kSteepPull * handle_radius)) return std::nullopt;
+  char text[160];
+  std::snprintf(text, sizeof text,
+                "steep: |d| is %.0fx the handle radius, a spike rather than a bulge (a larger handle radius "
+                "spreads it)",
+                pull / handle_radius);
+  return std::string(text);
+}
+
 std::optional<std::string> long_pull_warning(double pull, double longest_side, double scale) {
   if (!(longest_side > 0.0) || !(pull > longest_side)) return std::nullopt;
   char text[200];

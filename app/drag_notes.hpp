@@ -24,6 +24,11 @@ inline constexpr double kOvershoot = 1.5;
 [[nodiscard]] std::vector<std::string> drag_notes(double pull, double handle_radius,
                                                   const deform::Snapshot& s);
 
+// A push/pull of |d| = pull with handles of `handle_radius` (model units) over kSteepPull handle radii: the
+// warning `pushpull deform` prints and a replay writes into the commit's metrics ("steep: |d| is 7x the
+// handle radius, a spike rather than a bulge (...)"); none for a gentler one.
+[[nodiscard]] std::optional<std::string> steep_pull_warning(double pull, double handle_radius);
+
 // A committed pull longer than the model's longest side (a tracking jump at the release, a drag released off
 // the desktop window): the warning, with the way back; none for a shorter one. pull and longest_side in model
 // units, scale in metres per model unit (the lengths are said in life-size metres).

@@ -61,4 +61,30 @@ Eigen::AlignedBox3d bounds_of(const Eigen::MatrixXd& V) {
   return box;
 }
 
+std::optional<std::string> size_hint(double longest_m) {
+  if (!std::isfinite(longest_m) || !(longest_m > 0.0) || (longest_m >= 0.3 && longest_m <= 30.0))
+    return std::nullopt;
+  char text[256];
+  // A car or a part of one in millimetres or centimetres, read as metres: the units, not the size, are off
+  // (450 "m" may be either: both are said).
+  std::string units;
+  for (const auto& [factor, name] : {std::pair{0.001, "millimetres"}, std::pair{0.01, "centimetres"}}) {
+    if (longest_m * factor >= 0.3 && longest_m * factor <= 30.0) {
+      std::snprintf(text, sizeof text, "%sif the file is in %s, --scale %g makes it %.3g m long",
+                    units.empty() ? "" : "; ", name, factor, longest_m * factor);
+      units += text;
+    }
+  }
+  if (!units.empty()) {
+    std::snprintf(text, sizeof text, "its longest side is %.4g m: ", longest_m);
+    return text + units + " (--length M makes it M metres long)";
+  }
+  std::snprintf(
+      text, sizeof text,
+      "its longest side is %.3g m; --length M makes it M metres long (a car: --length 4.2), --scale S "
+      "sets metres per file unit",
+      longest_m);
+  return std::string(text);
+}
+
 }  // namespace pushpull::app

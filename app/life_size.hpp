@@ -51,6 +51,11 @@ class LifeSize {
   double scale_ = 1.0;
 };
 
+// What to say of a model whose longest side is `longest_m` metres at the scale taken, outside 0.3 .. 30 m (a
+// walk-around size): a CAD export in millimetres (300 .. 30,000 "m") or centimetres is named with the --scale
+// that makes it life size, any other size with --length ("a car: --length 4.2"); nullopt inside the range.
+[[nodiscard]] std::optional<std::string> size_hint(double longest_m);
+
 // The bounding box of #V by 3 positions (empty box for no rows).
 Eigen::AlignedBox3d bounds_of(const Eigen::MatrixXd& V);
 

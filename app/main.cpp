@@ -1,5 +1,6 @@
 // pushpull: immersive design reviews of man-made shapes with As-Stiff-As-Needed deformation.
 #include "commands.hpp"
+#include "signals_held.hpp"
 
 #include <CLI/CLI.hpp>
 
@@ -63,12 +64,17 @@ int main(int argc, char** argv) {
       if (dynamic_cast<const CLI::RequiredError*>(&e) != nullptr && !left.empty())
         message = "unknown argument '" + left.front() + "'";
     }
-    // An option given twice: CLI11 says "--roi-radius: At Most 1 required but received 2".
-    if (const std::size_t at = message.find(": At Most 1 required but received ");
-        at != std::string::npos && dynamic_cast<const CLI::ArgumentMismatch*>(&e) != nullptr)
-      message = message.substr(0, at) + " is given " +
-                message.substr(at + std::string_view(": At Most 1 required but received ").size()) +
-                " times; give it once";
+    // An option given twice: CLI11 counts values, "--roi-radius: At Most 1 required but received 2",
+    // "--displacement: At Most 3 required but received 6".
+    if (const std::size_t at = message.find(": At Most ");
+        at != std::string::npos && dynamic_cast<const CLI::ArgumentMismatch*>(&e) != nullptr) {
+      unsigned per_use = 0, received = 0;
+      if (std::sscanf(message.c_str() + at, ": At Most %u required but received %u", &per_use, &received) ==
+              2 &&
+          per_use > 0 && received > per_use && received % per_use == 0)
+        message = message.substr(0, at) + " is given " + std::to_string(received / per_use) +
+                  " times; give it once";
+    }
     std::fprintf(stderr, "pushpull%s: error: %s\n(pushpull%s --help lists the options)\n", command.c_str(),
                  message.c_str(), command.c_str());
     return kUsageError;
@@ -80,6 +86,7 @@ int main(int argc, char** argv) {
     return kUsageError;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "pushpull: error: %s\n", e.what());
+    pushpull::app::raise_held_signal();  // a Ctrl-C held while the failed write ran (signals_held.hpp)
     return 1;
   }
   return 0;

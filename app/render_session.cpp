@@ -287,20 +287,15 @@ TextureRGBA8 PictureRenderer::render(const RenderInputs& inputs, const RenderCom
   } else if (o.color == "curvature-reversal") {
     settings.color_mode = ColorMode::curvature_sign;
     settings.curvature_epsilon = 0.5f;  // scalars: the new sign where it reversed, 0 where it was kept
-    if (!o.no_legend) {
-      // Wider than the sign legend: its labels are longer.
-      const float widen = 1.6f;
-      glm::vec4 rect = legend.curvature_rect;
-      rect.z = rect.x + widen * (rect.z - rect.x);
-      renderer.set_legend(make_sign_legend(uint32_t(widen * float(legend.width_px)), legend.height_px / 2,
-                                           {"to K > 0", "to K < 0", "kept"}),
-                          rect);
-    }
+    if (!o.no_legend)
+      renderer.set_legend(
+          make_sign_legend(legend.curvature_width_px, legend.height_px / 2, {"to K > 0", "to K < 0", "kept"}),
+          legend.curvature_rect);
   } else if (o.color == "curvature-sign") {
     settings.color_mode = ColorMode::curvature_sign;
     settings.curvature_epsilon = 0.5f;  // scalars are the signs -1 / 0 / +1
     if (!o.no_legend)
-      renderer.set_legend(make_curvature_legend(legend.width_px, legend.height_px / 2),
+      renderer.set_legend(make_curvature_legend(legend.curvature_width_px, legend.height_px / 2),
                           legend.curvature_rect);
   }
 
@@ -360,7 +355,8 @@ bool shows_nothing(const TextureRGBA8& image) {
   };
   const int background[3] = {encoded(clear.r), encoded(clear.g), encoded(clear.b)};
   const LegendLayout legend = legend_layout(image.width, image.height);
-  const auto legend_x1 = std::size_t(std::ceil(double(legend.rect[2]) * image.width)) + 2;
+  const auto legend_x1 =
+      std::size_t(std::ceil(double(std::max(legend.rect[2], legend.curvature_rect[2])) * image.width)) + 2;
   const auto legend_y0 = std::size_t(std::max(0.0, std::floor(double(legend.rect[1]) * image.height) - 2));
   for (std::size_t y = 0; y < image.height; ++y)
     for (std::size_t x = 0; x < image.width; ++x) {
@@ -381,6 +377,8 @@ void render_to_png(const RenderInputs& inputs, const RenderCommandOptions& o) {
     image = pictures.render(inputs, o);
     if (o.benchmark_frames > 0) pictures.benchmark(inputs, o);
     validation_messages = pictures.close();
+  } catch (const std::invalid_argument& e) {  // a sample count the device does not render
+    throw CommandError("--samples " + std::to_string(o.samples) + ": " + e.what());
   } catch (const renderer::VulkanError& e) {
     // Out of memory: the size asked for is the likely cause, and the user's to change.
     if (e.result() != VK_ERROR_OUT_OF_DEVICE_MEMORY && e.result() != VK_ERROR_OUT_OF_HOST_MEMORY) throw;

@@ -1,4 +1,5 @@
 #include "replay_session.hpp"
+#include "drag_notes.hpp"
 #include "region_camera.hpp"
 #include "region_notes.hpp"
 
@@ -669,10 +670,14 @@ void run_replay(const ReplayOptions& o) {
     record.total_ms = s.setup_ms + s.factorize_ms + s.solve_ms;  // the commit's solve (no file reading here)
     record.dead_band_fraction = deform::MetricsOptions{}.flat_band;  // the band the metrics below use
     record.result.warnings = s.warnings;
-    // What `pushpull deform` says of the same region (a whole part moved, a handle torn out).
+    // What `pushpull deform` says of the same region (a whole part moved, a handle torn out) and pull (steep,
+    // as the readout said it during the drag).
     if (s.region)
       if (const std::optional<UnheldRegion> unheld = unheld_region(*s.region))
         record.result.warnings.insert(record.result.warnings.begin(), unheld_region_text(*unheld));
+    if (record.handle_at)
+      if (const auto steep = steep_pull_warning(s.d.norm(), record.handle_radius))
+        record.result.warnings.insert(record.result.warnings.begin(), *steep);
     if (s.energy_trace) record.result.energy_trace = *s.energy_trace;
     record.result.initial_energy = s.initial_energy;
     // The parts bound to the surface, each with how far it moved (as `pushpull deform` reports them).
@@ -872,8 +877,9 @@ void run_replay(const ReplayOptions& o) {
                    "pushpull replay: warning: %s: %s; the report does not say which push/pulls were undone\n",
                    review.record.c_str(), e.what());
     }
-    const bool stepped = std::any_of(history.steps.begin(), history.steps.end(),
-                                     [](const std::string& s) { return s == "undo" || s == "redo"; });
+    const bool stepped = std::any_of(history.steps.begin(), history.steps.end(), [](const std::string& s) {
+      return s == "undo" || s == "redo" || s == "a drag cancelled";
+    });
     if (stepped) {
       for (std::size_t k = 0; k < history.steps.size(); ++k)
         session.history += (k ? ", " : "") + history.steps[k];

@@ -649,15 +649,24 @@ void run_review(const ReviewCommandOptions& o) {
         // Replay: the sizes a key set, before the gesture, as the desktop window set them.
         // (A recorded change applies at the frame within a quarter frame of its time.)
         const double due_until = t + 0.25 / double(recording_rate_hz);
+        // Replay: a drag the recorded reviewer cancelled (Esc in the desktop window), before the gesture and
+        // before the sizes (the window took Esc first when both came in one frame: a size key mid-drag is
+        // refused and not recorded). Not dragging here where the recording was: the replay has diverged.
+        apply_due(o.cancels, next_cancel, due_until, [&](double time) {
+          if (!interaction.dragging()) {
+            std::fprintf(
+                stderr,
+                "pushpull review: warning: the recording cancels a drag at %.3f s, where this replay "
+                "has none in progress\n",
+                time);
+            return;
+          }
+          if (const auto e = interaction.cancel()) log_event(*e);
+          recorder.write_record("cancel", t);
+        });
         apply_due(o.size_changes, next_size_change, due_until, [&](const SizeChange& c) {
           interaction.set_sizes(c.handle_radius, c.roi_radius);
           recorder.write_sizes(t, interaction.handle_radius(), interaction.roi_radius());
-        });
-        // Replay: a drag the recorded reviewer cancelled (Esc in the desktop window), before the gesture.
-        apply_due(o.cancels, next_cancel, due_until, [&](double) {
-          if (!interaction.dragging()) return;
-          if (const auto e = interaction.cancel()) log_event(*e);
-          recorder.write_record("cancel", t);
         });
         // A trigger pulled while aiming beside the model grabs nothing: said, as the desktop window says a
         // click beside it (a reviewer pulled and saw nothing happen).

@@ -214,7 +214,7 @@ void ReviewScene::update_legend() {
         renderer::make_displacement_legend(float(top_mm), "moved mm", legend.width_px, legend.height_px),
         legend.rect);
   } else if (colour_ == ReviewColour::CurvatureSign) {
-    renderer_.set_legend(renderer::make_curvature_legend(legend.width_px, legend.height_px / 2),
+    renderer_.set_legend(renderer::make_curvature_legend(legend.curvature_width_px, legend.height_px / 2),
                          legend.curvature_rect);
   } else {
     renderer_.set_legend(std::nullopt);

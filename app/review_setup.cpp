@@ -90,11 +90,8 @@ ReviewSetup prepare_review(const ReviewCommandOptions& o) {
       std::printf(longest < 1e6 ? "pushpull review: the model is %.2f x %.2f x %.2f m at this scale\n"
                                 : "pushpull review: the model is %.3g x %.3g x %.3g m at this scale\n",
                   size.x(), size.y(), size.z());
-    if (longest < 0.3 || longest > 30.0)
-      std::fprintf(stderr,
-                   "pushpull review: note: its longest side is %.3g m; --length M makes it M metres long "
-                   "(a car: --length 4.2), --scale S sets metres per file unit\n",
-                   longest);
+    if (const auto hint = size_hint(longest))
+      std::fprintf(stderr, "pushpull review: note: %s\n", hint->c_str());
   }
   if (!o.quiet && !o.up_given && deform::mesh_format_from_path(o.model))
     if (const auto note = plain_mesh_up_note(o.model, s.model.bounds.sizes() * s.life.scale()))

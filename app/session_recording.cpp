@@ -309,6 +309,8 @@ SessionRecording read_lines(const std::string& path, const std::string& text, st
       } else if (kind == "cancel") {
         if (!j.contains("time") || !j["time"].is_number())
           corrupted(path, number, "a cancel record needs \"time\"");
+        if (!r.cancels.empty() && j["time"].get<double>() < r.cancels.back())
+          corrupted(path, number, "a cancel record earlier than the one before it");
         r.cancels.push_back(j["time"].get<double>());
       } else if (kind == "colour") {
         const bool valid = j.contains("colour") && j["colour"].is_string() && j.contains("time") &&
@@ -462,6 +464,8 @@ CommitHistory commit_history(const SessionRecording& recording) {
     } else if (kind == "redo") {
       if (position + 1 < states.size()) ++position;
       h.steps.push_back("redo");
+    } else if (kind == "cancel") {  // Esc mid-drag: nothing entered the history
+      h.steps.push_back("a drag cancelled");
     }
   }
   h.kept.assign(states.begin() + 1, states.begin() + std::ptrdiff_t(position) + 1);

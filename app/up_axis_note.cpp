@@ -8,7 +8,7 @@ std::optional<std::string> plain_mesh_up_note(const std::string& path, const Eig
   if (!size_m.allFinite()) return std::nullopt;
   Eigen::Index thin = 0;
   const double thinnest = size_m.minCoeff(&thin);
-  if (thin == 1 || !(size_m.y() > 1.25 * thinnest)) return std::nullopt;
+  if (thin == 1 || !(size_m.y() > 1.2 * thinnest)) return std::nullopt;
   const char* axis = thin == 0 ? "X" : "Z";
   const char* up = thin == 0 ? "1 0 0" : "0 0 1";
   const char* down = thin == 0 ? "-1 0 0" : "0 0 -1";

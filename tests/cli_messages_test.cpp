@@ -279,6 +279,8 @@ TEST_F(CliMessages, UnusableCommandLinesNameTheCommandAndExitTwo) {
       {"deform --bogus", "pushpull deform: error: unknown argument '--bogus'"},
       {"deform " + model + " --roi-radius 1 --roi-radius 2 --displacement 0 0 1 --out " + path("o.off"),
        "pushpull deform: error: --roi-radius is given 2 times; give it once"},
+      {"deform " + model + " --displacement 0 0 1 --displacement 0 0 2 --out " + path("o.off"),
+       "pushpull deform: error: --displacement is given 2 times; give it once"},
       {"deform " + model + " --out " + path("o.off"), "pushpull deform: error: --displacement is required"},
       {"deform " + model + " --sections 1.5 --displacement 0 0 1 --out " + path("o.off"),
        "pushpull deform: error: --sections: '1.5' is not a whole number (expected a whole number from 0 to "
@@ -437,6 +439,40 @@ TEST_F(CliMessages, DeformWarnsOfPullsThatAreNotAPushPull) {
 
 // A glTF written out as OFF/OBJ/PLY keeps the welded surface only: said (not dropped silently), in the output
 // and METRICS.json; a .glb keeps the scene and says nothing of the kind.
+// A plain mesh file names no up axis: the bonnet modelled Z-up stands on its side under the default +Y, and
+// the review says so before the session (here: before it finds no runtime) with the --up that lays it
+// flat; with --up given it says nothing of it.
+TEST_F(CliMessages, AReviewOfAPlainMeshOnItsSideSaysWhichUpLaysItFlat) {
+  const std::string hood = (fs::path(PUSHPULL_SOURCE_DIR) / "examples" / "hood.off").string();
+  const std::string no_runtime = "env -u DISPLAY -u WAYLAND_DISPLAY XR_RUNTIME_JSON=" + path("none.json") +
+                                 " " + std::string(PUSHPULL_EXECUTABLE) + " review " + hood + " --record " +
+                                 path("r.jsonl");
+  const CommandResult on_side = pushpull::testing::run_command(no_runtime);
+  EXPECT_NE(on_side.status, 0) << on_side.output;  // no runtime, no display
+  EXPECT_NE(on_side.output.find("pushpull review: note: " + hood +
+                                " names no up axis (OFF, OBJ and PLY have none): +Y is taken as up, which "
+                                "stands the model 1.20 m tall on its 0.11 m side; if it lies flat along Z, "
+                                "give --up 0 0 1 (or 0 0 -1)"),
+            std::string::npos)
+      << on_side.output;
+  const CommandResult upright = pushpull::testing::run_command(no_runtime + " --up 0 0 1 --front 0 -1 0");
+  EXPECT_EQ(upright.output.find("names no up axis"), std::string::npos) << upright.output;
+}
+
+// A CAD export in millimetres read as metres: info names the --scale that makes it life size (it said
+// nothing of a "1500 m" bonnet), and lays a plain mesh on its side out as the review does.
+TEST_F(CliMessages, InfoNamesTheScaleOfAMillimetreExport) {
+  std::ofstream(path("panel_mm.off")) << "OFF\n3 1 0\n0 0 0\n1500 0 0\n0 1200 0\n3 0 1 2\n";
+  const CommandResult r = run_pushpull("info " + path("panel_mm.off"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("note:         its longest side is 1500 m: if the file is in millimetres, --scale "
+                          "0.001 makes it 1.5 m long"),
+            std::string::npos)
+      << r.output;
+  const CommandResult scaled = run_pushpull("info " + path("panel_mm.off") + " --scale 0.001");
+  EXPECT_EQ(scaled.output.find("its longest side is"), std::string::npos) << scaled.output;
+}
+
 TEST_F(CliMessages, AGltfWrittenAsABareMeshSaysWhatItLeavesOut) {
   const std::string box = (fs::path(PUSHPULL_SHARED_DATA) / "gltf" / "Box_Draco" / "Box_Draco.glb").string();
   const std::string pull =

@@ -67,5 +67,14 @@ TEST(DragNotes, BeforeTheDragsFirstPreviewOnlyTheHandsPullCounts) {
   EXPECT_FALSE(has(lines, "the whole part moves"));
 }
 
+// What deform prints and a replay writes into the commit's metrics for a pull over 4 handle radii.
+TEST(SteepPullWarning, APullOverFourHandleRadiiIsSteep) {
+  EXPECT_FALSE(steep_pull_warning(0.2, 0.05));  // 4x: not over
+  const auto steep = steep_pull_warning(0.35, 0.05);
+  ASSERT_TRUE(steep);
+  EXPECT_EQ(steep->rfind("steep: |d| is 7x the handle radius, a spike rather than a bulge", 0), 0u) << *steep;
+  EXPECT_FALSE(steep_pull_warning(1.0, 0.0));  // no handle radius: nothing to compare with
+}
+
 }  // namespace
 }  // namespace pushpull::app

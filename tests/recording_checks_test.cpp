@@ -108,6 +108,13 @@ TEST_F(RecordingChecks, DamagedLinesAreNamedByFileAndLine) {
   const std::size_t input = first_line(lines_, [](const json& j) { return j.contains("t"); });
   expect_named(
       input, [](json& j) { j["t"] = 1e300; }, "\"t\" 1e+300 s on the first input line");
+  // A cancel record (Esc mid-drag in the desktop window) without its time.
+  expect_named(
+      first_line(lines_, is_record("profile")),
+      [](json& j) {
+        j = json{{"record", "cancel"}};
+      },
+      "a cancel record needs \"time\"");
 }
 
 // A commit or a committed release written twice (the replay then compared one commit with another's hash):

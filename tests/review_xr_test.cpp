@@ -2081,8 +2081,9 @@ wait $pid
 
 // Esc mid-drag cancels the drag (a first-time user pressed it to drop a pull and lost the session): the model
 // stays as before the drag, a "cancel" record is written, the button still held grabs nothing more, and the
-// next drag and a second Esc work as before. The replay cancels at the same frame and reproduces both
-// commits bit for bit.
+// next drag works as before; Esc pressed with that drag's release commits it, then ends the review (it
+// ended at once and the pull just released was lost). The replay cancels at the same frame and reproduces
+// both commits bit for bit.
 TEST(ReviewXrWindow, EscMidDragCancelsTheDragAndTheReplayCancelsItToo) {
   if (std::getenv("DISPLAY") == nullptr) GTEST_SKIP() << "no DISPLAY (ctest runs this under xvfb-run)";
   ASSERT_EQ(run_command("command -v xdotool").status, 0) << "xdotool is missing (scripts/setup installs it)";
@@ -2095,8 +2096,9 @@ for i in 1 2 3 4 5 6; do xdotool mousemove_relative -- 0 -4; sleep 0.05; done
 key Escape cancel 1
 for i in 1 2 3; do xdotool mousemove_relative -- 0 -4; sleep 0.05; done
 xdotool mouseup 1; sleep 0.5
-drag 250 130 0 3 3; await commit 2
-xdotool key Escape
+xdotool mousemove --window $wid 250 130; sleep 0.3; xdotool mousedown 1; await press 3
+for i in 1 2 3 4 5 6; do xdotool mousemove_relative -- 0 3; sleep 0.05; done
+xdotool mouseup 1 key Escape  # Esc with the release: the pull commits, then the review ends
 wait $pid
 )SH";
   const auto driven = run_drive_script(dir);

@@ -33,16 +33,35 @@ const std::set<std::string> kInterpretedExtensions = {"KHR_draco_mesh_compressio
 const std::set<std::string> kGeometryExtensions = {"EXT_meshopt_compression", "KHR_meshopt_compression"};
 
 // A required extension pushpull does not interpret is refused (glTF 2.0: a loader must not load an asset
-// whose required extension it does not support), except those that change only how the model looks (its
+// whose required extension it does not support), except those known to change only how the model looks (its
 // materials, textures, lights, metadata): without them the shape under review is the file's, drawn with the
 // base material. Any other (EXT_mesh_gpu_instancing places copies of meshes; an unknown one may move
-// vertices) could leave the reviewed shape other than the file's.
-bool appearance_only(const std::string& extension) {
-  for (const char* prefix : {"KHR_materials_", "KHR_texture_", "EXT_texture_", "EXT_materials_"})
-    if (extension.rfind(prefix, 0) == 0) return true;
-  return extension == "KHR_lights_punctual" || extension == "KHR_xmp_json_ld" || extension == "KHR_xmp" ||
-         extension == "EXT_lights_image_based";
-}
+// vertices) could leave the reviewed shape other than the file's. A list, not prefixes: a future material
+// extension may displace the surface.
+const std::set<std::string> kAppearanceOnlyExtensions = {"KHR_materials_anisotropy",
+                                                         "KHR_materials_clearcoat",
+                                                         "KHR_materials_diffuse_transmission",
+                                                         "KHR_materials_dispersion",
+                                                         "KHR_materials_emissive_strength",
+                                                         "KHR_materials_ior",
+                                                         "KHR_materials_iridescence",
+                                                         "KHR_materials_pbrSpecularGlossiness",
+                                                         "KHR_materials_sheen",
+                                                         "KHR_materials_specular",
+                                                         "KHR_materials_transmission",
+                                                         "KHR_materials_unlit",
+                                                         "KHR_materials_variants",
+                                                         "KHR_materials_volume",
+                                                         "KHR_texture_basisu",
+                                                         "KHR_texture_transform",
+                                                         "EXT_texture_webp",
+                                                         "EXT_texture_avif",
+                                                         "MSFT_texture_dds",
+                                                         "MSFT_packing_normalRoughnessMetallic",
+                                                         "MSFT_packing_occlusionRoughnessMetallic",
+                                                         "KHR_lights_punctual",
+                                                         "EXT_lights_image_based",
+                                                         "KHR_xmp_json_ld"};
 
 // ---- file access under the URI policy (tinygltf FsCallbacks) ----
 
@@ -436,7 +455,7 @@ std::string shorten_data_uris(std::string text) {
 }  // namespace
 
 void load_gltf(std::span<const std::uint8_t> bytes, const std::string& name, const fs::path& base_dir,
-               const Limits& limits, Model& model) {
+               const Limits& limits, bool refuse_unsupported_required, Model& model) {
   const bool binary = looks_like_glb(bytes);
   // A .glb that is not one (empty, cut, another format renamed) is named so, not parsed as glTF's JSON.
   std::string extension = fs::path(name).extension().string();
@@ -480,17 +499,24 @@ void load_gltf(std::span<const std::uint8_t> bytes, const std::string& name, con
 
   model.report.extensions_used = string_list(document, "extensionsUsed");
   model.report.extensions_required = string_list(document, "extensionsRequired");
+  std::set<std::string> said;  // required extensions that may change the geometry, said once (info)
   for (const std::string& extension : model.report.extensions_required)
     if (kGeometryExtensions.count(extension)) {
       throw AssetError(name + ": requires extension " + extension + ", which pushpull cannot decode");
-    } else if (!kInterpretedExtensions.count(extension) && !appearance_only(extension)) {
-      throw AssetError(name + ": requires extension " + extension +
-                       ", which pushpull does not support (it may change the model's geometry; extensions "
-                       "that change only materials, textures or lights are drawn without)");
+    } else if (!kInterpretedExtensions.count(extension) && !kAppearanceOnlyExtensions.count(extension)) {
+      if (refuse_unsupported_required)
+        throw AssetError(name + ": requires extension " + extension +
+                         ", which pushpull does not support (it may change the model's geometry; extensions "
+                         "that change only materials, textures or lights are drawn without)");
+      model.report.warnings.push_back("extension " + extension +
+                                      " (required) may change the geometry and is not supported: deform, "
+                                      "render and review refuse this file");
+      said.insert(extension);
     }
   for (const std::string& extension : model.report.extensions_used)
     if (!kInterpretedExtensions.count(extension)) {
       model.report.unsupported_extensions.push_back(extension);
+      if (said.count(extension)) continue;
       const bool required =
           std::find(model.report.extensions_required.begin(), model.report.extensions_required.end(),
                     extension) != model.report.extensions_required.end();

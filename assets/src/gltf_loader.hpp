@@ -15,7 +15,9 @@
 namespace pushpull::assets::detail {
 
 // base_dir: folder external URIs resolve against; empty refuses every external URI.
+// refuse_unsupported_required: LoadOptions::refuse_unsupported_required.
 void load_gltf(std::span<const std::uint8_t> bytes, const std::string& name,
-               const std::filesystem::path& base_dir, const Limits& limits, Model& model);
+               const std::filesystem::path& base_dir, const Limits& limits, bool refuse_unsupported_required,
+               Model& model);
 
 }  // namespace pushpull::assets::detail

@@ -158,7 +158,7 @@ Model load_model_from_memory(const std::vector<std::uint8_t>& bytes, const std::
   deform::Mesh exact;
   const std::span<const std::uint8_t> data(bytes);
   if (extension == ".gltf" || extension == ".glb")
-    detail::load_gltf(data, name, base_dir, options.limits, model);
+    detail::load_gltf(data, name, base_dir, options.limits, options.refuse_unsupported_required, model);
   else if (extension == ".drc")
     load_draco_file(data, name, options.limits, model);
   else
@@ -197,6 +197,12 @@ Model load_model_from_memory(const std::vector<std::uint8_t>& bytes, const std::
                        "): the weld tolerance is too large for this model");
     throw AssetError(name + ": the model has no triangles");
   }
+  // Triangles that survive the weld but all have zero area (collinear corners) leave nothing to draw or
+  // deform either: render drew nothing and blamed the model's scale.
+  if (!any_triangle_with_area(model.primitives))
+    throw AssetError(name + ": every triangle (" + std::to_string(model.deform_mesh.F.rows()) +
+                     ") has zero area in the file itself (collinear or coincident corners): nothing to draw "
+                     "or deform");
   for (Eigen::Index v = 0; v < model.deform_mesh.V.rows(); ++v)
     model.bounds.extend(model.deform_mesh.V.row(v).transpose());
 

@@ -131,6 +131,17 @@ TEST(AssetsBadInput, ARequiredExtensionThatMayChangeTheGeometryIsRefused) {
     expect_refused(dir, document,
                    std::string("requires extension ") + extension + ", which pushpull does not support");
   }
+  // `pushpull info` loads it to report it, with the warning.
+  json unknown = triangle_gltf();
+  unknown["extensionsUsed"] = {"KHR_foo"};
+  unknown["extensionsRequired"] = {"KHR_foo"};
+  testing::write_text(dir / "unknown.gltf", unknown.dump());
+  LoadOptions reporting;
+  reporting.refuse_unsupported_required = false;
+  const Model reported = load_model(dir / "unknown.gltf", reporting);
+  ASSERT_EQ(reported.report.warnings.size(), 1u);
+  EXPECT_NE(reported.report.warnings[0].find("KHR_foo (required) may change the geometry"), std::string::npos)
+      << reported.report.warnings[0];
   json looks = triangle_gltf();
   looks["extensionsUsed"] = {"KHR_texture_transform", "KHR_foo"};
   looks["extensionsRequired"] = {"KHR_texture_transform"};

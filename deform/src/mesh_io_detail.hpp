@@ -14,7 +14,9 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstdlib>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace pushpull::deform::detail {
@@ -43,6 +45,28 @@ inline std::string printable(std::string_view text, std::size_t limit = 40) {
   }
   if (text.size() > limit) out += "...";
   return out;
+}
+
+// A token as a message quotes it: 'token', printable().
+inline std::string quoted_token(std::string_view token) {
+  return "'" + printable(token) + "'";
+}
+
+// Why parse_double (text_scan.hpp) refused `token`: "'1e-400' is out of a double's range (it underflows to
+// 0)", "... (it overflows)", or "'abc' is not a number".
+inline std::string not_a_number_text(std::string_view token) {
+  std::string_view digits = token;
+  if (!digits.empty() && digits.front() == '+') digits.remove_prefix(1);
+  double value = 0.0;
+  const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
+  if (ec == std::errc::result_out_of_range && end == digits.data() + digits.size()) {
+    // from_chars leaves value unchanged out of range; strtod says which way (HUGE_VAL: overflow).
+    const std::string copy(digits);
+    const bool over = std::isinf(std::strtod(copy.c_str(), nullptr));
+    return quoted_token(token) + " is out of a double's range (" +
+           (over ? "it overflows" : "it underflows to 0") + ")";
+  }
+  return quoted_token(token) + " is not a number";
 }
 
 [[noreturn]] inline void fail(const std::string& file, std::size_t line, const std::string& problem) {

@@ -5,7 +5,6 @@
 #include <charconv>
 #include <cstddef>
 #include <cstdint>
-#include <string>
 #include <string_view>
 
 namespace pushpull::deform::detail {
@@ -79,42 +78,6 @@ inline bool parse_double(std::string_view token, double& value) {
   if (!token.empty() && token.front() == '+') token.remove_prefix(1);
   const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
   return ec == std::errc{} && end == token.data() + token.size();
-}
-
-// A token as an error message quotes it: 'token', bytes outside printable ASCII as \xNN (a NUL byte in a
-// damaged file reached the terminal), at most 40 characters.
-inline std::string quoted_token(std::string_view token) {
-  static const char* hex = "0123456789abcdef";
-  std::string out = "'";
-  for (std::size_t i = 0; i < token.size() && i < 40; ++i) {
-    const auto c = static_cast<unsigned char>(token[i]);
-    if (c >= 0x20 && c < 0x7f) {
-      out += static_cast<char>(c);
-    } else {
-      out += "\\x";
-      out += hex[c >> 4];
-      out += hex[c & 15];
-    }
-  }
-  if (token.size() > 40) out += "...";
-  return out + "'";
-}
-
-// Why parse_double refused `token`: "'1e-400' is out of a double's range (it underflows to 0)", "... (it
-// overflows)", or "'abc' is not a number".
-inline std::string not_a_number_text(std::string_view token) {
-  std::string_view digits = token;
-  if (!digits.empty() && digits.front() == '+') digits.remove_prefix(1);
-  double value = 0.0;
-  const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
-  if (ec == std::errc::result_out_of_range && end == digits.data() + digits.size()) {
-    // from_chars leaves value unchanged when out of range: the exponent's sign tells which way.
-    const std::size_t e = digits.find_first_of("eE");
-    const bool under = e != std::string_view::npos && e + 1 < digits.size() && digits[e + 1] == '-';
-    return quoted_token(token) + " is out of a double's range (" +
-           (under ? "it underflows to 0" : "it overflows") + ")";
-  }
-  return quoted_token(token) + " is not a number";
 }
 
 inline bool parse_int64(std::string_view token, std::int64_t& value) {

@@ -107,6 +107,10 @@ TEST(MeshIoRead, RefusedTokensAreNamedForWhatTheyAre) {
   const std::string over =
       error_of([] { (void)pd::parse_obj("v 1e400 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "o.obj"); });
   EXPECT_NE(over.find("'1e400' is out of a double's range (it overflows)"), std::string::npos) << over;
+  const std::string tiny = "0." + std::string(400, '0') + "1";  // underflows without an exponent
+  const std::string small = error_of(
+      [&] { (void)pd::parse_off("OFF\n3 1 0\n" + tiny + " 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "s.off"); });
+  EXPECT_NE(small.find("is out of a double's range (it underflows to 0)"), std::string::npos) << small;
   const std::string nul = error_of(
       [] { (void)pd::parse_off(std::string("OFF\n3 1 0\n0 0 0\n1 x\0y 0\n0 1 0\n3 0 1 2\n", 38), "z.off"); });
   EXPECT_NE(nul.find("'x\\x00y' is not a number"), std::string::npos) << nul;

@@ -128,7 +128,9 @@ TextureRGBA8 make_displacement_legend(float max_value, const std::string& title,
 
 TextureRGBA8 make_curvature_legend(uint32_t width, uint32_t height) {
   return make_sign_legend(width, height,
-                          {"K > 0", "K < 0", "flat"});  // flat: |K| L^2 within the sign rule's band
+                          // flat: |K| L^2 within the sign rule's band; edge: a vertex on the mesh boundary
+                          // or a non-manifold edge, not measured (a CAD user read the grey seams as flat)
+                          {"K > 0", "K < 0", "flat, edge"});
 }
 
 TextureRGBA8 make_sign_legend(uint32_t width, uint32_t height, const std::array<std::string, 3>& labels) {
@@ -152,9 +154,10 @@ LegendLayout legend_layout(uint32_t view_width, uint32_t view_height) {
   const float h = 0.32f, w = h * height / width * 0.55f;
   LegendLayout layout;
   layout.rect = {0.015f, 1.0f - h - 0.015f, 0.015f + w, 0.985f};
-  layout.curvature_rect = {0.015f, 0.985f - 0.5f * h, 0.015f + w, 0.985f};
+  layout.curvature_rect = {0.015f, 0.985f - 0.5f * h, 0.015f + kSignLegendWiden * w, 0.985f};
   layout.height_px = std::max(110u, uint32_t(height * h));
   layout.width_px = std::max(60u, uint32_t(float(layout.height_px) * 0.55f));
+  layout.curvature_width_px = uint32_t(kSignLegendWiden * float(layout.width_px));
   return layout;
 }
 

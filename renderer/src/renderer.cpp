@@ -291,7 +291,7 @@ Renderer::Renderer(const Context& context, const RendererOptions& options)
       for (VkSampleCountFlags b = 1; b <= VK_SAMPLE_COUNT_64_BIT; b <<= 1)
         if (supported & b) counts += (counts.empty() ? "" : ", ") + std::to_string(b);
       throw std::invalid_argument("MSAA with " + std::to_string(bits) + " samples: " +
-                                  context.properties().deviceName + " renders " + counts + " (--samples)");
+                                  context.properties().deviceName + " renders " + counts + " samples");
     }
   }
   VkDevice device = context.device();

@@ -108,6 +108,33 @@ TEST(Renderer, MaterialSphereMatchesReferenceWithoutValidationMessages) {
   EXPECT_EQ(context.validation_message_count(), 0u);
 }
 
+// A sample count that is not one power of two, or one the device does not render colour and depth with,
+// is refused naming the counts it has (lavapipe drew noise with 2 and 8); 1 always works.
+TEST(Renderer, ASampleCountTheDeviceCannotRenderIsRefused) {
+  Context context = make_context();
+  const VkPhysicalDeviceLimits& limits = context.properties().limits;
+  const VkSampleCountFlags supported =
+      limits.framebufferColorSampleCounts & limits.framebufferDepthSampleCounts;
+  for (const VkSampleCountFlagBits samples :
+       {VkSampleCountFlagBits(3), VkSampleCountFlagBits(0), VK_SAMPLE_COUNT_2_BIT, VK_SAMPLE_COUNT_64_BIT}) {
+    RendererOptions options;
+    options.samples = samples;
+    if ((supported & VkSampleCountFlags(samples)) != 0 && (samples & (samples - 1)) == 0 && samples != 0) {
+      EXPECT_NO_THROW(Renderer(context, options)) << samples;
+      continue;
+    }
+    try {
+      Renderer renderer(context, options);
+      ADD_FAILURE() << samples << " samples accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(" renders 1"), std::string::npos) << e.what();
+    }
+  }
+  RendererOptions one;
+  one.samples = VK_SAMPLE_COUNT_1_BIT;
+  EXPECT_NO_THROW(Renderer(context, one));
+}
+
 TEST(Renderer, DisplacementColourMapMatchesCpuMapOnSheet) {
   Context context = make_context();
   {

@@ -60,6 +60,9 @@ struct LoadOptions {
   // bounding box (takes precedence when set). Neither changes stored coordinates: see Model::scale.
   double scale = 1.0;
   std::optional<double> target_length_m;
+  // A glTF that requires an extension the loader does not support and that may change the geometry is
+  // refused (glTF 2.0); false loads it anyway with a warning saying so (`pushpull info`, which reports it).
+  bool refuse_unsupported_required = true;
 };
 
 struct LoadReport {

@@ -60,12 +60,12 @@
 // still fails, the std::runtime_error names the method, the region's size and what to try.
 //
 // Solver: rest positions with the handle (and fixed vertices) moved to their targets as initial guess (or a
-// given one), as in the paper; each iteration = covariances, 3x3 rotations (Newton on SO(3) warm-started
-// from the previous iteration, SVD fallback; det R = +1), one sparse scatter, one prefactored sparse LDL^T
-// solve with the 3 coordinates in one pass, and the energy. Symbolic analysis happens once per Deformer; the
-// numeric factorization is redone only when the weights change (asan: when the line of d_o changes; d_o and
-// -d_o give the same weights). Every solve starts from identity rotations, so equal requests give
-// bit-identical results (replay).
+// given one; the paper does not state its own); each iteration = covariances, 3x3 rotations (Newton on SO(3)
+// warm-started from the previous iteration, SVD fallback; det R = +1), one sparse scatter, one prefactored
+// sparse LDL^T solve with the 3 coordinates in one pass, and the energy. Symbolic analysis happens once per
+// Deformer; the numeric factorization is redone only when the weights change (asan: when the line of d_o
+// changes; d_o and -d_o give the same weights). Every solve starts from identity rotations, so equal requests
+// give bit-identical results (replay).
 //
 // Units: model units (metres for glTF). Frame: model space. Shapes stated at each member.
 // Ownership: the Deformer shares the rest mesh (shared_ptr<const Mesh>) and owns everything else.

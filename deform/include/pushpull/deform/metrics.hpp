@@ -28,9 +28,8 @@
 //    displays draw those faces flat and a vertex with its vertex sign only where one of its faces is not a
 //    flat-panel face (display_curvature_signs). Statistics keep the vertex signs.
 //  - Sign changes are reported apart: strict reversals (+ to -, - to +) are the paper's "curvature sign
-//  changes"
-//    (Fig. 4) that mark surface collapse (section 5); moves into or out of flat are counted separately
-//    (into_flat, out_of_flat).
+//    changes" (Fig. 4) that mark surface collapse (section 5); moves into or out of flat are counted
+//    separately (into_flat, out_of_flat).
 //  - Reversals by band: the same strict reversals counted again among the vertices clearly curved before
 //    the pull, signed under the sign rule's band raised (MetricsOptions::reversal_bands, default 0.1, 1 and
 //    10: curvature radius below L / sqrt(band), on a 4.4 m car 14 m, 4.4 m and 1.4 m; the "compared"

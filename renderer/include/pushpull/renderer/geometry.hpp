@@ -56,11 +56,16 @@ TextureRGBA8 make_sign_legend(uint32_t width, uint32_t height, const std::array<
 // Where the legends go in a view of view_width x view_height pixels (Renderer::set_legend rectangles, 0..1, y
 // down): the lower-left corner, the displacement legend about a third of the view high (`rect`, a texture of
 // width_px x height_px), the curvature legend half as high (`curvature_rect`, width_px x height_px / 2).
+// Where the legends go in a view (rect: x0, y0, x1, y1 in 0..1 of the view) and their texture sizes: the
+// displacement legend `rect` (width_px x height_px), the sign legends `curvature_rect`, half as high and
+// kSignLegendWiden times as wide (curvature_width_px x height_px / 2: their labels are longer).
+inline constexpr float kSignLegendWiden = 1.6f;
 struct LegendLayout {
   glm::vec4 rect{0.0f};
   glm::vec4 curvature_rect{0.0f};
   uint32_t width_px = 0;
   uint32_t height_px = 0;
+  uint32_t curvature_width_px = 0;
 };
 LegendLayout legend_layout(uint32_t view_width, uint32_t view_height);
 

@@ -111,6 +111,8 @@ struct RendererOptions {
 
 class Renderer {
  public:
+  // Throws std::invalid_argument for frames_in_flight 0 or a sample count that is not one the device renders
+  // colour and depth targets with (lavapipe: 1 and 4), naming the counts it has.
   Renderer(const Context& context, const RendererOptions& options = {});
   ~Renderer();
   Renderer(const Renderer&) = delete;
