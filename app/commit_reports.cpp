@@ -1,9 +1,11 @@
 #include "commit_reports.hpp"
+#include "drag_notes.hpp"
 #include "region_notes.hpp"
 
 #include <cstdio>
 #include <optional>
 #include <string>
+#include <variant>
 #include <vector>
 
 namespace pushpull::app {
@@ -24,10 +26,10 @@ void take_commits(CommitWatch& commits, SessionRecorder& recorder, double t,
           c.index, std::string(deform::method_name(s.method)).c_str(), s.iteration, estimate);
     }
     // What `pushpull deform` and the replay's report say of the same push/pull (a whole part moved, a handle
-    // torn out, the solver's own warnings), said here too: the supervisor at the terminal saw none of it.
-    // Left out here: the solver's checks of the whole model ("mesh: 83 connected components ...": the same
-    // for every commit; `pushpull info` lists them) and its note on how it weighted sliver triangles (nothing
-    // for the reviewer to do; METRICS.json and the replay's report keep both).
+    // torn out, a steep pull, the solver's own warnings), said here too: the supervisor at the terminal saw
+    // none of it. Left out here: the solver's checks of the whole model ("mesh: 83 connected components ...":
+    // the same for every commit; `pushpull info` lists them) and its note on how it weighted sliver triangles
+    // (nothing for the reviewer to do; METRICS.json and the replay's report keep both).
     if (!quiet) {
       std::vector<std::string> warnings;
       for (const std::string& w : s.warnings)
@@ -36,6 +38,10 @@ void take_commits(CommitWatch& commits, SessionRecorder& recorder, double t,
       if (s.region)
         if (const std::optional<UnheldRegion> unheld = unheld_region(*s.region))
           warnings.insert(warnings.begin(), unheld_region_text(*unheld));
+      if (s.committed_request)
+        if (const auto* handle = std::get_if<deform::SurfaceHandle>(&s.committed_request->handle))
+          if (const auto steep = steep_pull_warning(s.d.norm(), handle->radius))
+            warnings.insert(warnings.begin(), *steep);
       for (const std::string& w : warnings)
         std::fprintf(stderr, "pushpull review: commit %zu: warning: %s\n", c.index, w.c_str());
     }

@@ -349,8 +349,10 @@ void write_replay_report(const std::string& path, const ReportSession& s, const 
   }
   if (!s.eye_images.empty()) {
     h << "<h2>What the eyes saw (at each release and at the end)</h2>\n";
-    for (const std::string& file : s.eye_images)
-      h << "<figure><img src=\"" << escape(file) << "\"><figcaption>" << escape(file) << "</figcaption></figure>\n";
+    for (std::size_t k = 0; k < s.eye_images.size(); ++k)
+      h << "<figure><img src=\"" << escape(s.eye_images[k]) << "\"><figcaption>"
+        << escape(k < s.eye_captions.size() ? s.eye_captions[k] : s.eye_images[k])
+        << "</figcaption></figure>\n";
   }
   h << "</body></html>\n";
   try {

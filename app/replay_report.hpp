@@ -51,6 +51,8 @@ struct ReportSession {
   double mu = 0.0;
   std::string cut;  // "" when the recording is complete
   std::vector<std::string> eye_images;  // file names relative to the report
+  std::vector<std::string>
+      eye_captions;  // per eye image: the release it shows ("release 2: the drag was ...")
   std::string summary;
   std::string history;      // the session's push/pulls, undos and redos in order ("" when none)
   std::string final_model;  // which push/pulls the final model is made of

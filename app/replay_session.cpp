@@ -309,8 +309,15 @@ void run_replay(const ReplayOptions& o) {
   const double frame = 1.0 / rate;
   std::string script = rec.script;
   std::vector<double> captures;
+  std::vector<std::string> capture_captions;  // what each capture shows, for the report
   for (const json& r : rec.records)
-    if (r.value("record", "") == "release") captures.push_back(r.value("time", 0.0) + frame);
+    if (r.value("record", "") == "release") {
+      captures.push_back(r.value("time", 0.0) + frame);
+      capture_captions.push_back(
+          "release " + std::to_string(captures.size()) +
+          (r.value("committed", false) ? "" : ": the drag was cancelled, nothing committed"));
+    }
+  capture_captions.push_back("the end");
   // The end's: one frame after the last input, or, where the review recorded the runtime's exit, at the last
   // frame before it (the exit's frame shows nothing, and the session is gone after it).
   captures.push_back(rec.exit_time
@@ -896,6 +903,19 @@ void run_replay(const ReplayOptions& o) {
     if (replay_clears_eye_image(entry.path().filename().string()))  // the captures, not a user's own files
       eyes.insert("eyes/" + entry.path().filename().string());
   session.eye_images.assign(eyes.begin(), eyes.end());
+  // Each capture's caption: the release (or the end) whose time it was taken one frame after. The frame
+  // number in the file name is xr/sim's, frame n at n / rate; within a frame and a half of a capture time.
+  for (const std::string& file : session.eye_images) {
+    std::string caption = file;
+    long long number = 0;
+    if (std::sscanf(file.c_str(), "eyes/frame_%lld_", &number) == 1)
+      for (std::size_t k = 0; k < captures.size() && k < capture_captions.size(); ++k)
+        if (std::abs(double(number) * frame - captures[k]) <= 1.5 * frame) {
+          caption = capture_captions[k] + " (" + file + ")";
+          break;
+        }
+    session.eye_captions.push_back(caption);
+  }
   session.not_committed = not_committed;
   // Commits with no recorded commit to compare with (a recording cut inside a commit's line).
   const auto not_compared = std::size_t(std::count(pairs.begin(), pairs.end(), std::nullopt));

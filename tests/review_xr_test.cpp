@@ -1342,6 +1342,10 @@ TEST(ReviewXr, APullLongerThanTheModelIsWarnedOf) {
                              "(1.50 m): a tracking jump at the release?; undo takes it back"),
       std::string::npos)
       << run.result.output;
+  // The commit's own warnings, as `pushpull deform` prints them for the same pull: 6.8 handle radii is steep.
+  EXPECT_NE(run.result.output.find("pushpull review: commit 1: warning: steep: |d| is 7x the handle radius"),
+            std::string::npos)
+      << run.result.output;
   // No controller on at all (hand tracking alone): said after 5 s.
   const ReviewRun none = run_review(dir, pull_released_then_exit(6.0), "", "PUSHPULL_XR_SIM_PROFILE=none");
   EXPECT_EQ(none.result.status, 0) << none.result.output;
@@ -2115,6 +2119,12 @@ wait $pid
   expect_replays_with_commits(recording, 2);
   EXPECT_EQ(recording_records(dir / "replay" / "replay-session.jsonl", "cancel").size(), 1u)
       << "the replay cancels the drag at the recorded frame";
+  // The report's history and its eye images say what happened to the cancelled drag.
+  std::ifstream report_file(dir / "replay" / "report.html");
+  const std::string report((std::istreambuf_iterator<char>(report_file)), std::istreambuf_iterator<char>());
+  EXPECT_NE(report.find("a drag cancelled"), std::string::npos);
+  EXPECT_NE(report.find("release 2: the drag was cancelled, nothing committed (eyes/frame_"),
+            std::string::npos);
   const auto desktop_model = pushpull::deform::read_mesh(out);
   const auto replayed_model = pushpull::deform::read_mesh(dir / "replay" / "final.off");
   EXPECT_EQ((desktop_model.V - replayed_model.V).cwiseAbs().maxCoeff(), 0.0);

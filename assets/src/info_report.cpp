@@ -140,7 +140,8 @@ std::string describe_model(const Model& model) {
   if (!model.bounds.isEmpty()) size = model.bounds.sizes();
   out << "model:        " << model.source_path.string() << " (" << report.format << ")\n";
   out << "size:         " << number(size.x()) << " x " << number(size.y()) << " x " << number(size.z())
-      << " (file units, glTF: m; longest side " << number(size.maxCoeff()) << ")\n";
+      << (model.source ? " (file units, glTF: m; longest side " : " (file units; longest side ")
+      << number(size.maxCoeff()) << ")\n";
   if (!model.bounds.isEmpty()) {
     const double across = size.maxCoeff();
     auto at = [&](const Eigen::Vector3d& p) {
