@@ -1,9 +1,9 @@
 // "Converged" holds for what `pushpull deform` writes, not only for the solver's region: the separate parts
-// that follow the surface (lamps, trims; deform/attached_parts.hpp) move with it, and must not turn the
-// solve's error into a larger one. The README's ToyCar example, arap-sr: the region stopped 0.40 mm from the
-// minimiser (estimate 0.87 mm), but four vertices of a part riding 6 cm above the fine tessellation of the
-// car's body were 3.9 mm off (4.4x the estimate), their offsets turned by the rotation of a patch only a few
-// millimetres across. The patches now grow as wide as the offsets they carry.
+// that follow the surface (lamps, trims; pushpull/deform/attached_parts.hpp) move with it, and must not turn
+// the solve's error into a larger one. The README's ToyCar example, arap-sr: the region stopped 0.40 mm from
+// the minimiser (estimate 0.87 mm), but four vertices of a part riding 6 cm above the fine tessellation of
+// the car's body were 3.9 mm off (4.4x the estimate), their offsets turned by the rotation of a patch only a
+// few millimetres across. The patches now grow as wide as the offsets they carry.
 #include "command_runner.hpp"
 #include "pushpull/deform/mesh_io.hpp"
 

@@ -155,6 +155,7 @@ TEST_F(DeformCli, ObjOutputAndOtherMethodsRun) {
 
 TEST_F(DeformCli, BadInputsExitNonZeroNamingTheFileAndProblem) {
   write("bad_token.txt", "1 2\n3 x7 4\n");
+  write("nul_token.txt", std::string("1\n2x\0\x01y\n", 8));  // a damaged file's control bytes
   write("out_of_range.txt", "5\n99999\n");
   write("empty.txt", "# nothing\n");
   const std::string tail = " --out " + path("o.off") + " --metrics " + path("m.json");
@@ -168,6 +169,9 @@ TEST_F(DeformCli, BadInputsExitNonZeroNamingTheFileAndProblem) {
       {"deform " + kHemisphere.string() + " --handle " + path("bad_token.txt") + " --fixed " +
            path("fixed.txt") + " --displacement 0 0 1" + tail,
        path("bad_token.txt") + ":2: 'x7' is not a vertex index"},
+      {"deform " + kHemisphere.string() + " --handle " + path("nul_token.txt") + " --fixed " +
+           path("fixed.txt") + " --displacement 0 0 1" + tail,
+       path("nul_token.txt") + ":2: '2x??y' is not a vertex index"},  // not sent to the terminal raw
       {"deform " + kHemisphere.string() + " --handle " + path("out_of_range.txt") + " --fixed " +
            path("fixed.txt") + " --displacement 0 0 1" + tail,
        path("out_of_range.txt") + ":2: vertex index 99999 out of range"},
