@@ -8,15 +8,18 @@
 #include "render_inputs.hpp"
 #include "render_model.hpp"
 #include "render_session.hpp"
+#include "up_axis_note.hpp"
 
 #include "pushpull/assets/model.hpp"
 #include "pushpull/deform/file_output.hpp"
+#include "pushpull/deform/mesh_io.hpp"
 
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -71,6 +74,9 @@ void run_render(RenderCommandOptions options) {
   }
   const assets::Model model = load(options.model, "model", options.weld_tolerance);
   const LifeSize life(options.life_size, model.bounds, options.model);
+  if (!options.up_given && deform::mesh_format_from_path(options.model))
+    if (const auto note = plain_mesh_up_note(options.model, model.bounds.sizes() * life.scale()))
+      std::fprintf(stderr, "pushpull render: note: %s\n", note->c_str());
   convert_to_file_units(options, life);
   auto render = std::make_shared<const RenderModel>(build_render_model(model));
   for (const std::string& w : assets::warnings_naming_the_file(model))
@@ -145,9 +151,9 @@ void add_render_command(CLI::App& root) {
                   "Point looked at X Y Z (model frame, metres at life size; default: the model's centre)")
       ->expected(3)
       ->check(finite_number());
-  cmd->add_option("--up", options->up, "World up X Y Z (default 0 1 0, glTF)")
-      ->expected(3)
-      ->check(finite_number());
+  CLI::Option* up = cmd->add_option("--up", options->up, "World up X Y Z (default 0 1 0, glTF)")
+                        ->expected(3)
+                        ->check(finite_number());
   cmd->add_option("--fov", options->fov_deg, "Vertical field of view, degrees")->check(finite_in(1.0, 170.0));
   cmd->add_option("--scalar-max", options->scalar_max,
                   "Displacement shown as the top of the colour map (metres at life size; default: the "
@@ -199,7 +205,10 @@ void add_render_command(CLI::App& root) {
                 "Enable VK_LAYER_KHRONOS_validation; fail on any message");
   cmd->add_option("--benchmark", options->benchmark_frames,
                   "Also time N frames, then N frames each uploading full deformed positions + normals");
-  cmd->callback([options] { run_render(*options); });
+  cmd->callback([options, up] {
+    options->up_given = up->count() > 0;
+    run_render(*options);
+  });
 }
 
 }  // namespace pushpull::app

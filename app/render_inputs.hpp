@@ -33,6 +33,8 @@ struct RenderCommandOptions {
   std::vector<double> eye;
   std::vector<double> target;
   std::vector<double> up{0.0, 1.0, 0.0};
+  bool up_given =
+      false;  // --up was given (a plain mesh standing on its side is said otherwise: up_axis_note.hpp)
   double fov_deg = 30.0;
   std::optional<double> scalar_max;
   double dead_band = deform::kDefaultFlatBand;  // curvature sign: |K| L^2 <= this is flat

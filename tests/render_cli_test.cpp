@@ -87,6 +87,13 @@ TEST(RenderCli, WritesAPngOfAnOffModelWithValidationClean) {
   EXPECT_EQ(png.height, 120);
   // Default camera frames the model: the centre is the model, a corner the background.
   EXPECT_NE(png.at(80, 60), png.at(1, 1));
+  EXPECT_EQ(r.output.find("names no up axis"), std::string::npos) << r.output;  // --up given
+  // The bonnet, modelled Z-up, without --up: drawn on its side, and said (as info and review say it).
+  const Result hood = run("render " + std::string(PUSHPULL_SOURCE_DIR) + "/examples/hood.off --out " +
+                          (temp_dir() / "hood.png").string() + " --size 64 48");
+  ASSERT_EQ(hood.status, 0) << hood.output;
+  EXPECT_NE(hood.output.find("pushpull render: note: "), std::string::npos) << hood.output;
+  EXPECT_NE(hood.output.find("give --up 0 0 1"), std::string::npos) << hood.output;
 }
 
 // The same lit sheet at extreme scales and far from the origin: a sheet 2e-9 across (it came out blank: the
