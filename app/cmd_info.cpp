@@ -6,7 +6,6 @@
 
 #include <pushpull/assets/info.hpp>
 #include <pushpull/assets/model.hpp>
-#include <pushpull/deform/mesh_io.hpp>
 
 #include <CLI/CLI.hpp>
 
@@ -36,9 +35,8 @@ void run_info(const InfoArguments& arguments) {
     // What the review would say before a session: other units than metres, a plain mesh on its side.
     const Eigen::Vector3d size_m = model.bounds.sizes() * model.scale;
     if (const auto hint = size_hint(size_m.maxCoeff())) std::printf("note:         %s\n", hint->c_str());
-    if (pushpull::deform::mesh_format_from_path(arguments.model))
-      if (const auto note = plain_mesh_up_note(arguments.model, size_m))
-        std::printf("note:         %s (render and review take --up)\n", note->c_str());
+    if (const auto note = plain_mesh_up_note(arguments.model, size_m))
+      std::printf("note:         %s (render and review take --up)\n", note->c_str());
   } catch (const pushpull::assets::AssetError& e) {
     throw CommandError(e.what());
   }

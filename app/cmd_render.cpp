@@ -12,7 +12,6 @@
 
 #include "pushpull/assets/model.hpp"
 #include "pushpull/deform/file_output.hpp"
-#include "pushpull/deform/mesh_io.hpp"
 
 #include <CLI/CLI.hpp>
 
@@ -74,7 +73,7 @@ void run_render(RenderCommandOptions options) {
   }
   const assets::Model model = load(options.model, "model", options.weld_tolerance);
   const LifeSize life(options.life_size, model.bounds, options.model);
-  if (!options.up_given && deform::mesh_format_from_path(options.model))
+  if (!options.up_given)
     if (const auto note = plain_mesh_up_note(options.model, model.bounds.sizes() * life.scale()))
       std::fprintf(stderr, "pushpull render: note: %s\n", note->c_str());
   convert_to_file_units(options, life);
@@ -155,10 +154,11 @@ void add_render_command(CLI::App& root) {
                         ->expected(3)
                         ->check(finite_number());
   cmd->add_option("--fov", options->fov_deg, "Vertical field of view, degrees")->check(finite_in(1.0, 170.0));
-  cmd->add_option("--scalar-max", options->scalar_max,
-                  "Displacement shown as the top of the colour map (metres at life size; default: the "
-                  "largest; the paper's "
-                  "Fig. 1 and the replay report use |d|, the same colour for the same move in every method)")
+  cmd->add_option(
+         "--scalar-max", options->scalar_max,
+         "Displacement shown as the top of the colour map (metres at life size; default: the largest; "
+         "the paper's Fig. 1 and the replay report use |d|, the same colour for the same move in "
+         "every method)")
       ->check(finite_above(0.0));
   cmd->add_option(
          "--weld-tolerance", options->weld_tolerance,
@@ -188,10 +188,9 @@ void add_render_command(CLI::App& root) {
       ->check(finite_number());
   cmd->add_option("--sections", options->sections,
                   "Draw N section curves of the (deformed) surface, planes orthogonal to the --arrow "
-                  "direction spread evenly "
-                  "over the deformed model's extent along it (`pushpull deform --sections` spreads its "
-                  "planes over the "
-                  "region before the pull instead: METRICS.json sections[].offset)")
+                  "direction spread evenly over the deformed model's extent along it (`pushpull deform "
+                  "--sections` spreads its planes over the region before the pull instead: METRICS.json "
+                  "sections[].offset)")
       ->check(whole_number_in(0, 1000));
   add_life_size_options(*cmd, options->life_size);
   cmd->add_flag("--no-legend", options->no_legend, "Leave out the colour-map legend");

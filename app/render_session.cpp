@@ -329,20 +329,6 @@ void PictureRenderer::benchmark(const RenderInputs& inputs, const RenderCommandO
 }
 
 namespace {
-// Whether some triangle of `indices` over `positions` (x, y, z floats) has a non-zero area as drawn.
-bool any_triangle_with_area(const std::vector<float>& positions, const std::vector<uint32_t>& indices) {
-  const std::size_t vertices = positions.size() / 3;
-  for (std::size_t t = 0; t + 2 < indices.size(); t += 3) {
-    if (indices[t] >= vertices || indices[t + 1] >= vertices || indices[t + 2] >= vertices) continue;
-    const float* a = positions.data() + 3 * std::size_t(indices[t]);
-    const float* b = positions.data() + 3 * std::size_t(indices[t + 1]);
-    const float* c = positions.data() + 3 * std::size_t(indices[t + 2]);
-    const glm::vec3 ab(b[0] - a[0], b[1] - a[1], b[2] - a[2]), ac(c[0] - a[0], c[1] - a[1], c[2] - a[2]);
-    if (glm::length(glm::cross(ab, ac)) > 0.0f) return true;
-  }
-  return false;
-}
-
 // Every pixel outside the legend's corner has the clear colour (sRGB-encoded, within 2 levels): the model is
 // nowhere in the picture. (A view filled by one colour of the model is not taken for nothing.)
 bool shows_nothing(const TextureRGBA8& image) {
@@ -395,10 +381,9 @@ void render_to_png(const RenderInputs& inputs, const RenderCommandOptions& o) {
   if (shows_nothing(image)) {
     // Framed by us: our failure, not a result; said with its likely cause.
     if (o.eye.empty() && o.target.empty() && o.camera.size() < 3) {
+      // (A model whose every triangle has zero area is refused as it loads.)
       std::string cause = "a model of an extreme scale, beyond what 32-bit floats draw?";
-      if (!any_triangle_with_area(inputs.positions, inputs.render->mesh.indices))
-        cause = "the model has no triangle of non-zero area to draw";
-      else if (o.size.size() == 2 && std::min(o.size[0], o.size[1]) < 8)
+      if (o.size.size() == 2 && std::min(o.size[0], o.size[1]) < 8)
         cause = "--size " + std::to_string(o.size[0]) + " " + std::to_string(o.size[1]) +
                 " is too small for it to cover a pixel's centre";
       throw CommandError(o.out + ": the picture would show nothing of the model (framed automatically: " +

@@ -93,7 +93,7 @@ ReviewSetup prepare_review(const ReviewCommandOptions& o) {
     if (const auto hint = size_hint(longest))
       std::fprintf(stderr, "pushpull review: note: %s\n", hint->c_str());
   }
-  if (!o.quiet && !o.up_given && deform::mesh_format_from_path(o.model))
+  if (!o.quiet && !o.up_given)
     if (const auto note = plain_mesh_up_note(o.model, s.model.bounds.sizes() * s.life.scale()))
       std::fprintf(stderr, "pushpull review: note: %s\n", note->c_str());
   s.rest = std::make_shared<const deform::Mesh>(s.model.deform_mesh);

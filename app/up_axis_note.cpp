@@ -1,11 +1,13 @@
 #include "up_axis_note.hpp"
 
+#include "pushpull/deform/mesh_io.hpp"
+
 #include <cstdio>
 
 namespace pushpull::app {
 
 std::optional<std::string> plain_mesh_up_note(const std::string& path, const Eigen::Vector3d& size_m) {
-  if (!size_m.allFinite()) return std::nullopt;
+  if (!deform::mesh_format_from_path(path) || !size_m.allFinite()) return std::nullopt;
   Eigen::Index thin = 0;
   const double thinnest = size_m.minCoeff(&thin);
   if (thin == 1 || !(size_m.y() > 1.2 * thinnest)) return std::nullopt;
